@@ -1,0 +1,81 @@
+"""The exceptions symkin raises.
+
+Every error symkin raises on bad input is a :class:`SymkinError`; its message is one
+sentence that says what is wrong and how to fix it.  Users catch the base class, or a
+more specific one::
+
+    >>> import symkin
+    >>> try:
+    ...     symkin.schemes.two_row("AX")
+    ... except symkin.SymkinError as err:
+    ...     print(type(err).__name__)
+    ModelError
+"""
+
+from __future__ import annotations
+
+__all__ = [
+    "SymkinError",
+    "ModelError",
+    "InputError",
+    "DeterminacyError",
+    "UnderdeterminedError",
+    "OverdeterminedError",
+    "SingularConfigurationError",
+    "UnsupportedError",
+    "SymkinWarning",
+    "CoaxialityWarning",
+]
+
+
+class SymkinError(Exception):
+    """Base class of every error symkin raises on purpose."""
+
+
+class ModelError(SymkinError, ValueError):
+    """The mechanism description is invalid (teeth, radii, names, meshes)."""
+
+
+class InputError(SymkinError, ValueError):
+    """A value given by the user (a number, a name, an expression) cannot be used."""
+
+
+class DeterminacyError(SymkinError, ValueError):
+    """The chosen known speeds do not determine the mechanism's motion exactly once.
+
+    Attributes
+    ----------
+    dof : int
+        Degrees of freedom of the mechanism.
+    admissible : tuple of str
+        One admissible choice of links whose speeds determine all the others.
+    """
+
+    def __init__(self, message: str, *, dof: int, admissible: tuple[str, ...]):
+        super().__init__(message)
+        self.dof = dof
+        self.admissible = admissible
+
+
+class UnderdeterminedError(DeterminacyError):
+    """Too few independent speeds are known."""
+
+
+class OverdeterminedError(DeterminacyError):
+    """More speeds are known than the mechanism's degrees of freedom allow."""
+
+
+class SingularConfigurationError(DeterminacyError):
+    """The law asked for is singular for these dimensions (a vanishing denominator)."""
+
+
+class UnsupportedError(SymkinError, NotImplementedError):
+    """A valid description that this version of symkin cannot handle yet."""
+
+
+class SymkinWarning(UserWarning):
+    """Base class of symkin's warnings."""
+
+
+class CoaxialityWarning(SymkinWarning):
+    """The tooth numbers or radii put a planet's axis at two different distances."""

@@ -1,0 +1,573 @@
+"""The mechanism model: gears, links, meshes and the mechanism that holds them.
+
+These are small immutable value objects.  They validate what they are given and
+know their own geometry (where each gear's axis is, where each pitch point lies);
+they derive no kinematics.  The derivation methods live in :mod:`symkin.kinematics`
+and :mod:`symkin.particles` and consume this model, so a new method needs no change
+here.
+
+Conventions (those of the 2009 paper): every link turns in one plane; central links
+(suns, rings, carriers) turn about the main axis O; a planet's axis is carried by a
+carrier at a distance ``arm`` from the main axis; angles are counter-clockwise seen
+from +z.
+
+    >>> from symkin.model import Gear, Link, Mechanism
+    >>> m = Mechanism(
+    ...     links=[Link.central("1", Gear.from_teeth("1", 20)),
+    ...            Link.planet("2", Gear.from_teeth("2", 30), carrier="H"),
+    ...            Link.central("H"),
+    ...            Link.frame(Gear.from_teeth("4", 80, internal=True))],
+    ...     meshes=[("1", "2"), ("2", "4")])
+    >>> m.dof
+    1
+"""
+
+from __future__ import annotations
+
+import enum
+import warnings
+from dataclasses import dataclass, field
+from functools import cached_property
+from typing import Any, Iterable, Mapping, Sequence
+
+import sympy as sp
+
+from . import symbols as S
+from .errors import CoaxialityWarning, ModelError
+
+__all__ = ["FRAME", "LinkKind", "Gear", "Link", "Mesh", "Mechanism", "as_length", "as_teeth"]
+
+#: Name of the mechanism frame (the fixed link that holds the main axis).
+FRAME = "0"
+
+
+# --------------------------------------------------------------------------- checks
+def _sympify(value: Any, what: str) -> sp.Expr:
+    """sympify without ever parsing a string (sympify of a string evaluates Python)."""
+    if isinstance(value, str):
+        raise ModelError(
+            f"{what} must be a number or a SymPy expression, not the string {value!r}; "
+            "convert it with symkin.parsing.parse_expression first"
+        )
+    if isinstance(value, bool):
+        raise ModelError(f"{what} must be a number, not {value!r}")
+    try:
+        expr = sp.sympify(value, strict=True)
+    except (sp.SympifyError, TypeError) as err:
+        raise ModelError(f"{what} must be a number or a SymPy expression, not {value!r}") from err
+    if not isinstance(expr, sp.Expr):
+        raise ModelError(f"{what} must be a scalar expression, not {value!r}")
+    return expr
+
+
+def as_length(value: Any, what: str) -> sp.Expr:
+    """Check and return a positive length (a pitch radius, an arm).
+
+    >>> as_length(2, "radius")
+    2
+    >>> as_length(-1, "radius of gear 1")
+    Traceback (most recent call last):
+    ...
+    symkin.errors.ModelError: radius of gear 1 must be positive, got -1; give a positive pitch radius
+    """
+    expr = _sympify(value, what)
+    if expr.is_number:
+        if expr.has(sp.nan, sp.zoo, sp.oo, -sp.oo) or not expr.is_finite:
+            raise ModelError(f"{what} must be a finite number, got {value!r}")
+        if expr.is_extended_real is False:
+            raise ModelError(f"{what} must be real, got {value!r}")
+    if expr.is_positive is False:
+        raise ModelError(f"{what} must be positive, got {value!r}; give a positive pitch radius")
+    return expr
+
+
+def as_teeth(value: Any, what: str) -> sp.Expr:
+    """Check and return a tooth number: a positive integer or an integer symbol.
+
+    >>> as_teeth(20, "teeth of gear 1")
+    20
+    >>> as_teeth(20.5, "teeth of gear 1")
+    Traceback (most recent call last):
+    ...
+    symkin.errors.ModelError: teeth of gear 1 must be a whole number, got 20.5; tooth numbers are positive integers
+    """
+    expr = _sympify(value, what)
+    if expr.is_number:
+        if not expr.is_Integer:
+            if expr.is_finite and expr.is_integer:  # e.g. Float 20.0: still refuse, it is not exact
+                pass
+            raise ModelError(
+                f"{what} must be a whole number, got {value!r}; tooth numbers are positive integers"
+            )
+        if expr <= 0:
+            raise ModelError(f"{what} must be positive, got {value!r}; tooth numbers are positive integers")
+    elif expr.is_integer is False or expr.is_positive is False:
+        raise ModelError(f"{what} must be a positive integer symbol, got {value!r}")
+    return expr
+
+
+def _name(value: Any, what: str) -> str:
+    if not isinstance(value, str) or not value or not value.isprintable() or value.strip() != value:
+        raise ModelError(f"{what} must be a non-empty printable name without surrounding blanks, got {value!r}")
+    return value
+
+
+# --------------------------------------------------------------------------- parts
+@dataclass(frozen=True)
+class Gear:
+    """A gear rim: its pitch radius, tooth number and whether it is internal.
+
+    Parameters
+    ----------
+    name : str
+        Gear name, e.g. ``"1"``; the paper's indices are 1 and 4 (central) and 2, 3 (planet).
+    radius : sympy expression
+        Working pitch radius.  The kinematic laws depend only on the ratio of the two
+        radii of each mesh, so ``teeth`` (with a common module) can stand for it.
+    teeth : int or integer symbol, optional
+    internal : bool
+        True for an internal (ring) gear.
+    module : sympy expression, optional
+        Module of a gear built from its tooth number.
+    """
+
+    name: str
+    radius: sp.Expr
+    teeth: sp.Expr | None = None
+    internal: bool = False
+    module: sp.Expr | None = None
+
+    def __post_init__(self) -> None:
+        _name(self.name, "gear name")
+        object.__setattr__(self, "radius", as_length(self.radius, f"pitch radius of gear {self.name}"))
+        if self.teeth is not None:
+            object.__setattr__(self, "teeth", as_teeth(self.teeth, f"tooth number of gear {self.name}"))
+        if not isinstance(self.internal, bool):
+            raise ModelError(f"internal of gear {self.name} must be True or False, got {self.internal!r}")
+        if self.module is not None:
+            object.__setattr__(self, "module", as_length(self.module, f"module of gear {self.name}"))
+
+    @classmethod
+    def from_teeth(cls, name: str, teeth: Any, *, internal: bool = False, module: Any = None) -> "Gear":
+        """A gear of ``teeth`` teeth and pitch radius ``module * teeth / 2``.
+
+        The module defaults to the symbol ``m``; it cancels from every ratio.
+
+        >>> Gear.from_teeth("1", 20).radius
+        10*m
+        """
+        z = as_teeth(teeth, f"tooth number of gear {name}")
+        m = S.module() if module is None else as_length(module, f"module of gear {name}")
+        return cls(name, m * z / 2, teeth=z, internal=internal, module=m)
+
+    @classmethod
+    def symbolic(cls, name: str, *, internal: bool = False) -> "Gear":
+        """A gear whose pitch radius is the symbol ``r_name``.
+
+        >>> Gear.symbolic("4", internal=True)
+        Gear(name='4', radius=r_4, teeth=None, internal=True, module=None)
+        """
+        return cls(name, S.radius(name), internal=internal)
+
+
+class LinkKind(str, enum.Enum):
+    """What a link's axis is attached to."""
+
+    FRAME = "frame"  #: the fixed link; its pole is the main axis O
+    CENTRAL = "central"  #: turns about the main axis (sun, ring, carrier)
+    PLANET = "planet"  #: its axis is carried by another link (a carrier)
+
+
+@dataclass(frozen=True)
+class Link:
+    """A rigid link and the gear rims it carries.
+
+    Build links with :meth:`central`, :meth:`planet` or :meth:`frame`.  A central link
+    that carries planets is a carrier; it may hold gears too (the carrier of one stage
+    holding the sun of the next).
+
+    Attributes
+    ----------
+    name : str
+    kind : LinkKind
+    gears : tuple of Gear
+    carrier : str or None
+        For a planet: the link that carries its axis (a central link or the frame).
+    arm : sympy expression or None
+        For a planet: the distance of its axis from the main axis.  ``None`` derives it
+        from the planet's first mesh with a gear that turns about the main axis.
+    position_angle : sympy expression
+        For a planet: the angle of its axis on the carrier at t = 0 (0 = +x axis).
+    """
+
+    name: str
+    kind: LinkKind
+    gears: tuple[Gear, ...] = ()
+    carrier: str | None = None
+    arm: sp.Expr | None = None
+    position_angle: sp.Expr = sp.Integer(0)
+
+    def __post_init__(self) -> None:
+        _name(self.name, "link name")
+        if not isinstance(self.kind, LinkKind):
+            raise ModelError(f"kind of link {self.name} must be a LinkKind, got {self.kind!r}")
+        gears = tuple(self.gears)
+        for g in gears:
+            if not isinstance(g, Gear):
+                raise ModelError(f"link {self.name} holds {g!r}, which is not a Gear")
+        object.__setattr__(self, "gears", gears)
+        if self.kind is LinkKind.PLANET:
+            if self.carrier is None:
+                raise ModelError(f"planet {self.name} needs a carrier: name the link that carries its axis")
+            _name(self.carrier, f"carrier of planet {self.name}")
+            if self.carrier == self.name:
+                raise ModelError(f"planet {self.name} cannot carry its own axis; name another link as its carrier")
+            if self.arm is not None:
+                object.__setattr__(self, "arm", as_length(self.arm, f"arm of planet {self.name}"))
+            object.__setattr__(
+                self, "position_angle", _sympify(self.position_angle, f"position angle of planet {self.name}")
+            )
+        elif self.carrier is not None or self.arm is not None:
+            raise ModelError(f"{self.kind.value} link {self.name} turns about the main axis: it takes no carrier or arm")
+        if self.kind is LinkKind.FRAME and self.name != FRAME:
+            raise ModelError(f"the frame must be named {FRAME!r}, got {self.name!r}")
+
+    @classmethod
+    def central(cls, name: str, *gears: Gear) -> "Link":
+        """A link turning about the main axis: a sun, a ring, or a carrier."""
+        return cls(name, LinkKind.CENTRAL, gears)
+
+    @classmethod
+    def planet(
+        cls, name: str, *gears: Gear, carrier: str = "H", arm: Any = None, position_angle: Any = 0
+    ) -> "Link":
+        """A planet (satellite) carried by ``carrier``; a stepped planet has two gears."""
+        return cls(name, LinkKind.PLANET, gears, carrier=carrier, arm=arm, position_angle=position_angle)
+
+    @classmethod
+    def frame(cls, *gears: Gear) -> "Link":
+        """The fixed frame, optionally holding fixed gears (a fixed ring)."""
+        return cls(FRAME, LinkKind.FRAME, gears)
+
+
+@dataclass(frozen=True)
+class Mesh:
+    """Two gears in mesh, by name."""
+
+    a: str
+    b: str
+
+    def __post_init__(self) -> None:
+        _name(self.a, "gear name in a mesh")
+        _name(self.b, "gear name in a mesh")
+        if self.a == self.b:
+            raise ModelError(f"a gear cannot mesh with itself ({self.a}); name two different gears")
+
+
+@dataclass(frozen=True)
+class MeshGeometry:
+    """Where a mesh is, in the mesh's own frame (the paper's fig. 2: y along the line of centres).
+
+    The first gear's axis A is the origin, the second's B is at (0, centre_distance) and the
+    pitch point P at (0, pitch_y).  Each mesh uses its own centre distance, so its contact
+    condition depends only on the ratio of its two pitch radii.
+    """
+
+    mesh: Mesh
+    gear_a: Gear
+    gear_b: Gear
+    link_a: "Link"
+    link_b: "Link"
+    centre_distance: sp.Expr
+    pitch_y: sp.Expr
+
+
+# --------------------------------------------------------------------------- mechanism
+@dataclass(frozen=True)
+class Mechanism:
+    """A planar gear mechanism: links, the gears they hold, and the meshes between gears.
+
+    The frame (link ``"0"``) is added when not given.  Objects are immutable; the laws a
+    mechanism is asked for are derived on first use and cached.
+
+    Parameters
+    ----------
+    links : sequence of Link
+    meshes : sequence of Mesh or (gear, gear) pairs
+    name : str, optional
+        A label used in reports (e.g. ``"AA"``).
+
+    Notes
+    -----
+    Coaxiality: every mesh between a planet and a gear turning about the main axis puts
+    the planet's axis at a centre distance from the main axis; all of them must agree.
+    :attr:`coaxiality` lists these conditions; when tooth numbers with a common module
+    violate one, a :class:`~symkin.errors.CoaxialityWarning` is issued (the laws remain
+    valid for the working pitch radii, which profile shift makes coaxial).
+    """
+
+    links: tuple[Link, ...]
+    meshes: tuple[Mesh, ...]
+    name: str = ""
+    _cache: dict = field(default_factory=dict, init=False, repr=False, compare=False, hash=False)
+
+    def __post_init__(self) -> None:
+        links = tuple(self.links)
+        if not any(isinstance(L, Link) and L.kind is LinkKind.FRAME for L in links):
+            links = (Link.frame(),) + links
+        meshes = tuple(m if isinstance(m, Mesh) else Mesh(*_pair(m)) for m in self.meshes)
+        object.__setattr__(self, "links", links)
+        object.__setattr__(self, "meshes", meshes)
+        self._validate()
+        self._warn_coaxiality()
+
+    # ---- lookups
+    @cached_property
+    def _links_by_name(self) -> dict[str, Link]:
+        return {L.name: L for L in self.links}
+
+    @cached_property
+    def _gears(self) -> dict[str, tuple[Gear, Link]]:
+        return {g.name: (g, L) for L in self.links for g in L.gears}
+
+    @property
+    def moving_links(self) -> tuple[Link, ...]:
+        """Every link but the frame, in the order given."""
+        return tuple(L for L in self.links if L.kind is not LinkKind.FRAME)
+
+    @property
+    def link_names(self) -> tuple[str, ...]:
+        return tuple(L.name for L in self.moving_links)
+
+    def gear(self, name: str) -> Gear:
+        """The gear called ``name``."""
+        try:
+            return self._gears[name][0]
+        except (KeyError, TypeError):
+            raise ModelError(f"no gear {name!r} in this mechanism; its gears are {', '.join(self._gears)}") from None
+
+    def link(self, name: str) -> Link:
+        """The link called ``name``, or the link that holds the gear called ``name``.
+
+        The paper speaks of "gear 2" for the planet carrying rim 2: both names work.
+
+        >>> from symkin import schemes
+        >>> schemes.two_row("AI").link("3").name
+        '23'
+        """
+        if isinstance(name, str):
+            if name in self._links_by_name:
+                return self._links_by_name[name]
+            if name in self._gears:
+                return self._gears[name][1]
+        valid = sorted(set(self.link_names) | set(self._gears) | {FRAME})
+        raise ModelError(f"no link {name!r} in this mechanism; name one of {', '.join(valid)}")
+
+    # ---- validation
+    def _validate(self) -> None:
+        seen: set[str] = set()
+        for L in self.links:
+            if not isinstance(L, Link):
+                raise ModelError(f"{L!r} is not a Link; build links with Link.central, Link.planet or Link.frame")
+            if L.name in seen:
+                raise ModelError(f"two links are called {L.name!r}; give every link its own name")
+            seen.add(L.name)
+        gear_names: set[str] = set()
+        for L in self.links:
+            for g in L.gears:
+                if g.name in gear_names:
+                    raise ModelError(f"two gears are called {g.name!r}; give every gear its own name")
+                gear_names.add(g.name)
+        by_name = {L.name: L for L in self.links}
+        for L in self.links:
+            if L.kind is LinkKind.PLANET:
+                c = by_name.get(L.carrier)
+                if c is None:
+                    raise ModelError(f"planet {L.name} names carrier {L.carrier!r}, which is not a link of this mechanism")
+                if c.kind is LinkKind.PLANET:
+                    raise ModelError(
+                        f"planet {L.name} is carried by planet {c.name}; symkin carries planets on links "
+                        "that turn about the main axis (a carrier or the frame)"
+                    )
+        if len({(frozenset((m.a, m.b))) for m in self.meshes}) != len(self.meshes):
+            raise ModelError("a mesh is listed twice; list each pair of gears once")
+        for mesh in self.meshes:
+            self.mesh_geometry(mesh)  # raises on an impossible mesh
+
+    def mesh_geometry(self, mesh: Mesh) -> MeshGeometry:
+        """Centre distance and pitch point of a mesh (see :class:`MeshGeometry`)."""
+        ga, la = self._gear_and_link(mesh.a)
+        gb, lb = self._gear_and_link(mesh.b)
+        if la.name == lb.name:
+            raise ModelError(f"gears {ga.name} and {gb.name} are on the same link {la.name}; they cannot mesh")
+        if ga.internal and gb.internal:
+            raise ModelError(
+                f"gears {ga.name} and {gb.name} are both internal and cannot mesh; "
+                "an internal gear meshes with an external one"
+            )
+        if la.kind is not LinkKind.PLANET and lb.kind is not LinkKind.PLANET:
+            raise ModelError(
+                f"gears {ga.name} and {gb.name} both turn about the main axis and cannot mesh; "
+                "put one of them on a planet"
+            )
+        if la.kind is LinkKind.PLANET and lb.kind is LinkKind.PLANET and la.carrier != lb.carrier:
+            raise ModelError(
+                f"planets {la.name} and {lb.name} have different carriers; symkin meshes two planets "
+                "only when one carrier holds both"
+            )
+        # sigma = -1 flips a pitch point to the far side when the partner is internal
+        sa = -1 if gb.internal else 1
+        sb = -1 if ga.internal else 1
+        d = sp.expand(sa * ga.radius + sb * gb.radius)
+        if d.is_positive is False or d.is_zero:
+            big, small = (ga, gb) if ga.internal else (gb, ga)
+            raise ModelError(
+                f"internal gear {big.name} (pitch radius {big.radius}) must be larger than gear {small.name} "
+                f"(pitch radius {small.radius}) that meshes inside it"
+            )
+        return MeshGeometry(mesh, ga, gb, la, lb, d, sa * ga.radius)
+
+    def _gear_and_link(self, name: str) -> tuple[Gear, Link]:
+        self.gear(name)
+        return self._gears[name]
+
+    # ---- geometry
+    @cached_property
+    def planet_centre_distances(self) -> dict[str, tuple[tuple[Mesh, sp.Expr], ...]]:
+        """For each planet, the distance of its axis from the main axis implied by each of
+        its meshes with a gear turning about the main axis."""
+        out: dict[str, list[tuple[Mesh, sp.Expr]]] = {}
+        for mesh in self.meshes:
+            geo = self.mesh_geometry(mesh)
+            for planet, other in ((geo.link_a, geo.link_b), (geo.link_b, geo.link_a)):
+                if planet.kind is LinkKind.PLANET and other.kind is not LinkKind.PLANET:
+                    out.setdefault(planet.name, []).append((mesh, geo.centre_distance))
+        return {k: tuple(v) for k, v in out.items()}
+
+    def arm(self, planet: str) -> sp.Expr:
+        """Distance of a planet's axis from the main axis.
+
+        The planet's own ``arm`` if given, else the centre distance of its first mesh with
+        a gear turning about the main axis.
+
+        >>> from symkin import schemes
+        >>> schemes.two_row("AI").arm("23")
+        r_1 + r_2
+        """
+        L = self.link(planet)
+        if L.kind is not LinkKind.PLANET:
+            return sp.Integer(0)
+        if L.arm is not None:
+            return L.arm
+        dists = self.planet_centre_distances.get(L.name)
+        if not dists:
+            raise ModelError(
+                f"planet {L.name} meshes with no gear on the main axis, so its arm is unknown; "
+                "give it with Link.planet(..., arm=...)"
+            )
+        return dists[0][1]
+
+    @cached_property
+    def coaxiality(self) -> tuple[sp.Eq, ...]:
+        """The conditions under which every planet axis is where all its meshes put it.
+
+        >>> from symkin import schemes
+        >>> schemes.two_row("AI").coaxiality
+        (Eq(r_1 + r_2, -r_3 + r_4),)
+        """
+        conds = []
+        for L in self.moving_links:
+            if L.kind is not LinkKind.PLANET:
+                continue
+            dists = [d for _, d in self.planet_centre_distances.get(L.name, ())]
+            ref = L.arm if L.arm is not None else (dists[0] if dists else None)
+            for d in dists:
+                if d != ref:
+                    conds.append(sp.Eq(ref, d, evaluate=False))
+        return tuple(conds)
+
+    def coaxiality_defects(self) -> tuple[tuple[str, sp.Expr, sp.Expr], ...]:
+        """Coaxiality conditions that fail: (planet, first centre distance, other one).
+
+        Only conditions that can be decided (numbers, or a common module symbol) are listed.
+        """
+        defects = []
+        for L in self.moving_links:
+            if L.kind is not LinkKind.PLANET:
+                continue
+            dists = [d for _, d in self.planet_centre_distances.get(L.name, ())]
+            ref = L.arm if L.arm is not None else (dists[0] if dists else None)
+            for d in dists:
+                diff = sp.simplify(ref - d)
+                # decidable when only module symbols remain (a module scales both sides)
+                if not (diff.free_symbols - self._module_symbols) and diff != 0:
+                    defects.append((L.name, ref, d))
+        return tuple(defects)
+
+    @cached_property
+    def _module_symbols(self) -> set[sp.Symbol]:
+        return {s for L in self.links for g in L.gears if g.module is not None for s in g.module.free_symbols}
+
+    def _warn_coaxiality(self) -> None:
+        for planet, d1, d2 in self.coaxiality_defects():
+            warnings.warn(
+                f"planet {planet} is not coaxial: its meshes put its axis at {d1} and at {d2} from the "
+                "main axis; the kinematic laws hold for working pitch radii in the tooth ratios "
+                "(profile shift), positions use the first distance",
+                CoaxialityWarning,
+                stacklevel=4,
+            )
+
+    # ---- derived laws (delegated to the derivation modules; cached here)
+    @property
+    def dof(self) -> int:
+        """Degrees of freedom: moving links minus independent contact conditions."""
+        from .kinematics import kinematic_system
+
+        return kinematic_system(self).dof
+
+    def contact_conditions(self) -> tuple[sp.Eq, ...]:
+        """One equation per mesh: equal velocities of both gears at the pitch point (eq. 5)."""
+        from .kinematics import kinematic_system
+
+        return kinematic_system(self).equations
+
+    def speeds(self, known: Mapping[str, Any]) -> "Any":
+        """Angular velocity of every link, given the speeds of some links.
+
+        See :func:`symkin.kinematics.solve_speeds`.
+        """
+        from .kinematics import solve_speeds
+
+        return solve_speeds(self, known)
+
+    def ratio(self, driver: str, driven: str, fixed: str | Sequence[str] | None = None) -> "Any":
+        """The ratio i_ab^(c) = omega_a / omega_b with link(s) c fixed.
+
+        See :func:`symkin.kinematics.ratio`.
+        """
+        from .kinematics import ratio
+
+        return ratio(self, driver, driven, fixed)
+
+    def motion(self, inputs: Mapping[str, Any], frame: Any = None) -> "Any":
+        """The motion of every link for given input drives; see :class:`symkin.particles.Motion`."""
+        from .particles import Motion
+
+        return Motion.build(self, inputs, frame)
+
+    def _memo(self, key: Any, compute: Any) -> Any:
+        """Return ``compute()`` for ``key``, computing it once per mechanism."""
+        try:
+            return self._cache[key]
+        except KeyError:
+            value = self._cache[key] = compute()
+            return value
+
+
+def _pair(m: Iterable[str]) -> tuple[str, str]:
+    try:
+        a, b = m
+    except (TypeError, ValueError):
+        raise ModelError(f"a mesh is a pair of gear names, got {m!r}") from None
+    return a, b
