@@ -1,0 +1,432 @@
+"""Angular velocities of every link from contact conditions at the pitch points.
+
+Each mesh gives one condition: the pitch point, taken as a point of either gear's link,
+has one velocity (eq. 5 of the 2009 paper, with the link's axis as pole).  No Willis
+inversion is used: the carrier's motion enters through the velocity of the planet axis.
+The conditions are linear in the angular velocities; the solver returns every unknown
+speed in closed form, or refuses with the degrees of freedom and an admissible choice.
+
+    >>> from symkin import schemes
+    >>> aa = schemes.two_row("AA", teeth=(100, 100, 101, 99))
+    >>> aa.ratio("H", "1", fixed="4").rhs
+    101/2
+"""
+
+from __future__ import annotations
+
+import itertools
+import random
+from collections.abc import Mapping as MappingABC
+from dataclasses import dataclass
+from typing import Any, Iterator, Mapping, Sequence
+
+import sympy as sp
+
+from . import symbols as S
+from .errors import (
+    InputError,
+    ModelError,
+    OverdeterminedError,
+    SingularConfigurationError,
+    UnderdeterminedError,
+)
+from .laws import Law
+from .model import FRAME, LinkKind, Mechanism, Mesh
+from .superposition import vec, velocity
+
+__all__ = ["contact_condition", "kinematic_system", "KinematicSystem", "solve_speeds", "Speeds", "ratio"]
+
+
+# --------------------------------------------------------------------------- conditions
+def _omega(mech: Mechanism, link_name: str) -> sp.Expr:
+    return sp.Integer(0) if link_name == FRAME else S.omega(link_name)
+
+
+def contact_condition(mech: Mechanism, mesh: Mesh) -> sp.Eq:
+    """Equal velocities of both gears of ``mesh`` at its pitch point.
+
+    The mesh is drawn as in the paper's fig. 2: the line of centres along y, the pitch
+    point on it, and the tangential component V_x of eq. (5) is equated.  Each gear's
+    link has its own axis as pole; a planet axis moves with its carrier (eq. 5 again).
+
+    >>> from symkin import schemes
+    >>> ai = schemes.two_row("AI")
+    >>> contact_condition(ai, ai.meshes[0])
+    Eq(-omega_1*r_1, omega_23*r_2 + omega_H*(-r_1 - r_2))
+    """
+    geo = mech.mesh_geometry(mesh)
+    A, B, P = vec(0, 0), vec(0, geo.centre_distance), vec(0, geo.pitch_y)
+    # the main axis: where the non-planet gear turns (any point will do for two planets
+    # on one carrier: the carrier's own velocity cancels between them)
+    main_axis = B if geo.link_a.kind is LinkKind.PLANET and geo.link_b.kind is not LinkKind.PLANET else A
+
+    def pitch_velocity(link, axis):
+        if link.kind is LinkKind.PLANET:
+            axis_velocity = velocity(vec(0, 0), _omega(mech, link.carrier), axis, main_axis)
+        else:
+            axis_velocity = vec(0, 0)
+        return velocity(axis_velocity, _omega(mech, link.name), P, axis)
+
+    va = pitch_velocity(geo.link_a, A)
+    vb = pitch_velocity(geo.link_b, B)
+    omegas = [S.omega(n) for n in (geo.link_a.name, geo.link_b.name, geo.link_a.carrier, geo.link_b.carrier) if n and n != FRAME]
+    return sp.Eq(*(sp.collect(sp.expand(v[0]), omegas, sp.factor) for v in (va, vb)), evaluate=False)
+
+
+# --------------------------------------------------------------------------- the system
+@dataclass(frozen=True)
+class KinematicSystem:
+    """The contact conditions of a mechanism as a linear system M omega = 0.
+
+    Attributes
+    ----------
+    links : tuple of str
+        The moving links, in the column order of :attr:`matrix`.
+    equations : tuple of sympy.Eq
+        One contact condition per mesh.
+    matrix : sympy.ImmutableMatrix
+        Coefficients of the angular velocities, one row per mesh.
+    motions : sympy.ImmutableMatrix
+        A basis of the admissible speed vectors (columns), for generic dimensions.
+    dof : int
+        Degrees of freedom.
+    """
+
+    mechanism: Mechanism
+    links: tuple[str, ...]
+    equations: tuple[sp.Eq, ...]
+    matrix: sp.ImmutableMatrix
+    motions: sp.ImmutableMatrix
+    dof: int
+
+    def rows(self, names: Sequence[str]) -> sp.Matrix:
+        return sp.Matrix([list(self.motions.row(self.links.index(n))) for n in names]) if names else sp.zeros(0, self.dof)
+
+    def rank_of(self, names: Sequence[str]) -> int:
+        """How many independent speeds the links ``names`` have."""
+        return self.rows(names).rank() if names else 0
+
+    def admissible_choice(self, prefer: Sequence[str] = ()) -> tuple[str, ...]:
+        """A set of ``dof`` links whose speeds determine all the others.
+
+        Links in ``prefer`` are kept when possible, then central links before planets.
+        """
+        order = list(dict.fromkeys([p for p in prefer if p in self.links] + self._by_preference()))
+        for k in range(len(order) + 1):  # keep as many preferred links as possible
+            for combo in itertools.combinations(order, self.dof):
+                if sum(c in prefer for c in combo) < min(len(set(prefer) & set(order)), self.dof) - k:
+                    continue
+                if self.rank_of(combo) == self.dof:
+                    return combo
+        return ()
+
+    def _by_preference(self) -> list[str]:
+        mech = self.mechanism
+        central = [n for n in self.links if mech.link(n).kind is LinkKind.CENTRAL]
+        return central + [n for n in self.links if n not in central]
+
+
+def _generic_values(symbols: set[sp.Symbol], seed: int) -> dict[sp.Symbol, sp.Rational]:
+    rng = random.Random(seed)
+    return {s: sp.Rational(rng.randint(1000, 9999), rng.randint(100, 999)) for s in sorted(symbols, key=str)}
+
+
+def kinematic_system(mech: Mechanism) -> KinematicSystem:
+    """The contact conditions of ``mech`` and its degrees of freedom (cached).
+
+    Ranks are computed exactly; when the dimensions are symbolic, for generic values of
+    the symbols (random rationals, twice).
+
+    >>> from symkin import schemes
+    >>> kinematic_system(schemes.two_row("II")).dof
+    2
+    """
+
+    def build() -> KinematicSystem:
+        links = mech.link_names
+        omegas = [S.omega(n) for n in links]
+        equations = tuple(contact_condition(mech, mesh) for mesh in mech.meshes)
+        if equations:
+            matrix, _ = sp.linear_eq_to_matrix([e.lhs - e.rhs for e in equations], omegas)
+        else:
+            matrix = sp.zeros(0, len(links))
+        matrix = sp.ImmutableMatrix(matrix.applyfunc(sp.expand))
+        best = None
+        for seed in (1, 2):
+            generic = matrix.subs(_generic_values(matrix.free_symbols, seed))
+            basis = generic.nullspace()
+            if best is None or len(basis) < best.cols:
+                best = sp.ImmutableMatrix.hstack(*basis) if basis else sp.zeros(len(links), 0)
+            if not matrix.free_symbols:
+                break
+        return KinematicSystem(mech, links, equations, matrix, sp.ImmutableMatrix(best), best.cols)
+
+    return mech._memo("kinematic_system", build)
+
+
+# --------------------------------------------------------------------------- solving
+def _resolve(mech: Mechanism, name: Any) -> str:
+    if not isinstance(name, str):
+        raise InputError(f"a link is named by a string such as '1' or 'H', got {name!r}")
+    link = mech.link(name)
+    return link.name
+
+
+def _value(value: Any, what: str) -> sp.Expr:
+    if isinstance(value, str):
+        from .parsing import parse_expression
+
+        return parse_expression(value, what=what)
+    if isinstance(value, bool):
+        raise InputError(f"{what} must be a number or an expression, got {value!r}")
+    try:
+        expr = sp.sympify(value, strict=True)
+    except (sp.SympifyError, TypeError):
+        raise InputError(f"{what} must be a number or an expression, got {value!r}") from None
+    if not isinstance(expr, sp.Expr):
+        raise InputError(f"{what} must be a scalar, got {value!r}")
+    if expr.is_number and (expr.has(sp.nan, sp.zoo, sp.oo, -sp.oo) or expr.is_extended_real is False):
+        raise InputError(f"{what} must be a finite real number, got {value!r}")
+    return expr
+
+
+def _fmt_links(names: Sequence[str]) -> str:
+    names = list(names)
+    return " and ".join([", ".join(names[:-1]), names[-1]]) if len(names) > 1 else (names[0] if names else "none")
+
+
+def check_known_links(mech: Mechanism, known: Sequence[str]) -> KinematicSystem:
+    """Raise unless the speeds of ``known`` determine every other link exactly once."""
+    system = kinematic_system(mech)
+    dof = system.dof
+    rank = system.rank_of(known)
+    if rank == len(known) == dof:
+        return system
+    choice = system.admissible_choice(prefer=known)
+    example = _fmt_links(choice)
+    if rank < len(known):
+        relation = _dependency(system, known)
+        if len(known) <= dof:
+            raise SingularConfigurationError(
+                f"the speeds of {_fmt_links(known)} are not independent in this mechanism ({relation} "
+                f"for every motion), so they cannot determine the other links: the law is singular for "
+                f"these dimensions; give the speeds of {example} instead, or change the dimensions",
+                dof=dof,
+                admissible=choice,
+            )
+        raise OverdeterminedError(
+            f"the mechanism has {dof} degree{'s' * (dof != 1)} of freedom but {len(known)} link speeds "
+            f"are given ({relation} for every motion); give exactly {dof}, for example {example}",
+            dof=dof,
+            admissible=choice,
+        )
+    raise UnderdeterminedError(
+        f"the mechanism has {dof} degree{'s' * (dof != 1)} of freedom but only {len(known)} link "
+        f"speed{'s' * (len(known) != 1)} {'is' if len(known) == 1 else 'are'} given"
+        f"{' (' + _fmt_links(known) + ')' if known else ''}; give exactly {dof}, for example {example}",
+        dof=dof,
+        admissible=choice,
+    )
+
+
+def _dependency(system: KinematicSystem, known: Sequence[str]) -> str:
+    rows = system.rows(known)
+    left = rows.T.nullspace()
+    if not left:
+        return "they are tied"
+    coeffs = left[0]
+    expr = sum(c * S.omega(n) for c, n in zip(coeffs, known))
+    lead = next(S.omega(n) for c, n in zip(coeffs, known) if c != 0)
+    sol = sp.solve(expr, lead)
+    return f"{lead} = {sol[0]}" if sol else "they are tied"
+
+
+@dataclass(frozen=True)
+class Speeds(MappingABC):
+    """Angular velocity of every link of a mechanism for given known speeds.
+
+    A read-only mapping from link name to its angular velocity (the known ones included);
+    gear names are accepted for the link that holds the gear.
+
+    Attributes
+    ----------
+    mechanism : Mechanism
+    known : tuple of (str, sympy expression)
+    link_speeds : tuple of (str, sympy expression)
+        Every moving link's speed, in the mechanism's link order.
+    coefficients : tuple of (str, tuple of sympy expression)
+        How each link's speed depends linearly on the known speeds (constant coefficients),
+        in the order of ``known``.
+    """
+
+    mechanism: Mechanism
+    known: tuple[tuple[str, sp.Expr], ...]
+    link_speeds: tuple[tuple[str, sp.Expr], ...]
+    coefficients: tuple[tuple[str, tuple[sp.Expr, ...]], ...]
+
+    def __getitem__(self, name: str) -> sp.Expr:
+        link = self.mechanism.link(name).name
+        return dict(self.link_speeds)[link] if link != FRAME else sp.Integer(0)
+
+    def __iter__(self) -> Iterator[str]:
+        return (n for n, _ in self.link_speeds)
+
+    def __len__(self) -> int:
+        return len(self.link_speeds)
+
+    def law(self, name: str) -> Law:
+        """The speed of one link as a :class:`~symkin.laws.Law`."""
+        link = self.mechanism.link(name).name
+        given = ", ".join(f"{n}" for n, _ in self.known)
+        return Law(S.omega(link), self[link], f"angular velocity of link {link}, given the speeds of {given}")
+
+    def laws(self) -> tuple[Law, ...]:
+        """The laws of every link whose speed was not given."""
+        known = {n for n, _ in self.known}
+        return tuple(self.law(n) for n, _ in self.link_speeds if n not in known)
+
+    def coefficient(self, link: str, known_link: str) -> sp.Expr:
+        """d omega_link / d omega_known: the constant factor in the linear law."""
+        names = [n for n, _ in self.known]
+        return dict(self.coefficients)[self.mechanism.link(link).name][names.index(self.mechanism.link(known_link).name)]
+
+
+def _tidy(expr: sp.Expr) -> sp.Expr:
+    """One fraction, cancelled, its numerator grouped by angular velocity.  Over a monomial
+    denominator a law with a constant term is split as a paper writes it (1 + z2 z4/(z1 z3))."""
+    num, den = sp.fraction(sp.cancel(sp.together(expr)))
+    if not den.is_Add:
+        split = sp.expand(num / den)
+        if any(term.is_number for term in sp.Add.make_args(split)):
+            return split
+    speeds = sorted((s for s in num.free_symbols if s.name.startswith("omega_")), key=str)
+    if speeds:
+        num = sp.collect(sp.expand(num), speeds, sp.factor)
+    return sp.factor_terms(num) / sp.factor_terms(den)
+
+
+def solve_speeds(mech: Mechanism, known: Mapping[str, Any]) -> Speeds:
+    """Every link's angular velocity, in closed form, from the known speeds.
+
+    Parameters
+    ----------
+    mech : Mechanism
+    known : mapping of link name to speed
+        Exactly ``mech.dof`` independent links; a fixed link has speed 0.  Values may be
+        numbers, symbols or expressions (of time too).
+
+    Returns
+    -------
+    Speeds
+
+    Raises
+    ------
+    UnderdeterminedError, OverdeterminedError, SingularConfigurationError
+        When the known speeds do not determine the motion exactly once.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> from symkin import schemes, symbols as S
+    >>> ai = schemes.two_row("AI")
+    >>> sp.factor(ai.speeds({"1": S.omega("1"), "4": 0})["H"])
+    omega_1*r_1*r_3/(r_1*r_3 + r_2*r_4)
+    """
+    if not isinstance(known, MappingABC):
+        raise InputError(f"known speeds are a mapping of link name to speed, got {known!r}")
+    resolved: dict[str, sp.Expr] = {}
+    for name, value in known.items():
+        link = _resolve(mech, name)
+        if link == FRAME:
+            raise InputError("the frame (link 0) does not move; give the speeds of moving links")
+        if link in resolved:
+            raise InputError(f"the speed of link {link} is given twice (as {name!r} too); give it once")
+        resolved[link] = _value(value, f"speed of link {link}")
+    names = tuple(resolved)
+    check_known_links(mech, names)
+    general = _general_solution(mech, tuple(sorted(names)))
+    subs = {S.omega(n): resolved[n] for n in names}
+    values = tuple((n, _tidy(general[n].subs(subs, simultaneous=True)) if n not in resolved else resolved[n]) for n in mech.link_names)
+    coeffs = []
+    for n in mech.link_names:
+        row = [sp.cancel(sp.diff(general[n], S.omega(k))) for k in names]
+        coeffs.append((n, tuple(row)))
+    return Speeds(mech, tuple(resolved.items()), values, tuple(coeffs))
+
+
+def _general_solution(mech: Mechanism, names: tuple[str, ...]) -> dict[str, sp.Expr]:
+    """Speeds of all links as linear laws in the symbols omega_k of the known links (cached)."""
+
+    def build() -> dict[str, sp.Expr]:
+        system = kinematic_system(mech)
+        unknown = [n for n in system.links if n not in names]
+        unknown_syms = [S.omega(n) for n in unknown]
+        exprs = [e.lhs - e.rhs for e in system.equations]
+        out = {n: S.omega(n) for n in names}
+        if unknown:
+            sol = sp.linsolve(exprs, unknown_syms)
+            if not sol or sol is sp.S.EmptySet:
+                raise SingularConfigurationError(
+                    f"the contact conditions have no solution for known links {_fmt_links(names)}",
+                    dof=system.dof,
+                    admissible=system.admissible_choice(prefer=names),
+                )
+            (values,) = tuple(sol)
+            for n, v in zip(unknown, values):
+                if v.free_symbols & set(unknown_syms):
+                    raise SingularConfigurationError(
+                        f"the speed of link {n} is not determined by {_fmt_links(names)} for these dimensions",
+                        dof=system.dof,
+                        admissible=system.admissible_choice(prefer=names),
+                    )
+                out[n] = _tidy(v)
+        return out
+
+    return mech._memo(("general_solution", names), build)
+
+
+def ratio(mech: Mechanism, driver: str, driven: str, fixed: str | Sequence[str] | None = None) -> Law:
+    """The ratio i_ab^(c) = omega_a / omega_b with the link(s) c fixed.
+
+    Parameters
+    ----------
+    driver, driven : str
+        Links a and b (gear names are accepted for their links).
+    fixed : str or sequence of str, optional
+        Link(s) held still; together with the driver they must determine the motion.
+
+    Examples
+    --------
+    >>> from symkin import schemes
+    >>> print(schemes.two_row("AI", teeth=True).ratio("1", "H", fixed="4"))
+    i_{1H}^{(4)} = 1 + z_2*z_4/(z_1*z_3)
+    """
+    fixed_names: tuple[str, ...]
+    if fixed is None:
+        fixed_names = ()
+    elif isinstance(fixed, str):
+        fixed_names = (fixed,)
+    else:
+        fixed_names = tuple(fixed)
+    a, b = _resolve(mech, driver), _resolve(mech, driven)
+    cs = tuple(_resolve(mech, c) for c in fixed_names)
+    if a == b:
+        raise InputError(f"driver and driven are the same link {a}; name two different links")
+    if a in cs or b in cs:
+        raise InputError(f"link {a if a in cs else b} cannot be both fixed and {'driver' if a in cs else 'driven'}")
+    known = {c: 0 for c in cs if c != FRAME}
+    if a == FRAME:
+        raise InputError("the frame (link 0) cannot drive; name a moving link as driver")
+    known[a] = S.omega(a)
+    speeds = solve_speeds(mech, known)
+    wb = speeds[b]
+    if sp.simplify(wb) == 0:
+        raise SingularConfigurationError(
+            f"link {b} stays still when {a} drives with {_fmt_links(cs)} fixed, so the ratio is infinite",
+            dof=kinematic_system(mech).dof,
+            admissible=(a,) + cs,
+        )
+    value = _tidy(S.omega(a) / wb)
+    label = [mech.link(x).name for x in (driver, driven)]
+    desc = f"ratio omega_{label[0]}/omega_{label[1]} with {_fmt_links(cs) if cs else 'nothing'} fixed"
+    return Law(S.ratio_symbol(a, b, cs), value, desc)
