@@ -1,0 +1,212 @@
+"""Safe parsing of numbers and expressions typed by a user.
+
+``sympy.sympify`` and ``parse_expr`` evaluate Python, so a string from a user must never
+reach them.  Here a string is parsed by :mod:`ast` and rebuilt node by node from an
+allow-list of operators, names and functions; nothing is evaluated by Python.
+
+    >>> parse_number("0.8")
+    4/5
+    >>> parse_expression("2*pi*sin(t)", names=("t",))
+    2*pi*sin(t)
+    >>> parse_expression("__import__('os').system('echo hi')")
+    Traceback (most recent call last):
+    ...
+    symkin.errors.InputError: expression: calling "__import__('os').system" is not allowed; allowed names: E, pi; functions: ...
+"""
+
+from __future__ import annotations
+
+import ast
+import math
+import re
+from fractions import Fraction
+from typing import Callable, Iterable, Mapping
+
+import sympy as sp
+
+from . import symbols as S
+from .errors import InputError
+
+__all__ = ["parse_number", "parse_integer", "parse_expression", "FUNCTIONS", "CONSTANTS"]
+
+#: Functions a user expression may call.
+FUNCTIONS: Mapping[str, Callable[..., sp.Expr]] = {
+    "sin": sp.sin,
+    "cos": sp.cos,
+    "tan": sp.tan,
+    "asin": sp.asin,
+    "acos": sp.acos,
+    "atan": sp.atan,
+    "atan2": sp.atan2,
+    "sinh": sp.sinh,
+    "cosh": sp.cosh,
+    "tanh": sp.tanh,
+    "exp": sp.exp,
+    "log": sp.log,
+    "sqrt": sp.sqrt,
+    "Abs": sp.Abs,
+}
+#: Constants a user expression may name.
+CONSTANTS: Mapping[str, sp.Expr] = {"pi": sp.pi, "E": sp.E}
+
+MAX_LENGTH = 2000
+MAX_DEPTH = 60
+MAX_EXPONENT = 1000
+MAX_DIGITS = 400
+
+_NUMBER = re.compile(r"^[+-]?(\d+(_?\d+)*)?(\.\d*)?([eE][+-]?\d+)?$|^[+-]?\d+\s*/\s*\d+$")
+
+
+def _check_text(text: object, what: str) -> str:
+    if not isinstance(text, str):
+        raise InputError(f"{what} must be text, got {type(text).__name__}")
+    stripped = text.strip()
+    if not stripped:
+        raise InputError(f"{what} is empty; give a value")
+    if len(stripped) > MAX_LENGTH:
+        raise InputError(f"{what} is {len(stripped)} characters long; at most {MAX_LENGTH} are accepted")
+    return stripped
+
+
+def parse_number(text: str, *, what: str = "value") -> sp.Rational:
+    """An exact rational from a decimal, scientific or fraction literal.
+
+    >>> parse_number("1e3"), parse_number("-3/4"), parse_number("2.25")
+    (1000, -3/4, 9/4)
+    >>> parse_number("nan")
+    Traceback (most recent call last):
+    ...
+    symkin.errors.InputError: value must be a finite number, got 'nan'
+    """
+    s = _check_text(text, what)
+    if s.lower().lstrip("+-") in {"nan", "inf", "infinity"}:
+        raise InputError(f"{what} must be a finite number, got {text!r}")
+    if not _NUMBER.match(s) or s in {".", "+", "-"}:
+        raise InputError(f"{what} must be a number such as 12, 0.8, 1e-3 or 3/4, got {text!r}")
+    mantissa, _, exponent = s.lower().partition("e")
+    if exponent and abs(int(exponent)) > MAX_DIGITS:
+        raise InputError(f"{what} has exponent {exponent}; at most 10^{MAX_DIGITS} in size is accepted")
+    if len(re.sub(r"\D", "", mantissa)) > MAX_DIGITS:
+        raise InputError(f"{what} has more than {MAX_DIGITS} digits")
+    try:
+        value = Fraction(s.replace(" ", ""))
+    except (ValueError, ZeroDivisionError) as err:
+        raise InputError(f"{what} must be a finite number, got {text!r} ({err})") from None
+    return sp.Rational(value.numerator, value.denominator)
+
+
+def parse_integer(text: str, *, what: str = "value") -> sp.Integer:
+    """An exact integer; a fraction or decimal with a fractional part is refused.
+
+    >>> parse_integer("100")
+    100
+    """
+    value = parse_number(text, what=what)
+    if not value.is_Integer:
+        raise InputError(f"{what} must be a whole number, got {text!r}")
+    return value
+
+
+def parse_expression(
+    text: str,
+    *,
+    names: Iterable[str] = (),
+    symbols: Mapping[str, sp.Expr] | None = None,
+    what: str = "expression",
+) -> sp.Expr:
+    """A SymPy expression from text, built from an allow-list only.
+
+    Parameters
+    ----------
+    text : str
+        Numbers, + - * / ** (or ^), parentheses, the constants pi and E, the functions
+        in :data:`FUNCTIONS`, and the names allowed below.
+    names : iterable of str
+        Names allowed as symbols (``"t"`` maps to :data:`symkin.symbols.t`).
+    symbols : mapping of str to expression, optional
+        Names allowed with the value to put in their place.
+    what : str
+        What the expression is, for error messages.
+    """
+    s = _check_text(text, what)
+    allowed: dict[str, sp.Expr] = dict(CONSTANTS)
+    for n in names:
+        allowed[n] = S.t if n == "t" else sp.Symbol(n, real=True)
+    allowed.update(symbols or {})
+    try:
+        tree = ast.parse(s.replace("^", "**"), mode="eval")
+    except SyntaxError:
+        raise InputError(f"{what} {text!r} is not a valid expression") from None
+    return _Builder(allowed, what).build(tree.body, 0)
+
+
+class _Builder:
+    def __init__(self, allowed: Mapping[str, sp.Expr], what: str):
+        self.allowed = allowed
+        self.what = what
+
+    def fail(self, message: str) -> InputError:
+        names = ", ".join(sorted(self.allowed, key=str.lower))
+        return InputError(
+            f"{self.what}: {message}; allowed names: {names}; functions: {', '.join(sorted(FUNCTIONS, key=str.lower))}"
+        )
+
+    def build(self, node: ast.AST, depth: int) -> sp.Expr:
+        if depth > MAX_DEPTH:
+            raise InputError(f"{self.what} is nested more than {MAX_DEPTH} levels deep")
+        if isinstance(node, ast.Constant):
+            v = node.value
+            if isinstance(v, bool) or not isinstance(v, (int, float)):
+                raise self.fail(f"{v!r} is not a number")
+            if isinstance(v, float):
+                if not math.isfinite(v):
+                    raise InputError(f"{self.what} contains a non-finite number")
+                exact = Fraction(repr(v))  # the decimal the user typed, exactly
+                return sp.Rational(exact.numerator, exact.denominator)
+            if abs(v) > 10**MAX_DIGITS:
+                raise InputError(f"{self.what} contains a number with more than {MAX_DIGITS} digits")
+            return sp.Integer(v)
+        if isinstance(node, ast.Name):
+            if node.id in self.allowed:
+                return self.allowed[node.id]
+            raise self.fail(f"{node.id!r} is not allowed here")
+        if isinstance(node, ast.UnaryOp) and isinstance(node.op, (ast.UAdd, ast.USub)):
+            operand = self.build(node.operand, depth + 1)
+            return operand if isinstance(node.op, ast.UAdd) else -operand
+        if isinstance(node, ast.BinOp):
+            left = self.build(node.left, depth + 1)
+            right = self.build(node.right, depth + 1)
+            op = type(node.op)
+            if op is ast.Add:
+                return left + right
+            if op is ast.Sub:
+                return left - right
+            if op is ast.Mult:
+                return left * right
+            if op is ast.Div:
+                if right == 0:
+                    raise InputError(f"{self.what} divides by zero")
+                return left / right
+            if op is ast.Pow:
+                if right.is_number and (not right.is_finite or abs(right) > MAX_EXPONENT):
+                    raise InputError(f"{self.what} has an exponent larger than {MAX_EXPONENT}")
+                if left == 0 and right.is_number and right.is_negative:
+                    raise InputError(f"{self.what} divides by zero")
+                return left**right
+            raise self.fail(f"the operator {type(node.op).__name__} is not allowed")
+        if isinstance(node, ast.Call):
+            if not isinstance(node.func, ast.Name) or node.func.id not in FUNCTIONS:
+                raise self.fail(f"calling {_show(node.func)} is not allowed")
+            if node.keywords:
+                raise self.fail("functions take no keyword arguments")
+            args = [self.build(a, depth + 1) for a in node.args]
+            try:
+                return FUNCTIONS[node.func.id](*args)
+            except TypeError:
+                raise InputError(f"{self.what}: wrong number of arguments to {node.func.id}") from None
+        raise self.fail(f"{_show(node)} ({type(node).__name__.lower()}) is not allowed")
+
+
+def _show(node: ast.AST) -> str:
+    text = ast.unparse(node)
+    return repr(text if len(text) <= 40 else text[:37] + "...")
