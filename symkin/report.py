@@ -1,0 +1,162 @@
+"""Checks of derived results against published ones, and their verdicts.
+
+A derivation module (``symkin.derivations.<paper>``) returns a list of :class:`Check`;
+each holds the derived form, the published form and a verdict reached by an exact
+comparison: a symbolic difference that cancels to zero, exact rational equality, or a
+published decimal that is the derived value rounded.  A paper slip (typo, OCR damage,
+inconsistency) is a verdict of its own and must carry its evidence.
+
+    >>> import sympy as sp
+    >>> x = sp.Symbol("x")
+    >>> compare_symbolic((x**2 - 1) / (x - 1), x + 1).verdict
+    <Verdict.MATCH: 'match'>
+    >>> compare_rounded(sp.Rational(20000, 101), "198").verdict
+    <Verdict.ROUNDED: 'match (published value rounded)'>
+"""
+
+from __future__ import annotations
+
+import enum
+from dataclasses import dataclass, field
+from decimal import Decimal
+from typing import Any, Mapping
+
+import sympy as sp
+
+from .printing import latex
+
+__all__ = ["Verdict", "Comparison", "Check", "compare_symbolic", "compare_exact", "compare_rounded", "slip"]
+
+
+class Verdict(str, enum.Enum):
+    MATCH = "match"
+    ROUNDED = "match (published value rounded)"
+    SLIP = "paper slip (explained)"
+    DIFFERS = "differs"
+
+    @property
+    def ok(self) -> bool:
+        """True when the reproduction counts as successful."""
+        return self is not Verdict.DIFFERS
+
+
+@dataclass(frozen=True)
+class Comparison:
+    verdict: Verdict
+    detail: str = ""
+
+
+def _difference(derived: Any, published: Any, under: Mapping[Any, Any] | None) -> sp.Expr:
+    d, p = sp.sympify(derived), sp.sympify(published)
+    if under:
+        d, p = d.subs(under), p.subs(under)
+    diff = sp.cancel(sp.together(d - p))
+    if diff != 0 and diff.has(sp.sin, sp.cos, sp.tan, sp.exp, sp.atan, sp.sqrt, sp.log):
+        diff = sp.simplify(diff)
+    return diff
+
+
+def compare_symbolic(derived: Any, published: Any, *, under: Mapping[Any, Any] | None = None) -> Comparison:
+    """Match when derived - published cancels to zero (after substituting ``under``).
+
+    ``under`` states a condition the published form assumes (e.g. coaxiality
+    ``{r_4: r_1 + r_2 + r_3}``); it is named in the detail.
+    """
+    diff = _difference(derived, published, under)
+    cond = ""
+    if under:
+        cond = " under " + ", ".join(f"{k} = {v}" for k, v in under.items())
+    if diff == 0:
+        return Comparison(Verdict.MATCH, f"derived - published = 0{cond}")
+    return Comparison(Verdict.DIFFERS, f"derived - published = {diff}{cond}")
+
+
+def compare_exact(derived: Any, published: Any) -> Comparison:
+    """Match when two exact numbers are equal."""
+    d, p = sp.nsimplify(sp.sympify(derived)), sp.nsimplify(sp.sympify(published))
+    if sp.simplify(d - p) == 0:
+        return Comparison(Verdict.MATCH, f"exactly {d}")
+    return Comparison(Verdict.DIFFERS, f"derived {d} = {sp.N(d, 12)}, published {p}")
+
+
+def compare_rounded(derived: Any, published: str) -> Comparison:
+    """Match when the published decimal is the derived value rounded to its printed digits.
+
+    Exact equality is reported as a plain match.
+    """
+    d = sp.sympify(derived)
+    p = Decimal(published)
+    if sp.Rational(str(p)) == d:
+        return Comparison(Verdict.MATCH, f"exactly {d}")
+    exponent = p.as_tuple().exponent
+    scale = sp.Integer(10) ** (-exponent)
+    rounded = sp.Rational(round(d * scale), scale) if exponent <= 0 else sp.Integer(round(d / 10**exponent)) * 10**exponent
+    if rounded == sp.Rational(str(p)):
+        return Comparison(
+            Verdict.ROUNDED, f"derived {d} = {sp.N(d, 10)}; rounded to the published {published} ({len(published)} characters)"
+        )
+    return Comparison(Verdict.DIFFERS, f"derived {d} = {sp.N(d, 10)}, published {published}")
+
+
+def slip(evidence: str) -> Comparison:
+    """A published form that is wrong for a reason stated in ``evidence``."""
+    return Comparison(Verdict.SLIP, evidence)
+
+
+@dataclass(frozen=True)
+class Check:
+    """One published result against its derivation."""
+
+    paper: str
+    label: str
+    description: str
+    derived: Any
+    published: Any
+    comparison: Comparison
+    derived_latex: str = ""
+    published_latex: str = ""
+    extra: Mapping[str, Any] = field(default_factory=dict)
+
+    @classmethod
+    def make(
+        cls, paper: str, label: str, description: str, derived: Any, published: Any, comparison: Comparison, **extra: Any
+    ) -> "Check":
+        return cls(paper, label, description, derived, published, comparison, _tex(derived), _tex(published), extra)
+
+    @property
+    def verdict(self) -> Verdict:
+        return self.comparison.verdict
+
+    def to_json(self) -> dict[str, Any]:
+        return {
+            "paper": self.paper,
+            "label": self.label,
+            "description": self.description,
+            "derived": _text(self.derived),
+            "published": _text(self.published),
+            "derived_latex": self.derived_latex,
+            "published_latex": self.published_latex,
+            "verdict": self.verdict.value,
+            "ok": self.verdict.ok,
+            "detail": self.comparison.detail,
+            **{k: _text(v) for k, v in self.extra.items()},
+        }
+
+
+def _text(value: Any) -> Any:
+    if isinstance(value, (str, int, float, bool)) or value is None:
+        return value
+    if isinstance(value, (list, tuple)):
+        return [_text(v) for v in value]
+    return str(value)
+
+
+def _tex(value: Any) -> str:
+    if isinstance(value, str):
+        return r"\text{" + value.replace("\\", "").replace("{", "").replace("}", "") + "}"
+    if isinstance(value, (list, tuple)):
+        return r",\quad ".join(_tex(v) for v in value)
+    try:
+        return latex(value)
+    except Exception:  # a value SymPy cannot print is shown as text
+        return r"\text{" + str(value) + "}"
