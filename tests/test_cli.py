@@ -1,0 +1,76 @@
+"""The command line: ratio, speeds, reproduce; bad input gives one line and a non-zero exit."""
+
+import json
+import subprocess
+import sys
+
+import pytest
+
+from symkin.cli import main
+
+
+def run(capsys, *argv):
+    code = main(list(argv))
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def test_ratio_text_and_json(capsys):
+    code, out, _ = run(capsys, "ratio", "AA", "--teeth", "100,100,101,99", "--driver", "H", "--driven", "1", "--fixed", "4")
+    assert code == 0 and "i_H1^(4) = omega_H/omega_1 = 101/2 = 50.5" in out
+    code, out, _ = run(capsys, "ratio", "II", "--teeth", "200,99,100,201", "--driver", "H", "--driven", "1", "--fixed", "4", "--json")
+    data = json.loads(out)
+    assert data["ratio"] == {"exact": "20000/101", "float": pytest.approx(198.0198019801980)}
+    assert data["coaxial"] is True and data["warnings"] == []
+
+
+def test_ratio_non_coaxial_set_is_computed_with_a_note(capsys):
+    code, out, err = run(capsys, "ratio", "AA", "--teeth", "100,99,100,101", "--driver", "H", "--driven", "1", "--fixed", "4")
+    assert code == 0 and "= 10000" in out and "not coaxial" in err
+
+
+def test_single_row_takes_three_teeth(capsys):
+    code, out, _ = run(capsys, "ratio", "AI1", "--teeth", "20,30,80", "--driver", "1", "--driven", "H", "--fixed", "4")
+    assert code == 0 and "= 5" in out
+
+
+def test_speeds(capsys):
+    code, out, _ = run(capsys, "speeds", "AA", "--teeth", "54,45,44,55", "--omega", "1=100", "--omega", "4=0", "--json")
+    data = json.loads(out)
+    assert data["speeds"]["H"]["exact"] == "-2400" and data["speeds"]["1"]["given"] is True
+
+
+BAD = [
+    (["ratio", "AX", "--teeth", "1,2,3,4", "--driver", "H", "--driven", "1", "--fixed", "4"], "unknown scheme"),
+    (["ratio", "AA", "--teeth", "100,0,101,99", "--driver", "H", "--driven", "1", "--fixed", "4"], "must be positive"),
+    (["ratio", "AA", "--teeth", "100,-3,101,99", "--driver", "H", "--driven", "1", "--fixed", "4"], "must be positive"),
+    (["ratio", "AA", "--teeth", "100,2.5,101,99", "--driver", "H", "--driven", "1", "--fixed", "4"], "whole number"),
+    (["ratio", "AA", "--teeth", "100,x,101,99", "--driver", "H", "--driven", "1", "--fixed", "4"], "must be a number"),
+    (["ratio", "AA", "--teeth", "100,nan,101,99", "--driver", "H", "--driven", "1", "--fixed", "4"], "finite"),
+    (["ratio", "AA", "--teeth", "100,100,101,99", "--driver", "Q", "--driven", "1", "--fixed", "4"], "no link 'Q'"),
+    (["ratio", "AA", "--teeth", "100,100,101,99", "--driver", "H", "--driven", "H", "--fixed", "4"], "same link"),
+    (["speeds", "AA", "--teeth", "54,45,44,55", "--omega", "1=100"], "2 degrees of freedom"),
+    (["speeds", "AA", "--teeth", "54,45,44,55", "--omega", "1=1", "--omega", "4=0", "--omega", "H=3"], "but 3"),
+    (["speeds", "AA", "--teeth", "54,45,44,55", "--omega", "1=inf", "--omega", "4=0"], "not allowed"),
+    (["speeds", "AA", "--teeth", "54,45,44,55", "--omega", "1=__import__('os').system('touch PWNED')", "--omega", "4=0"], "not allowed"),
+    (["speeds", "AA", "--teeth", "54,45,44,55", "--omega", "oops"], "LINK=VALUE"),
+    (["reproduce", "nosuchpaper"], "choose all or one of alyushin2009"),
+]
+
+
+@pytest.mark.parametrize("argv, message", BAD)
+def test_bad_input_one_line_non_zero_exit(capsys, tmp_path, monkeypatch, argv, message):
+    monkeypatch.chdir(tmp_path)
+    code, out, err = run(capsys, *argv)
+    assert code == 2
+    assert message in err
+    assert len(err.strip().splitlines()) == 1 and "Traceback" not in err
+    assert not (tmp_path / "PWNED").exists()
+
+
+def test_console_script_runs_as_a_process():
+    proc = subprocess.run(
+        [sys.executable, "-m", "symkin", "ratio", "AI", "--teeth", "20,30,20,70", "--driver", "1", "--driven", "H", "--fixed", "4"],
+        capture_output=True, text=True, timeout=120,
+    )
+    assert proc.returncode == 0 and "= 25/4 = 6.25" in proc.stdout  # 1 + 30*70/(20*20)

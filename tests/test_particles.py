@@ -1,0 +1,102 @@
+"""Particle kinematics: eqs. (4)-(6) against differentiation, the Cardan line, moving frames."""
+
+import numpy as np
+import pytest
+import sympy as sp
+
+from symkin import FrameMotion, Gear, InputError, Link, Mechanism, drives, schemes
+from symkin import symbols as S
+
+t = S.t
+
+
+def zero(vector):
+    return all(sp.simplify(c) == 0 for c in vector)
+
+
+@pytest.mark.parametrize("kind", ["AI1", "AI", "AA", "II"])
+def test_velocity_and_acceleration_are_time_derivatives_with_varying_inputs(kind):
+    m = schemes.scheme(kind)
+    theta1 = sp.Function("theta_1")(t)
+    theta4 = sp.Function("theta_4")(t)
+    motion = m.motion({"1": drives.AngleLaw(theta1), "4": drives.AngleLaw(theta4)})
+    planet = "2" if kind == "AI1" else "23"
+    a, b = sp.symbols("a b", real=True)
+    p = motion.particle(planet, (a, b))
+    assert zero(p.position.diff(t) - p.velocity)
+    assert zero(p.velocity.diff(t) - p.acceleration)
+    # and the check is not vacuous: the velocity is not the position's derivative plus anything else
+    assert not zero(p.position.diff(t) - p.velocity - sp.ImmutableMatrix([theta1.diff(t), 0]))
+
+
+def test_superposed_frame_motion_drill_head_on_a_manipulator():
+    m = schemes.two_row("AI")
+    frame = FrameMotion(x=sp.cos(t) ** 2, y=t**3, angle=sp.sin(2 * t))
+    motion = m.motion({"1": drives.SpeedLaw(1 + t), "4": 0}, frame=frame)
+    p = motion.particle("23", (S.radius("1") + 2 * S.radius("2"), 0))
+    assert zero(p.position.diff(t) - p.velocity)
+    assert zero(p.velocity.diff(t) - p.acceleration)
+    # a central-link particle at the main axis follows the frame's axis exactly
+    axis = motion.particle("1", (1, 0), relative_to="pole")
+    assert zero(axis.position.subs(t, 0) - sp.ImmutableMatrix([2, 0]))
+
+
+def cardan(radius=sp.Symbol("r", positive=True)):
+    """A planet of radius r rolling inside a fixed ring of radius 2r (no sun)."""
+    return Mechanism(
+        links=[Link.frame(Gear("3", 2 * radius, internal=True)), Link.central("H"), Link.planet("1", Gear("1", radius))],
+        meshes=[("1", "3")],
+    )
+
+
+def test_point_on_pitch_circle_of_planet_in_ring_of_twice_its_size_moves_on_a_line():
+    r = sp.Symbol("r", positive=True)
+    alpha = sp.Symbol("alpha", real=True)
+    motion = cardan(r).motion({"H": 1})
+    # any point of the planet's pitch circle, at angle alpha around the planet axis (r, 0)
+    p = motion.particle("1", (r * sp.cos(alpha), r * sp.sin(alpha)), relative_to="pole")
+    x, y = p.position
+    direction = (sp.cos(alpha / 2), sp.sin(alpha / 2))  # the line through the centre
+    assert sp.simplify(sp.expand_trig(x * direction[1] - y * direction[0])) == 0
+    # it does move: the stroke is 4r
+    assert sp.simplify(x.subs({alpha: 0, t: 0}) - x.subs({alpha: 0, t: sp.pi})) == 4 * r
+
+
+def test_point_off_the_pitch_circle_traces_an_ellipse_not_a_line():
+    r, rho = 3, 1
+    motion = cardan(r).motion({"H": 1})
+    p = motion.particle("1", (rho, 0), relative_to="pole")
+    x, y = p.position
+    assert sp.simplify((x / (r + rho)) ** 2 + (y / (r - rho)) ** 2 - 1) == 0
+    assert sp.simplify(y) != 0
+
+
+def test_trajectory_samples_the_symbolic_position():
+    m = schemes.single_row_AI(radii=(1, 1, 3))
+    p = m.motion({"4": 0, "H": 2}).particle("2", (1, 0))
+    ts, xs, ys = p.trajectory(3.0, samples=7)
+    f = sp.lambdify(t, list(p.position))
+    for ti, xi, yi in zip(ts, xs, ys):
+        assert np.allclose(f(ti), [xi, yi])
+
+
+def test_trajectory_asks_for_missing_values():
+    p = schemes.two_row("AI").motion({"1": 1, "4": 0}).particle("23", (1, 0))
+    with pytest.raises(InputError, match="give values for r_1, r_2, r_3, r_4"):
+        p.trajectory(1.0)
+    with pytest.raises(InputError, match="increasing"):
+        p.trajectory(-1.0)
+
+
+def test_motion_needs_exactly_dof_inputs():
+    from symkin import UnderdeterminedError
+
+    with pytest.raises(UnderdeterminedError):
+        schemes.two_row("AI").motion({"1": 1})
+
+
+def test_constant_inputs_give_uniform_rotation():
+    m = schemes.two_row("AA", teeth=(54, 45, 44, 55))
+    motion = m.motion({"1": 3, "4": 0})
+    assert motion.angle("H") == 3 * t * sp.Rational(-1, 24) ** -1 / 1 or motion.angle("H") == -72 * t
+    assert motion.omega("H") == -72 and motion.epsilon("H") == 0
