@@ -112,13 +112,11 @@ class KinematicSystem:
         Links in ``prefer`` are kept when possible, then central links before planets.
         """
         order = list(dict.fromkeys([p for p in prefer if p in self.links] + self._by_preference()))
-        for k in range(len(order) + 1):  # keep as many preferred links as possible
-            for combo in itertools.combinations(order, self.dof):
-                if sum(c in prefer for c in combo) < min(len(set(prefer) & set(order)), self.dof) - k:
-                    continue
-                if self.rank_of(combo) == self.dof:
-                    return combo
-        return ()
+        combos = sorted(
+            itertools.combinations(order, self.dof),
+            key=lambda combo: (-sum(c in prefer for c in combo), [order.index(c) for c in combo]),
+        )
+        return next((c for c in combos if self.rank_of(c) == self.dof), ())
 
     def _by_preference(self) -> list[str]:
         mech = self.mechanism

@@ -467,6 +467,17 @@ class Mechanism:
             )
         return dists[0][1]
 
+    def _centre_distance_pairs(self) -> list[tuple[str, sp.Expr, sp.Expr]]:
+        """(planet, reference distance, another distance) for every planet with two or more."""
+        pairs = []
+        for L in self.moving_links:
+            if L.kind is not LinkKind.PLANET:
+                continue
+            dists = [d for _, d in self.planet_centre_distances.get(L.name, ())]
+            ref = L.arm if L.arm is not None else (dists[0] if dists else None)
+            pairs += [(L.name, ref, d) for d in dists if d != ref]
+        return pairs
+
     @cached_property
     def coaxiality(self) -> tuple[sp.Eq, ...]:
         """The conditions under which every planet axis is where all its meshes put it.
@@ -475,33 +486,19 @@ class Mechanism:
         >>> schemes.two_row("AI").coaxiality
         (Eq(r_1 + r_2, -r_3 + r_4),)
         """
-        conds = []
-        for L in self.moving_links:
-            if L.kind is not LinkKind.PLANET:
-                continue
-            dists = [d for _, d in self.planet_centre_distances.get(L.name, ())]
-            ref = L.arm if L.arm is not None else (dists[0] if dists else None)
-            for d in dists:
-                if d != ref:
-                    conds.append(sp.Eq(ref, d, evaluate=False))
-        return tuple(conds)
+        return tuple(sp.Eq(ref, d, evaluate=False) for _, ref, d in self._centre_distance_pairs())
 
     def coaxiality_defects(self) -> tuple[tuple[str, sp.Expr, sp.Expr], ...]:
         """Coaxiality conditions that fail: (planet, first centre distance, other one).
 
-        Only conditions that can be decided (numbers, or a common module symbol) are listed.
+        Only conditions that can be decided (numbers, or a common module symbol that scales
+        both sides) are listed.
         """
         defects = []
-        for L in self.moving_links:
-            if L.kind is not LinkKind.PLANET:
-                continue
-            dists = [d for _, d in self.planet_centre_distances.get(L.name, ())]
-            ref = L.arm if L.arm is not None else (dists[0] if dists else None)
-            for d in dists:
-                diff = sp.simplify(ref - d)
-                # decidable when only module symbols remain (a module scales both sides)
-                if not (diff.free_symbols - self._module_symbols) and diff != 0:
-                    defects.append((L.name, ref, d))
+        for planet, ref, d in self._centre_distance_pairs():
+            diff = sp.simplify(ref - d)
+            if not (diff.free_symbols - self._module_symbols) and diff != 0:
+                defects.append((planet, ref, d))
         return tuple(defects)
 
     @cached_property
