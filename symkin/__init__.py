@@ -23,6 +23,7 @@ from .errors import (
     SingularConfigurationError,
     SymkinError,
     SymkinWarning,
+    ToolError,
     UnderdeterminedError,
     UnsupportedError,
 )
@@ -62,6 +63,7 @@ __all__ = [
     "OverdeterminedError",
     "SingularConfigurationError",
     "UnsupportedError",
+    "ToolError",
     "SymkinWarning",
     "CoaxialityWarning",
 ]

@@ -23,6 +23,7 @@ __all__ = [
     "OverdeterminedError",
     "SingularConfigurationError",
     "UnsupportedError",
+    "ToolError",
     "SymkinWarning",
     "CoaxialityWarning",
 ]
@@ -71,6 +72,10 @@ class SingularConfigurationError(DeterminacyError):
 
 class UnsupportedError(SymkinError, NotImplementedError):
     """A valid description that this version of symkin cannot handle yet."""
+
+
+class ToolError(SymkinError, RuntimeError):
+    """An optional system tool symkin calls (pdflatex, ffmpeg) is missing or failed."""
 
 
 class SymkinWarning(UserWarning):

@@ -24,7 +24,7 @@ from typing import Any, Callable, Iterable, TextIO
 from .errors import InputError
 from .report import Check
 
-__all__ = ["paper_names", "load", "PaperResult", "run", "write_atomically", "format_table"]
+__all__ = ["paper_names", "load", "PaperResult", "run", "check_target", "write_atomically", "format_table"]
 
 
 def paper_names() -> tuple[str, ...]:
@@ -82,45 +82,71 @@ class Progress:
             self.stream.flush()
 
 
-def run(names: Iterable[str], out: Path, *, progress: TextIO | None = None, quiet: bool = False) -> list[PaperResult]:
+def run(
+    names: Iterable[str],
+    out: Path,
+    *,
+    progress: TextIO | None = None,
+    quiet: bool = False,
+    pdf: bool = True,
+) -> list[PaperResult]:
     """Derive and check each paper and write the report folder ``out``.
 
-    Writes ``report.json``, ``report.txt``, ``equations.tex`` and ``figures/``; see
-    :func:`write_atomically` for the guarantee on ``out``.
+    Writes ``report.json``, ``report.txt``, ``equations.tex`` (all derived equations
+    beside the published ones), ``equations.pdf`` (compiled with pdflatex when ``pdf``
+    and pdflatex is installed; see :data:`symkin.texbuild.MISSING`) and ``figures/``
+    (PNG and PDF); see :func:`write_atomically` for the guarantee on ``out``.
+
+    Raises
+    ------
+    InputError
+        ``out`` cannot be written, or an unknown paper is named.
+    ToolError
+        pdflatex is installed but fails on the document (``out`` is left as it was).
     """
+    from .latex_report import equations_document
+    from .texbuild import compile_pdf, find_pdflatex
+
     names = list(names)
     modules = [load(n) for n in names]
+    check_target(out)
+    pdflatex = find_pdflatex() if pdf else None
     results: list[PaperResult] = []
 
     def build(tmp: Path) -> None:
-        bar = Progress(2 * len(modules), progress if not quiet else open(os.devnull, "w"))
-        figures_dir = tmp / "figures"
-        figures_dir.mkdir()
-        for name, mod in zip(names, modules):
-            start = time.perf_counter()
-            bar.step(f"{name}: deriving and comparing")
-            checks = list(mod.checks())
-            bar.step(f"{name}: drawing figures")
-            figures = list(mod.figures(figures_dir))
-            notes = list(getattr(mod, "notes", lambda: [])())
-            results.append(
-                PaperResult(name, mod.CITATION, checks, figures, notes, time.perf_counter() - start)
-            )
-        bar.close()
-        (tmp / "report.json").write_text(json.dumps(report_json(results, tmp), indent=2, ensure_ascii=False))
-        (tmp / "report.txt").write_text(format_table(results))
-        from .latex_report import equations_document
-
-        (tmp / "equations.tex").write_text(equations_document(results))
-        for hook in _POST_BUILD:
-            hook(tmp, results)
+        with open(os.devnull, "w") as devnull:
+            bar = Progress(2 * len(modules) + 1 + (pdflatex is not None), devnull if quiet else progress)
+            figures_dir = tmp / "figures"
+            figures_dir.mkdir()
+            for name, mod in zip(names, modules):
+                start = time.perf_counter()
+                bar.step(f"{name}: deriving and comparing")
+                checks = list(mod.checks())
+                bar.step(f"{name}: drawing figures")
+                figures = list(mod.figures(figures_dir))
+                notes = list(getattr(mod, "notes", lambda: [])())
+                results.append(
+                    PaperResult(name, mod.CITATION, checks, figures, notes, time.perf_counter() - start)
+                )
+            bar.step("writing report.json, report.txt, equations.tex")
+            data = report_json(results, tmp)
+            data["equations"] = {"tex": "equations.tex", "pdf": "equations.pdf" if pdflatex else None}
+            (tmp / "report.json").write_text(json.dumps(data, indent=2, ensure_ascii=False))
+            (tmp / "report.txt").write_text(format_table(results))
+            (tmp / "equations.tex").write_text(equations_document(results, root=tmp))
+            if pdflatex is not None:
+                bar.step("compiling equations.pdf with pdflatex")
+                compile_pdf(tmp / "equations.tex", pdflatex=pdflatex)
+            for hook in _POST_BUILD:
+                hook(tmp, results)
+            bar.close()
 
     write_atomically(out, build)
     return results
 
 
 #: Functions called with (folder, results) after the report files are written, before
-#: the folder is renamed into place (e.g. compiling the LaTeX to PDF).
+#: the folder is renamed into place.
 _POST_BUILD: list[Callable[[Path, list[PaperResult]], None]] = []
 
 
@@ -150,6 +176,41 @@ def report_json(results: list[PaperResult], root: Path) -> dict[str, Any]:
     }
 
 
+def check_target(out: Path) -> None:
+    """Refuse a report folder symkin must not replace: a file, the current folder or one
+    holding it, or a non-empty folder that is not a previous symkin report.
+
+    >>> check_target(Path("/"))
+    Traceback (most recent call last):
+    ...
+    symkin.errors.InputError: --out / holds the current folder; choose a new folder such as ./symkin-out
+    """
+    out = Path(out)
+    target = out.resolve()
+    if target.exists() and not target.is_dir():
+        raise InputError(f"--out {out} is a file, not a folder; choose another --out")
+    if target == Path.cwd().resolve() or target in Path.cwd().resolve().parents:
+        raise InputError(f"--out {out} holds the current folder; choose a new folder such as ./symkin-out")
+    parent = target.parent
+    if not parent.exists():
+        raise InputError(f"cannot write {out}: its parent folder {parent} does not exist; create it or choose another --out")
+    if not parent.is_dir():
+        raise InputError(f"cannot write {out}: {parent} is a file, not a folder; choose another --out")
+    if target.is_dir() and any(target.iterdir()) and not _is_report(target):
+        raise InputError(
+            f"--out {out} is a folder that is not a symkin report and symkin replaces the whole folder; "
+            "choose a new or empty folder"
+        )
+
+
+def _is_report(folder: Path) -> bool:
+    try:
+        data = json.loads((folder / "report.json").read_text())
+    except (OSError, ValueError):
+        return False
+    return isinstance(data, dict) and "symkin_version" in data
+
+
 def write_atomically(out: Path, build: Callable[[Path], None]) -> None:
     """Call ``build(tmp)`` on a fresh folder, then put it at ``out`` in one step.
 
@@ -157,26 +218,27 @@ def write_atomically(out: Path, build: Callable[[Path], None]) -> None:
     and ``out`` is left exactly as it was.
     """
     out = Path(out)
-    if out.exists() and not out.is_dir():
+    target = out.resolve()
+    if target.exists() and not target.is_dir():
         raise InputError(f"{out} exists and is not a folder; choose another --out")
-    parent = out.resolve().parent
+    parent = target.parent
     if not parent.is_dir():
         raise InputError(f"cannot write {out}: its parent folder {parent} does not exist")
     try:
-        tmp = Path(tempfile.mkdtemp(prefix=f".{out.name}.partial-", dir=parent))
+        tmp = Path(tempfile.mkdtemp(prefix=f".{target.name}.partial-", dir=parent))
     except OSError as err:
         raise InputError(f"cannot write to {parent}: {err.strerror}; choose a writable --out") from None
     backup = None
     try:
         build(tmp)
-        if out.exists():
-            backup = parent / f".{out.name}.old-{os.getpid()}"
-            os.rename(out, backup)
+        if target.exists():
+            backup = parent / f".{target.name}.old-{os.getpid()}"
+            os.rename(target, backup)
         try:
-            os.rename(tmp, out)
+            os.rename(tmp, target)
         except OSError:
             if backup is not None:
-                os.rename(backup, out)
+                os.rename(backup, target)
                 backup = None
             raise
     except BaseException:

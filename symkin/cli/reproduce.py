@@ -3,12 +3,15 @@
 from __future__ import annotations
 
 import json
+import signal
 import sys
+from contextlib import contextmanager
 from pathlib import Path
-from typing import Any
+from typing import Any, Iterator
 
 from ..errors import InputError
 from ..reproduce import format_table, paper_names, report_json, run
+from ..texbuild import MISSING, find_pdflatex
 
 
 def register(sub: Any) -> None:
@@ -16,14 +19,35 @@ def register(sub: Any) -> None:
         "reproduce",
         help="derive every result of the papers and compare with the published ones",
         description="Derive and compare every result of one paper or all, print the verification table and "
-        "write DIR/report.json, DIR/report.txt, DIR/equations.tex and DIR/figures/. The folder is replaced "
-        "only when the run completes. Exit 0 when every check matches or is an explained paper slip, 1 otherwise.",
+        "write DIR/report.json, DIR/report.txt, DIR/equations.tex, DIR/equations.pdf (with pdflatex) and "
+        "DIR/figures/. The folder is replaced only when the run completes: an interrupted or failed run "
+        "leaves the previous report as it was. Exit 0 when every check matches or is an explained paper "
+        "slip, 1 otherwise, 2 on bad input.",
     )
     p.add_argument("papers", nargs="*", default=["all"], metavar="PAPER", help=f"all (default) or any of: {', '.join(paper_names())}")
     p.add_argument("--out", default="symkin-out", metavar="DIR", help="report folder (default ./symkin-out)")
     p.add_argument("--json", action="store_true", help="print the JSON report instead of the table")
     p.add_argument("--quiet", action="store_true", help="no progress display")
+    p.add_argument("--no-pdf", action="store_true", help="do not compile equations.tex to equations.pdf")
     p.set_defaults(run=run_reproduce)
+
+
+@contextmanager
+def _terminate_as_interrupt() -> Iterator[None]:
+    """SIGTERM unwinds like Ctrl-C, so the half-built report is removed."""
+
+    def handler(signum: int, frame: Any) -> None:
+        raise KeyboardInterrupt
+
+    try:
+        previous = signal.signal(signal.SIGTERM, handler)
+    except ValueError:  # not the main thread
+        yield
+        return
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
 
 
 def run_reproduce(args: Any) -> int:
@@ -36,11 +60,21 @@ def run_reproduce(args: Any) -> int:
         if n not in paper_names():
             raise InputError(f"no paper called {n!r}; choose all or one of {', '.join(paper_names())}")
     out = Path(args.out)
-    results = run(names, out, quiet=args.quiet)
+    pdf = not args.no_pdf
+    with _terminate_as_interrupt():
+        results = run(names, out, quiet=args.quiet, pdf=pdf)
+    pdf_note = MISSING if pdf and find_pdflatex() is None else ""
     if args.json:
-        json.dump(report_json(results, out), sys.stdout, indent=2, ensure_ascii=False)
+        data = report_json(results, out)
+        data["equations"] = {"tex": "equations.tex", "pdf": "equations.pdf" if (out / "equations.pdf").exists() else None}
+        if pdf_note:
+            data["equations"]["note"] = pdf_note
+        json.dump(data, sys.stdout, indent=2, ensure_ascii=False)
         sys.stdout.write("\n")
     else:
         sys.stdout.write(format_table(results))
-        sys.stdout.write(f"report written to {out}/\n")
+        written = ["report.json", "report.txt", "equations.tex"] + (["equations.pdf"] if (out / "equations.pdf").exists() else []) + ["figures/"]
+        sys.stdout.write(f"report written to {out}/: {', '.join(written)}\n")
+    if pdf_note:
+        print(f"symkin reproduce: note: {pdf_note}", file=sys.stderr)
     return 0 if all(r.ok for r in results) else 1

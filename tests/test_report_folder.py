@@ -1,0 +1,200 @@
+"""`symkin reproduce`: the report folder, its PDF, and bad input (unwritable folder, unknown
+paper, interrupted or failed run) that leaves the previous report untouched."""
+
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+from types import SimpleNamespace
+
+import pytest
+import sympy as sp
+
+from symkin import ToolError, schemes
+from symkin import symbols as S
+from symkin.cli import main
+from symkin.latex_report import equations_document
+from symkin.report import Check, compare_symbolic, slip
+from symkin.reproduce import run
+from symkin.texbuild import compile_pdf
+
+
+def previous_report(folder: Path) -> Path:
+    """A folder that looks like an earlier report, with a marker file."""
+    folder.mkdir()
+    (folder / "report.json").write_text(json.dumps({"symkin_version": "0.0"}))
+    (folder / "marker.txt").write_text("previous")
+    return folder
+
+
+def assert_untouched(folder: Path) -> None:
+    assert (folder / "marker.txt").read_text() == "previous"
+    assert not (folder / "equations.tex").exists()
+    assert not [p for p in folder.parent.iterdir() if ".partial-" in p.name or ".old-" in p.name]
+
+
+def cli(capsys, *argv):
+    code = main(list(argv))
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+# ---- the PDF
+def test_report_pdf_compiles_without_overfull_lines(tmp_path, pdflatex):
+    out = tmp_path / "report"
+    run(["alyushin2009"], out, quiet=True)
+    pdf = (out / "equations.pdf").read_bytes()
+    assert pdf.startswith(b"%PDF") and len(pdf) > 20_000
+    assert not list(out.glob("equations.aux")) and not list(out.glob("equations.log"))
+    build = compile_pdf(out / "equations.tex", pdflatex=pdflatex)
+    assert max(build.overfull, default=0) < 1, build.overfull
+    assert "alyushin2009_trajectories.pdf" in (out / "equations.tex").read_text()
+
+
+def nasty_result():
+    """Checks whose laws are long and whose text holds every LaTeX special character."""
+    a, b = sp.symbols("a b", real=True)
+    p = schemes.two_row("AI").motion({"1": S.omega("1"), "4": S.omega("4")}).particle("23", (a, b))
+    long_law = p.acceleration[0]
+    text = r"50% & $x_1^2$ #3 {braces} ~tilde \backslash <a|b> ω ≈ π × 2 – Кинематика 1/(1-99*201/100/200/300/400/500)"
+    checks = [
+        Check.make("nasty", "long " + text, text, long_law, long_law, compare_symbolic(long_law, long_law)),
+        Check.make("nasty", "system", "two equations", list(schemes.two_row("II").contact_conditions()), "?00 % _", slip(text * 3)),
+    ]
+    return SimpleNamespace(key="nasty_key_%", citation=text, checks=checks, figures=[], notes=[text])
+
+
+def test_long_laws_break_over_lines_and_all_text_is_escaped(tmp_path, pdflatex):
+    tex = tmp_path / "doc.tex"
+    tex.write_text(equations_document([nasty_result()]))
+    assert r"\Bigl(" in tex.read_text() or r"\qquad" in tex.read_text()  # the long law was broken
+    build = compile_pdf(tex, pdflatex=pdflatex)
+    assert build.pdf.exists()
+    assert max(build.overfull, default=0) < 1, build.overfull
+    # without breaking, the same law does overflow: the test can fail
+    unbroken = tmp_path / "unbroken.tex"
+    unbroken.write_text(
+        "\\documentclass{article}\\usepackage{amsmath}\\begin{document}\\[" + sp.latex(nasty_result().checks[0].derived)
+        + "\\]\\end{document}"
+    )
+    assert max(compile_pdf(unbroken, pdflatex=pdflatex).overfull, default=0) > 50
+
+
+def test_a_document_pdflatex_rejects_is_a_tool_error_and_the_previous_report_stays(tmp_path, monkeypatch, pdflatex):
+    import symkin.latex_report
+
+    out = previous_report(tmp_path / "report")
+    monkeypatch.setattr(symkin.latex_report, "equations_document", lambda results, root=None: "\\documentclass{article}\\begin{document}\\undefinedmacro\\end{document}")
+    with pytest.raises(ToolError, match="pdflatex could not compile equations.tex.*Undefined control sequence"):
+        run(["alyushin2009"], out, quiet=True)
+    assert_untouched(out)
+
+
+def test_without_pdflatex_the_pdf_is_skipped_with_a_clear_message(tmp_path, monkeypatch, capsys):
+    monkeypatch.setenv("SYMKIN_PDFLATEX", "")
+    out = tmp_path / "report"
+    code, stdout, err = cli(capsys, "reproduce", "alyushin2009", "--out", str(out), "--quiet")
+    assert code == 0
+    assert "pdflatex was not found, so equations.pdf was not written" in err and "texlive-latex-base" in err
+    assert (out / "equations.tex").exists() and not (out / "equations.pdf").exists()
+    assert json.loads((out / "report.json").read_text())["equations"]["pdf"] is None
+    assert "verdict" in stdout and "52 checks: 52 reproduced" in stdout
+
+
+# ---- bad input
+def test_unknown_paper_lists_the_valid_ones(tmp_path, capsys):
+    out = previous_report(tmp_path / "report")
+    code, _, err = cli(capsys, "reproduce", "nosuch", "--out", str(out))
+    assert code == 2 and "no paper called 'nosuch'; choose all or one of alyushin2009" in err
+    assert_untouched(out)
+
+
+@pytest.mark.parametrize(
+    "make, message",
+    [
+        (lambda d: (d / "afile").write_text("x") and d / "afile", "is a file, not a folder"),
+        (lambda d: (d / "afile").write_text("x") and d / "afile" / "out", "is a file, not a folder"),
+        (lambda d: d / "missing" / "out", "does not exist"),
+    ],
+)
+def test_a_target_that_cannot_be_a_folder_is_refused(tmp_path, capsys, make, message):
+    target = make(tmp_path)
+    code, _, err = cli(capsys, "reproduce", "--out", str(target), "--no-pdf")
+    assert code == 2 and message in err and len(err.strip().splitlines()) == 1
+    assert (tmp_path / "afile").read_text() == "x" if (tmp_path / "afile").exists() else True
+
+
+def test_a_folder_that_is_not_a_report_is_never_replaced(tmp_path, capsys):
+    precious = tmp_path / "thesis"
+    precious.mkdir()
+    (precious / "chapter1.tex").write_text("years of work")
+    code, _, err = cli(capsys, "reproduce", "--out", str(precious), "--no-pdf")
+    assert code == 2 and "not a symkin report" in err
+    assert (precious / "chapter1.tex").read_text() == "years of work"
+    code, _, err = cli(capsys, "reproduce", "--out", ".", "--no-pdf")
+    assert code == 2 and "holds the current folder" in err
+
+
+@pytest.mark.skipif(hasattr(os, "geteuid") and os.geteuid() == 0, reason="root can write to a read-only folder")
+def test_a_read_only_parent_is_refused(tmp_path, capsys):
+    parent = tmp_path / "ro"
+    parent.mkdir()
+    parent.chmod(0o555)
+    try:
+        code, _, err = cli(capsys, "reproduce", "--out", str(parent / "out"), "--no-pdf")
+    finally:
+        parent.chmod(0o755)
+    assert code == 2 and "cannot write to" in err and "Permission denied" in err
+
+
+def test_an_unwritable_parent_is_refused_even_for_root(tmp_path, capsys):
+    # /proc refuses new folders to everyone, root included
+    if not Path("/proc/self").is_dir():
+        pytest.skip("no /proc on this system")
+    code, _, err = cli(capsys, "reproduce", "--out", "/proc/symkin-out", "--no-pdf")
+    assert code == 2 and "cannot write to /proc" in err and len(err.strip().splitlines()) == 1
+
+
+def test_an_interrupt_inside_the_run_leaves_the_previous_report(tmp_path, capsys, monkeypatch):
+    from symkin.derivations import alyushin2009
+
+    out = previous_report(tmp_path / "report")
+
+    def interrupted(folder):
+        (folder / "half.png").write_bytes(b"partial")
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(alyushin2009, "figures", interrupted)
+    code, stdout, err = cli(capsys, "reproduce", "--out", str(out))
+    assert code == 130 and "interrupted; nothing was written" in err
+    assert_untouched(out)
+
+
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM])
+def test_a_signal_to_the_process_leaves_the_previous_report(tmp_path, sig):
+    out = previous_report(tmp_path / "report")
+    proc = subprocess.Popen(
+        [sys.executable, "-c", "import sys; from symkin.cli import main; sys.exit(main())", "reproduce", "--out", str(out), "--no-pdf"],
+        cwd=tmp_path, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+    )
+    deadline = time.monotonic() + 60
+    while not list(tmp_path.glob(".report.partial-*")) and proc.poll() is None and time.monotonic() < deadline:
+        time.sleep(0.02)
+    assert proc.poll() is None, "the run ended before it could be interrupted"
+    proc.send_signal(sig)
+    _, err = proc.communicate(timeout=60)
+    assert proc.returncode == 130 and "interrupted; nothing was written" in err, err
+    assert_untouched(out)
+
+
+def test_a_complete_run_replaces_the_previous_report(tmp_path, capsys):
+    out = previous_report(tmp_path / "report")
+    code, stdout, _ = cli(capsys, "reproduce", "alyushin2009", "--out", str(out), "--quiet", "--no-pdf")
+    assert code == 0 and not (out / "marker.txt").exists()
+    assert (out / "figures" / "alyushin2009_trajectories.png").exists()
+    data = json.loads((out / "report.json").read_text())
+    assert data["summary"]["differs"] == 0
+    assert not [p for p in tmp_path.iterdir() if p.name != "report"]
