@@ -1,0 +1,236 @@
+"""``symkin trajectory``, ``symkin curves`` and ``symkin animate``: look at a scheme's motion.
+
+Particles are given as ``LINK:a,b``, coordinates relative to the link's axis at t = 0
+(pitch radii are module * teeth / 2, the module 1 by default).  Without ``--point`` the
+planet's particles on the pitch circle of its first rim and at half that radius are
+shown: an epicycloid or hypocycloid (the Cardan line for a planet in a ring twice its size).
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+from typing import Any
+
+import sympy as sp
+
+from ..errors import InputError
+from ..model import LinkKind
+from ..parsing import parse_expression, parse_number
+from .common import add_json_flag, collect_warnings, emit, link_value
+from .gears import SCHEME_HELP, _mechanism, _notes
+
+__all__ = ["register"]
+
+
+def _common(p: Any, out_help: str) -> None:
+    p.add_argument("scheme", help=SCHEME_HELP)
+    p.add_argument("--teeth", required=True, help="comma-separated tooth numbers, e.g. 20,30,20,70")
+    p.add_argument("--omega", action="append", default=[], metavar="LINK=VALUE",
+                   help="a known speed in rad/s (repeat; as many as the scheme's degrees of freedom, 0 fixes a link)")
+    p.add_argument("--point", action="append", default=[], metavar="LINK:a,b",
+                   help="a particle of LINK at (a, b) from the link's axis at t = 0 (repeat); default: planet "
+                   "particles on the pitch circle of its first rim and at half its radius")
+    p.add_argument("--module", default="1", help="gear module: pitch radius = module * teeth / 2 (default 1)")
+    span = p.add_mutually_exclusive_group()
+    span.add_argument("--turns", default=None, help="time span: turns of the carrier H (or of the fastest link), default 1")
+    span.add_argument("--t-end", default=None, help="time span in seconds")
+    p.add_argument("--out", required=True, metavar="FILE", help=out_help)
+    add_json_flag(p)
+
+
+def register(sub: Any) -> None:
+    p = sub.add_parser(
+        "trajectory",
+        help="plot the paths of chosen particles of a scheme (PNG and PDF)",
+        description="Plot the paths of particles of a scheme's links over a time span, with the pitch circles "
+        "at t = 0, eq. (4). Writes FILE (.png or .pdf).",
+    )
+    _common(p, "figure file, .png or .pdf")
+    p.set_defaults(run=run_trajectory)
+
+    q = sub.add_parser(
+        "curves",
+        help="plot speed and acceleration of chosen particles against time",
+        description="Plot |V| and |w| of particles of a scheme's links against time, eqs. (5) and (6). "
+        "Writes FILE (.png or .pdf).",
+    )
+    _common(q, "figure file, .png or .pdf")
+    q.set_defaults(run=run_curves)
+
+    a = sub.add_parser(
+        "animate",
+        help="animate a scheme: carrier, gears turning, particles tracing their paths (GIF or MP4)",
+        description="Animate a scheme over a time span: the carrier, every gear turning, and particles tracing "
+        "their paths. Writes FILE.gif (always available) or FILE.mp4 (needs ffmpeg); the file appears only "
+        "when complete.",
+    )
+    _common(a, "animation file, .gif or .mp4")
+    a.add_argument("--fps", type=int, default=20, help="frames per second (default 20)")
+    a.add_argument("--frames", type=int, default=None, help="number of frames (default: 4 s of animation per turn)")
+    a.add_argument("--dpi", type=int, default=80, help="resolution (default 80)")
+    a.set_defaults(run=run_animate)
+
+
+# --------------------------------------------------------------------------- parsing
+def _point(text: str, mech: Any) -> tuple[str, tuple[sp.Expr, sp.Expr]]:
+    if not isinstance(text, str) or ":" not in text:
+        raise InputError(f"--point takes LINK:a,b (for example 23:-15,0), got {text!r}")
+    link, _, coords = text.partition(":")
+    link = link.strip()
+    parts = [c.strip() for c in coords.split(",")]
+    if len(parts) != 2 or not all(parts):
+        raise InputError(f"--point {text!r} needs two coordinates after the colon, as in 23:-15,0")
+    values = tuple(parse_expression(c, what=f"--point coordinate {c!r}") for c in parts)
+    for v in values:
+        if not v.is_number or not v.is_real:
+            raise InputError(f"--point {text!r}: coordinates are real numbers, got {v}")
+    mech.link(link)  # raises with the valid names
+    return link, values  # type: ignore[return-value]
+
+
+def _default_points(mech: Any) -> list[tuple[str, tuple[sp.Expr, sp.Expr]]]:
+    planets = [L for L in mech.moving_links if L.kind is LinkKind.PLANET and L.gears]
+    if not planets:
+        raise InputError("this scheme has no planet; name the particles with --point LINK:a,b")
+    planet = planets[0]
+    r = planet.gears[0].radius
+    # start on the far side from the main axis (where the planet touches a ring, or away from the sun)
+    return [(planet.name, (r, sp.Integer(0))), (planet.name, (r / 2, sp.Integer(0)))]
+
+
+def _setup(args: Any) -> tuple[Any, Any, list, float, list[str], list[str]]:
+    known: dict[str, Any] = {}
+    for item in args.omega:
+        link, value = link_value(item)
+        if not value.is_number:
+            raise InputError(f"--omega {item!r}: give a number (rad/s)")
+        known[link] = value
+    module = parse_number(args.module, what="--module")
+    if module <= 0:
+        raise InputError(f"--module must be positive, got {args.module}")
+    with collect_warnings() as notes:
+        mech, teeth = _scheme(args.scheme, args.teeth, module)
+        motion = mech.motion(known)
+    points = [_point(p, mech) for p in args.point] or _default_points(mech)
+    from ..plotting import turn_time
+
+    if args.t_end is not None:
+        t_end = parse_number(args.t_end, what="--t-end")
+        if t_end <= 0:
+            raise InputError(f"--t-end must be positive, got {args.t_end}")
+        t_end = float(t_end)
+    else:
+        turns = float(parse_number(args.turns, what="--turns")) if args.turns is not None else 1.0
+        t_end = turn_time(motion, turns)
+    labels = [f"link {mech.link(l).name} at ({_fmt(a)}, {_fmt(b)}) from its axis" for l, (a, b) in points]
+    return mech, motion, points, t_end, labels, notes
+
+
+def _scheme(name: str, teeth_text: str, module: sp.Rational) -> tuple[Any, list]:
+    from .. import schemes
+
+    mech, teeth = _mechanism(name, teeth_text)
+    return schemes.scheme(name, teeth=tuple(teeth), module=module), teeth
+
+
+def _fmt(v: sp.Expr) -> str:
+    return f"{float(v):g}"
+
+
+def _figure_path(args: Any) -> Path:
+    out = Path(args.out)
+    if out.suffix.lower() not in (".png", ".pdf"):
+        raise InputError(f"--out {args.out}: give a file ending in .png or .pdf")
+    if not out.resolve().parent.is_dir():
+        raise InputError(f"--out {args.out}: the folder {out.resolve().parent} does not exist")
+    if out.is_dir():
+        raise InputError(f"--out {args.out} is a folder; give a file name ending in .png or .pdf")
+    return out
+
+
+def _save(fig: Any, out: Path) -> None:
+    """Save under a temporary name beside ``out``, then rename (never a half-written file)."""
+    import tempfile
+
+    try:
+        fd, tmp = tempfile.mkstemp(prefix=f".{out.stem}.partial-", suffix=out.suffix, dir=out.resolve().parent)
+    except OSError as err:
+        raise InputError(f"cannot write to {out.resolve().parent}: {err.strerror}; choose a writable folder") from None
+    os.close(fd)
+    try:
+        fig.savefig(tmp, dpi=150, bbox_inches="tight")
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(tmp, 0o666 & ~umask)
+        os.replace(tmp, out)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+
+
+def _report(args: Any, kind: str, out: Path, mech: Any, points: list, t_end: float, notes: list[str], extra: dict | None = None) -> None:
+    if not args.json:
+        _notes(notes)
+    data = {
+        "command": kind,
+        "scheme": args.scheme,
+        "file": str(out),
+        "t_end": t_end,
+        "particles": [{"link": mech.link(l).name, "a": float(a), "b": float(b)} for l, (a, b) in points],
+        "warnings": notes,
+        **(extra or {}),
+    }
+    emit(args, f"{kind} of {args.scheme} over t = 0 ... {t_end:.4g} s written to {out}", data)
+
+
+# --------------------------------------------------------------------------- commands
+def run_trajectory(args: Any) -> int:
+    from matplotlib.figure import Figure
+
+    from ..plotting import draw_pitch_circles, draw_trajectories
+
+    out = _figure_path(args)
+    mech, motion, points, t_end, labels, notes = _setup(args)
+    fig = Figure(figsize=(5.5, 5.5))
+    ax = fig.add_subplot()
+    draw_pitch_circles(ax, mech)
+    draw_trajectories(ax, motion, points, t_end, relative_to="pole", labels=labels)
+    ax.set_aspect("equal")
+    ax.set_title(f"{args.scheme}, z = {args.teeth}: particle paths, t = 0 ... {t_end:.3g} s", fontsize=9)
+    ax.legend(fontsize=7, loc="upper right")
+    _save(fig, out)
+    _report(args, "trajectory", out, mech, points, t_end, notes)
+    return 0
+
+
+def run_curves(args: Any) -> int:
+    from ..plotting import kinematics_figure
+
+    out = _figure_path(args)
+    mech, motion, points, t_end, labels, notes = _setup(args)
+    fig = kinematics_figure(motion, points, t_end, relative_to="pole", labels=labels,
+                            title=f"{args.scheme}, z = {args.teeth}: speed and acceleration, eqs. (5), (6)")
+    _save(fig, out)
+    _report(args, "curves", out, mech, points, t_end, notes)
+    return 0
+
+
+def run_animate(args: Any) -> int:
+    from ..animation import WRITERS, Scene, animate
+
+    out = Path(args.out)
+    if out.suffix.lower() not in WRITERS:
+        raise InputError(f"--out {args.out}: give a file ending in {' or '.join(WRITERS)}")
+    mech, motion, points, t_end, labels, notes = _setup(args)
+    frames = args.frames
+    if frames is None:
+        turns = float(parse_number(args.turns, what="--turns")) if args.turns is not None else 1.0
+        frames = max(2, min(2000, int(round(4 * args.fps * (turns if args.t_end is None else 1.0)))))
+    if frames < 2 or frames > 5000:
+        raise InputError(f"--frames must be between 2 and 5000, got {frames}")
+    scene = Scene.build(motion, points, t_end=t_end, frames=frames, labels=labels,
+                        title=f"{args.scheme}, z = {args.teeth}")
+    animate(scene, out, fps=args.fps, dpi=args.dpi)
+    _report(args, "animation", out, mech, points, t_end, notes, {"frames": frames, "fps": args.fps})
+    return 0

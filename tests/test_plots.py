@@ -1,0 +1,133 @@
+"""Plots and animation: sampled kinematics against independent routes, the animation's
+geometry against the Cardan mechanism's closed form, files written whole, CLI commands."""
+
+import json
+
+import numpy as np
+import pytest
+import sympy as sp
+from PIL import Image
+
+from symkin import Gear, InputError, Link, Mechanism, ToolError, schemes
+from symkin import animation, plotting
+from symkin.animation import Scene, animate, frame_figure
+from symkin.cli import main
+
+
+def cardan(radius=1.0):
+    return Mechanism(
+        links=[Link.frame(Gear("3", 2 * radius, internal=True)), Link.central("H"), Link.planet("1", Gear("1", radius))],
+        meshes=[("1", "3")],
+        name="Cardan",
+    )
+
+
+def test_sampled_velocity_and_acceleration_are_finite_differences_of_the_path():
+    motion = schemes.two_row("AI", teeth=(20, 30, 20, 70), module=1).motion({"1": 3, "4": -1})
+    data = plotting.sample(motion.particle("23", (7, 4), relative_to="pole"), 2.0, samples=4001)
+    dt = data["t"][1] - data["t"][0]
+    assert np.allclose(np.gradient(data["x"], dt)[2:-2], data["vx"][2:-2], rtol=0, atol=1e-3 * np.abs(data["vx"]).max())
+    assert np.allclose(np.gradient(data["vy"], dt)[2:-2], data["ay"][2:-2], rtol=0, atol=1e-3 * np.abs(data["ay"]).max())
+    assert np.allclose(data["speed"], np.hypot(data["vx"], data["vy"]))
+
+
+def test_turn_time_counts_carrier_turns():
+    motion = schemes.two_row("AA", teeth=(54, 45, 44, 55), module=1).motion({"1": 1, "4": 0})
+    # i_1H = -1/24: the carrier turns 24 times faster than gear 1
+    assert plotting.turn_time(motion, 2) == pytest.approx(2 * 2 * np.pi / 24)
+    with pytest.raises(InputError, match="positive"):
+        plotting.turn_time(motion, 0)
+
+
+def test_animation_geometry_is_the_cardan_mechanism():
+    scene = Scene.build(cardan().motion({"H": 1}), [("1", (1, 0)), ("1", (0.5, 0))], t_end=2 * np.pi, frames=50)
+    t = scene.t
+    on_circle, inside = scene.particle_xy
+    assert np.allclose(on_circle[:, 1], 0, atol=1e-12)                      # the Cardan straight line
+    assert np.allclose(on_circle[:, 0], 2 * np.cos(t))                       # x = 2 r cos(omega_H t)
+    assert np.allclose((inside[:, 0] / 1.5) ** 2 + (inside[:, 1] / 0.5) ** 2, 1)  # an ellipse, semi-axes r +- rho
+    names = [name for name, *_ in scene.links]
+    assert names == ["0", "H", "1"]                                          # the fixed ring is drawn
+    planet = names.index("1")
+    assert np.allclose(scene.angle[planet], -t)                              # omega_1 = -omega_H (ring twice the planet)
+    assert np.allclose(np.hypot(*scene.axis_xy[planet].T), 1)                # the planet axis stays at the arm
+
+
+def test_a_gif_is_written_whole_with_every_frame(tmp_path):
+    scene = Scene.build(schemes.single_row_AI(radii=(1, 1, 3)).motion({"4": 0, "H": 1}), [("2", (1, 0))], t_end=6.3, frames=6)
+    out = animate(scene, tmp_path / "a.gif", fps=10, dpi=30)
+    with Image.open(out) as im:
+        assert im.format == "GIF" and im.n_frames == 6
+    assert [p.name for p in tmp_path.iterdir()] == ["a.gif"]
+    png = tmp_path / "frame.png"
+    frame_figure(scene, 3).savefig(png, dpi=40)
+    assert png.stat().st_size > 2000
+
+
+def test_a_failed_animation_leaves_no_partial_file_and_keeps_the_old_one(tmp_path, monkeypatch):
+    scene = Scene.build(cardan().motion({"H": 1}), [("1", (1, 0))], t_end=1.0, frames=4)
+    out = tmp_path / "a.gif"
+    out.write_bytes(b"old")
+    from matplotlib.animation import FuncAnimation
+
+    def broken(self, *a, **k):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(FuncAnimation, "save", broken)
+    with pytest.raises(KeyboardInterrupt):
+        animate(scene, out, dpi=30)
+    assert out.read_bytes() == b"old" and [p.name for p in tmp_path.iterdir()] == ["a.gif"]
+
+
+def test_mp4_without_ffmpeg_is_a_clear_tool_error(tmp_path, monkeypatch):
+    monkeypatch.setattr(animation, "ffmpeg_available", lambda: False)
+    scene = Scene.build(cardan().motion({"H": 1}), [], t_end=1.0, frames=2)
+    with pytest.raises(ToolError, match="ffmpeg was not found.*write a GIF instead"):
+        animate(scene, tmp_path / "a.mp4")
+    with pytest.raises(InputError, match=r"\.gif or \.mp4"):
+        animate(scene, tmp_path / "a.avi")
+    assert not list(tmp_path.iterdir())
+
+
+# ---- the command line
+def cli(capsys, *argv):
+    code = main(list(argv))
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def test_cli_trajectory_curves_and_animation(tmp_path, capsys):
+    base = ["AI1", "--teeth", "20,30,80", "--omega", "4=0", "--omega", "H=1"]
+    code, out, _ = cli(capsys, "trajectory", *base, "--out", str(tmp_path / "t.png"), "--json")
+    data = json.loads(out)
+    assert code == 0 and data["t_end"] == pytest.approx(2 * np.pi)
+    assert data["particles"] == [{"link": "2", "a": 15.0, "b": 0.0}, {"link": "2", "a": 7.5, "b": 0.0}]
+    code, out, _ = cli(capsys, "curves", "AI", "--teeth", "20,30,20,70", "--omega", "1=10", "--omega", "4=0",
+                       "--point", "23:15,0", "--out", str(tmp_path / "c.pdf"))
+    assert code == 0 and (tmp_path / "c.pdf").read_bytes().startswith(b"%PDF")
+    code, out, _ = cli(capsys, "animate", *base, "--turns", "0.5", "--frames", "5", "--dpi", "30", "--out", str(tmp_path / "a.gif"))
+    assert code == 0 and "written to" in out
+    with Image.open(tmp_path / "a.gif") as im:
+        assert im.n_frames == 5
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.gif", "c.pdf", "t.png"]
+
+
+BAD = [
+    (["trajectory", "AI1", "--teeth", "20,30,80", "--omega", "4=0", "--omega", "H=1", "--out", "x.jpg"], ".png or .pdf"),
+    (["trajectory", "AI1", "--teeth", "20,30,80", "--omega", "4=0", "--omega", "H=1", "--point", "9:1,2", "--out", "x.png"], "no link '9'"),
+    (["trajectory", "AI1", "--teeth", "20,30,80", "--omega", "4=0", "--omega", "H=1", "--point", "2:1", "--out", "x.png"], "two coordinates"),
+    (["trajectory", "AI1", "--teeth", "20,30,80", "--omega", "4=0", "--omega", "H=1", "--point", "2-1,0", "--out", "x.png"], "LINK:a,b"),
+    (["curves", "AI1", "--teeth", "20,30,80", "--omega", "4=0", "--out", "x.png"], "degrees of freedom"),
+    (["curves", "AI1", "--teeth", "20,30,80", "--omega", "4=0", "--omega", "H=0", "--out", "x.png"], "turn"),
+    (["animate", "AI1", "--teeth", "20,30,80", "--omega", "4=0", "--omega", "H=1", "--out", "x.png"], ".gif or .mp4"),
+    (["animate", "AI1", "--teeth", "20,30,80", "--omega", "4=0", "--omega", "H=1", "--out", "nofolder/x.gif"], "does not exist"),
+    (["trajectory", "AI1", "--teeth", "20,30,80", "--omega", "4=0", "--omega", "H=1", "--module", "-1", "--out", "x.png"], "positive"),
+]
+
+
+@pytest.mark.parametrize("argv, message", BAD)
+def test_cli_bad_input(tmp_path, capsys, monkeypatch, argv, message):
+    monkeypatch.chdir(tmp_path)
+    code, _, err = cli(capsys, *argv)
+    assert code == 2 and message in err and len(err.strip().splitlines()) == 1
+    assert not list(tmp_path.iterdir())
