@@ -252,7 +252,14 @@ FIGURE_TEETH = {"AI1": (20, 30, 80), "AI": (20, 30, 20, 70), "AA": (54, 45, 44, 
 
 def figures(folder: Path) -> list[Path]:
     """Trajectories of a planet particle on the pitch circle of rim 2 and one inside it,
-    for each scheme, gear 4 fixed, over one carrier turn."""
+    for each scheme, gear 4 fixed, over one carrier turn (see :func:`trajectories_figure`)."""
+    from symkin import plotting
+
+    return plotting.save(trajectories_figure(), folder / "alyushin2009_trajectories")
+
+
+def trajectories_figure():
+    """The figure of :func:`figures`, as a matplotlib Figure."""
     from matplotlib.figure import Figure
 
     from symkin import plotting
@@ -277,7 +284,7 @@ def figures(folder: Path) -> list[Path]:
         ax.legend(fontsize=7, loc="lower left")
         ax.tick_params(labelsize=7)
     fig.suptitle("Alyushin & Verzhanskiy 2009: planet-particle trajectories, eq. (4)")
-    return plotting.save(fig, folder / "alyushin2009_trajectories")
+    return fig
 
 
 def notes() -> list[str]:

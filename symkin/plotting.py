@@ -80,12 +80,13 @@ def trajectory_figure(
     relative_to: str = "frame",
     values: Mapping[Any, Any] | None = None,
     title: str | None = None,
+    labels: Sequence[str] | None = None,
 ) -> Figure:
-    """One axes: pitch circles and particle paths of ``mech`` under ``inputs``."""
+    """One axes: pitch circles (at t = 0) and particle paths of ``mech`` under ``inputs``."""
     fig = Figure(figsize=(5, 5))
     ax = fig.add_subplot()
     draw_pitch_circles(ax, mech, values)
-    draw_trajectories(ax, mech.motion(inputs), particles, t_end, relative_to=relative_to, values=values)
+    draw_trajectories(ax, mech.motion(inputs), particles, t_end, relative_to=relative_to, values=values, labels=labels)
     ax.set_aspect("equal")
     ax.set_title(title or mech.name)
     ax.legend(fontsize=7, loc="upper right")
