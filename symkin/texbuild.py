@@ -29,7 +29,12 @@ MISSING = (
 
 
 def find_pdflatex() -> str | None:
-    """The pdflatex executable on PATH (or ``$SYMKIN_PDFLATEX``), or None."""
+    """The pdflatex executable on PATH (or ``$SYMKIN_PDFLATEX``; empty means none), or None.
+
+    >>> exe = find_pdflatex()
+    >>> exe is None or "pdflatex" in exe
+    True
+    """
     override = os.environ.get("SYMKIN_PDFLATEX")
     if override is not None:
         return shutil.which(override) if override else None
@@ -69,6 +74,14 @@ def compile_pdf(tex: Path, *, pdflatex: str | None = None, timeout: float = 180.
     ------
     ToolError
         When pdflatex is missing, times out, or cannot compile the document.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> tex = pathlib.Path(tempfile.mkdtemp()) / "x.tex"
+    >>> _ = tex.write_text(r"\\documentclass{article}\\begin{document}$z_1 + z_2$\\end{document}")
+    >>> find_pdflatex() is None or compile_pdf(tex).pdf.read_bytes().startswith(b"%PDF")
+    True
     """
     tex = Path(tex).resolve()
     exe = pdflatex or find_pdflatex()
