@@ -21,7 +21,7 @@ from typing import Any, Callable, Sequence
 from .errors import ModelError
 from .model import Gear, Link, Mechanism
 
-__all__ = ["single_row_AI", "two_row", "common_ring_train", "scheme", "SCHEMES"]
+__all__ = ["single_row_AI", "two_row", "common_ring_train", "cardan", "scheme", "SCHEMES"]
 
 _TWO_ROW = {"AI": (False, True), "AA": (False, False), "II": (True, True)}  # internal gear 1?, gear 4?
 
@@ -135,6 +135,26 @@ def common_ring_train(
         meshes += [(sun.name, planet.name), (planet.name, "4")]
     links.append(Link.central("4", ring_gear))
     return Mechanism(links=tuple(links), meshes=tuple(meshes), name=f"{n} x AI1")
+
+
+def cardan(*, radii: Any = None, teeth: Any = None, module: Any = None, carrier_angle: Any = 0) -> Mechanism:
+    """Planet ``"1"`` rolling inside the fixed internal gear ``"3"``, carried by ``"H"``.
+
+    The Cardan-circle mechanism of the 2018 paper when gear 3 is twice gear 1 (then every
+    point of the planet's pitch circle moves on a straight line).  ``teeth``/``radii``
+    give two values: gears 1 and 3; ``carrier_angle`` is the carrier's angle at t = 0.
+    The slider and its vector loop are in :mod:`symkin.cardan`.
+
+    >>> m = cardan(teeth=(20, 40), module=2)
+    >>> m.arm("1"), m.ratio("1", "H", fixed="0").rhs
+    (20, -1)
+    """
+    g1, g3 = _gears(("1", "3"), (False, True), radii, teeth, module)
+    return Mechanism(
+        links=(Link.frame(g3), Link.central("H"), Link.planet("1", g1, carrier="H", position_angle=carrier_angle)),
+        meshes=(("1", "3"),),
+        name="Cardan",
+    )
 
 
 SCHEMES: dict[str, Callable[..., Mechanism]] = {
