@@ -11,4 +11,5 @@ A module provides ``KEY``, ``CITATION``, ``checks() -> list[Check]`` and
 #: Paper key -> module, in the order `symkin reproduce all` runs them.
 PAPERS = {
     "alyushin2009": "symkin.derivations.alyushin2009",
+    "luo2018": "symkin.derivations.luo2018",
 }

@@ -1,0 +1,90 @@
+"""The 2018 paper reproduced: every check, the slips with their evidence, the report and figures."""
+
+import json
+
+import pytest
+import sympy as sp
+
+from symkin.derivations import luo2018
+from symkin.report import Verdict, compare_rounded, compare_symbolic
+from symkin.reproduce import run
+
+
+@pytest.fixture(scope="module")
+def checks():
+    return {c.label: c for c in luo2018.checks()}
+
+
+def test_every_check_is_reproduced_or_an_explained_slip(checks):
+    bad = [(k, c.comparison.detail) for k, c in checks.items() if not c.verdict.ok]
+    assert not bad
+    for label in ["(2)", "(13)-(14) ratio", "(14)", "(12) identity", "(13)", "(16)", "(19)", "(20)", "(21)", "(22)",
+                  "(22) superposition", "(23)", "(24)", "(25)", "(26)", "(27)-(28)", "(29)", "(30)-(31)", "(32)",
+                  "(33)-(35)", "e = 0: (22)", "e = 0: (23)", "e = 0: (24)", "stroke", "period"]:
+        assert label in checks, label
+    slips = {k for k, c in checks.items() if c.verdict is Verdict.SLIP}
+    assert slips == {"(13)", "Table 1 v max", "Table 1 v min", "period", "(27)-(28)", "fig. 7(b)/8(b)"}
+
+
+def test_table1_values(checks):
+    expected = {  # label: (derived exact value, verdict)
+        "Table 1 s initial": (sp.Rational(1, 25), Verdict.MATCH),
+        "Table 1 s min": (-sp.Rational(1, 25), Verdict.MATCH),
+        "Table 1 v initial": (0, Verdict.MATCH),
+        "Table 1 v max": (4 * sp.pi / 125, Verdict.SLIP),
+        "Table 1 a initial": (-16 * sp.pi**2 / 625, Verdict.ROUNDED),
+        "Table 1 a max": (16 * sp.pi**2 / 625, Verdict.ROUNDED),
+    }
+    for label, (value, verdict) in expected.items():
+        assert sp.simplify(checks[label].derived - value) == 0, label
+        assert checks[label].verdict is verdict, label
+    assert checks["Table 1 v max"].published == "100.52e-3"
+    # the slip is explained by sampling: a 0.01 s grid reproduces the printed value, a fine grid does not
+    detail = checks["Table 1 v max"].comparison.detail
+    assert "0.01 s: 100.52/-100.52" in detail and "0.001 s: 100.53/-100.53" in detail
+    # 100.52 is not the rounding of the exact value, 100.53 would have been
+    assert not compare_rounded(4 * sp.pi / 125 * 1000, "100.52").verdict.ok
+    assert compare_rounded(4 * sp.pi / 125 * 1000, "100.53").verdict is Verdict.ROUNDED
+    assert checks["period"].derived == sp.Rational(5, 2)
+
+
+def test_a_wrong_published_law_would_be_reported(checks):
+    l, th2, thH = sp.symbols("l theta_2 theta_H")
+    derived = checks["(22)"].derived
+    assert not compare_symbolic(derived, 2 * l * sp.sin(th2 - thH)).verdict.ok
+
+
+def test_installation_slip_evidence(checks):
+    detail = checks["(13)"].comparison.detail
+    assert "2*l*sin(omega_H*t)" in detail and "theta_1(0) = pi/3" in detail
+
+
+def test_figure_claims_are_measured(checks):
+    a, c = checks["fig. 7(a)/8(a)"], checks["fig. 7(c)/8(c)"]
+    assert a.verdict is Verdict.MATCH and c.verdict is Verdict.MATCH
+    assert "quick return (K grows from 1): shown" in a.comparison.detail
+    rows = luo2018.curves()
+    ratios = [stroke.ratio for _, _, _, stroke, _ in rows["a"]]
+    assert ratios[0] == pytest.approx(1) and all(b > a for a, b in zip(ratios, ratios[1:]))
+    even = [stroke.ratio for value, _, _, stroke, _ in rows["b"] if value == 2]
+    assert even == [pytest.approx(1)]
+
+
+def test_steady_share_measures_the_flat_stretch():
+    import numpy as np
+
+    x = np.linspace(0, 2 * np.pi, 1000, endpoint=False)
+    assert luo2018.steady_share(np.sin(x)) == pytest.approx(2 * np.arccos(0.8) / (2 * np.pi), abs=2e-3)
+    flat = np.where(np.abs(x - np.pi) < 1, 0.0, np.sin(x))  # a flat stretch of length 2 at v = 0
+    assert luo2018.steady_share(flat) >= 2 / (2 * np.pi)
+
+
+def test_reproduce_luo2018_writes_report_and_figures(tmp_path):
+    out = tmp_path / "report"
+    (result,) = run(["luo2018"], out, quiet=True)
+    assert result.ok and result.seconds < 30
+    data = json.loads((out / "report.json").read_text())
+    assert data["papers"]["luo2018"]["ok"] is True
+    for name in ("paths", "fig4_constant_speed", "fig7_velocity", "fig8_acceleration", "carrier_angle_branches"):
+        assert (out / "figures" / f"luo2018_{name}.png").stat().st_size > 10_000
+    assert any("Stroke times" in n for n in data["papers"]["luo2018"]["notes"])
