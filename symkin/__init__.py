@@ -13,7 +13,7 @@ compiles them into fast numeric functions.
 
 from __future__ import annotations
 
-from . import drives, schemes, symbols
+from . import cardan, drives, schemes, symbols, vectorloop
 from .errors import (
     CoaxialityWarning,
     DeterminacyError,
@@ -54,6 +54,8 @@ __all__ = [
     "compile",
     "schemes",
     "drives",
+    "cardan",
+    "vectorloop",
     "symbols",
     "SymkinError",
     "ModelError",

@@ -1,0 +1,186 @@
+"""``symkin cardan``: the Cardan-circle slider on a time grid (constant, elliptical or any carrier law)."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+import sympy as sp
+
+from .. import symbols as S
+from ..cardan import CardanSlider
+from ..drives import AngleLaw, ConstantSpeed, EllipticalGears
+from ..errors import InputError
+from ..parsing import parse_expression, parse_integer
+from .common import add_json_flag, emit, teeth_list
+
+DESCRIPTION = (
+    "Evaluate the Cardan-circle mechanism (carrier H, planet 1 rolling in the fixed ring 3, slider 2 pinned on the "
+    "planet, guide through the centre at angle theta_2) on a time grid and print the slider's s, v, a. The carrier "
+    "turns at a constant speed, through a pair of identical elliptical gears (eccentricity e, order m, input speed "
+    "--omega), or by a law theta_H(t) you give. Values are exact where possible (0.02, 0.8*pi, pi/6); angles in "
+    "radians, lengths in any unit (speeds come out in that unit per second). A pin off the pitch circle or a ratio "
+    "other than 1:2 is not an error: the output says which path the pin traces."
+)
+
+
+def register(sub: Any) -> None:
+    p = sub.add_parser("cardan", help="slider displacement, velocity, acceleration of the Cardan-circle mechanism",
+                       description=DESCRIPTION)
+    p.add_argument("--length", required=True, metavar="L", help="carrier length l_H (= planet pitch radius for 1:2)")
+    p.add_argument("--omega", metavar="W", help="carrier speed (constant drive) or input gear speed (elliptical), rad/s")
+    p.add_argument("--guide-angle", default="0", metavar="THETA2", help="guide angle theta_2 (default 0)")
+    p.add_argument("--carrier-angle", default="0", metavar="THETAH0", help="carrier angle at t = 0 (default 0)")
+    p.add_argument("--teeth", default="20,40", metavar="Z1,Z3", help="planet and ring tooth numbers (default 20,40)")
+    p.add_argument("--pin-radius", metavar="L1", help="pin distance from the planet axis (default: on the pitch circle)")
+    p.add_argument("--pin-angle", metavar="THETA10",
+                   help="pin angle on the planet from the carrier at t = 0 (default: the installation angle the guide needs)")
+    p.add_argument("--drive", choices=("constant", "elliptical", "law"),
+                   help="carrier drive (default: elliptical if -e is given, law if --angle-law is given, else constant)")
+    p.add_argument("-e", "--eccentricity", metavar="E", help="eccentricity of the elliptical gears, 0 <= e < 1")
+    p.add_argument("-m", "--order", metavar="M", help="order of the elliptical gears (default 1)")
+    p.add_argument("--angle-law", metavar="EXPR", help="carrier angle law theta_H(t) in t, e.g. '0.8*pi*t + 0.2*sin(t)'")
+    p.add_argument("--t-start", default="0", metavar="T0", help="first time (default 0)")
+    p.add_argument("--t-end", metavar="T1", help="last time (default: one period of the motion)")
+    p.add_argument("--samples", default="9", metavar="N", help="number of equally spaced times (default 9)")
+    p.add_argument("--times", metavar="T,T,...", help="explicit increasing times instead of --t-start/--t-end/--samples")
+    add_json_flag(p)
+    p.set_defaults(run=run_cardan)
+
+
+# ---- values
+def _number(text: str, what: str, *, positive: bool = False) -> sp.Expr:
+    value = parse_expression(text, what=what)
+    if not value.is_number or value.is_extended_real is False or not value.is_finite:
+        raise InputError(f"{what} must be a finite real number, got {text!r}")
+    if positive and not value.is_positive:
+        raise InputError(f"{what} must be positive, got {text!r}")
+    return value
+
+
+def _drive(args: Any):
+    kind = args.drive or ("elliptical" if args.eccentricity is not None else "law" if args.angle_law is not None else "constant")
+    if kind != "elliptical" and (args.eccentricity is not None or args.order is not None):
+        raise InputError(f"-e/--eccentricity and -m/--order belong to the elliptical drive, not the {kind} drive")
+    if kind != "law" and args.angle_law is not None:
+        raise InputError(f"--angle-law belongs to the law drive, not the {kind} drive")
+    if kind == "law":
+        if args.angle_law is None:
+            raise InputError("the law drive needs --angle-law EXPR, the carrier angle theta_H(t)")
+        if args.omega is not None:
+            raise InputError("--omega does not apply to the law drive: the law gives the carrier's speed")
+        law = parse_expression(args.angle_law, names=("t",), what="--angle-law")
+        return AngleLaw(law), {"kind": "law", "angle_law": str(law)}
+    if args.omega is None:
+        raise InputError(f"the {kind} drive needs --omega W, the {'carrier' if kind == 'constant' else 'input gear'} speed")
+    omega = _number(args.omega, "--omega", positive=True)
+    if kind == "constant":
+        return ConstantSpeed(omega), {"kind": "constant", "omega": str(omega)}
+    if args.eccentricity is None:
+        raise InputError("the elliptical drive needs -e/--eccentricity E with 0 <= E < 1")
+    e = _number(args.eccentricity, "--eccentricity")
+    if not (e >= 0 and e < 1):
+        raise InputError(f"--eccentricity must lie in [0, 1), got {args.eccentricity!r}; 0 gives circular gears")
+    m = _number(args.order, "--order", positive=True) if args.order is not None else sp.Integer(1)
+    return EllipticalGears(omega, e, m), {"kind": "elliptical", "omega": str(omega), "eccentricity": str(e), "order": str(m)}
+
+
+def _times(args: Any, period: sp.Expr | None) -> np.ndarray:
+    if args.times is not None:
+        if args.t_end is not None:
+            raise InputError("give either --times or --t-end/--samples, not both")
+        parts = [p for p in args.times.split(",") if p.strip()]
+        if not parts:
+            raise InputError("--times is empty; give at least one time, e.g. --times 0,0.5,1")
+        values = [float(_number(p, f"time {i} in --times")) for i, p in enumerate(parts, 1)]
+        ts = np.array(values)
+        if np.any(np.diff(ts) <= 0):
+            raise InputError("--times must be strictly increasing")
+        return ts
+    start = _number(args.t_start, "--t-start")
+    if args.t_end is not None:
+        end = _number(args.t_end, "--t-end")
+    elif period is not None:
+        end = start + period
+    else:
+        raise InputError("this drive has no known period; give --t-end")
+    n = parse_integer(args.samples, what="--samples")
+    if n < 1:
+        raise InputError(f"--samples must be at least 1, got {n}")
+    if n > 100_000:
+        raise InputError(f"--samples is at most 100000, got {n}")
+    if n > 1 and not end > start:
+        raise InputError(f"--t-end ({end}) must be larger than --t-start ({start}): the time grid must increase")
+    return np.linspace(float(start), float(end), int(n))
+
+
+def _fmt(x: float) -> str:
+    return f"{x + 0.0:.10g}" if math.isfinite(x) else "nan"  # + 0.0: no "-0"
+
+
+def run_cardan(args: Any) -> int:
+    length = _number(args.length, "--length", positive=True)
+    z1, z3 = teeth_list(args.teeth, (2,))
+    if z3 <= z1:
+        raise InputError(f"the ring needs more teeth than the planet: got z1 = {z1}, z3 = {z3}")
+    drive, drive_data = _drive(args)
+    pin_radius = _number(args.pin_radius, "--pin-radius", positive=True) if args.pin_radius is not None else None
+    pin_angle = _number(args.pin_angle, "--pin-angle") if args.pin_angle is not None else None
+    guide = _number(args.guide_angle, "--guide-angle")
+    carrier = _number(args.carrier_angle, "--carrier-angle")
+    slider = CardanSlider.build(length, drive=drive, teeth=(z1, z3), pin_radius=pin_radius, pin_angle=pin_angle,
+                                guide_angle=guide, carrier_angle=carrier)
+    period = slider.period()
+    ts = _times(args, period)
+    path = slider.path()
+    data = slider.evaluate(ts)
+    bad = [k for k in ("s", "v", "a", "x", "y") if not np.all(np.isfinite(data[k]))]
+    if bad:
+        raise InputError(f"the drive law gives non-finite {', '.join(bad)} on this time grid; check --angle-law and the times")
+    strokes = slider.stroke_times() if path.on_guide and _turns_forward(slider, ts) else None
+    columns = ["t", "s", "v", "a"] + ([] if path.on_guide else ["x", "y", "deviation"])
+    result = {
+        "mechanism": {
+            "length": str(length),
+            "teeth": [int(z1), int(z3)],
+            "pin_radius": str(slider.pin_radius),
+            "pin_on_pitch_circle": bool(sp.simplify(slider.pin_radius - slider.mechanism.gear("1").radius) == 0),
+            "pin_angle": str(slider.pin_angle),
+            "guide_angle": str(guide),
+            "carrier_angle": str(carrier),
+        },
+        "drive": drive_data,
+        "path": {"kind": path.kind, "on_guide": path.on_guide, "description": path.description},
+        "period": None if period is None else {"exact": str(period), "float": float(period)},
+        "stroke_times": None if strokes is None else {"forward": strokes.forward, "return": strokes.back, "ratio": strokes.ratio},
+        "laws": {k: str(law.rhs) for k, law in zip("sva", slider.laws())},
+        "columns": {k: [float(x) for x in data[k]] for k in columns},
+    }
+    lines = [
+        f"Cardan mechanism: l_H = {length}, z1:z3 = {z1}:{z3}, pin radius {slider.pin_radius}, pin angle {slider.pin_angle}, "
+        f"guide angle {guide}, carrier angle {carrier}",
+        "drive: " + ", ".join(f"{k} {v}" for k, v in drive_data.items() if k != "kind") + f" ({drive_data['kind']})",
+        f"path: {path.kind}: {path.description}",
+    ]
+    if not path.on_guide:
+        lines.append("note: no slider on the guide can follow this pin; s, v, a are the pin's components along the guide")
+    if period is not None:
+        lines.append(f"period: {period} = {_fmt(float(period))} s")
+    if strokes is not None:
+        lines.append(f"stroke times: forward {_fmt(strokes.forward)} s, return {_fmt(strokes.back)} s, ratio K = {_fmt(strokes.ratio)}")
+    lines.append(f"s(t) = {result['laws']['s']}")
+    lines.append("  ".join(f"{c:>16}" for c in columns))
+    for i in range(len(ts)):
+        lines.append("  ".join(f"{_fmt(float(data[c][i])):>16}" for c in columns))
+    emit(args, "\n".join(lines), result)
+    return 0
+
+
+def _turns_forward(slider: CardanSlider, ts: np.ndarray) -> bool:
+    """Stroke times need a carrier turning forward; a user's law may not."""
+    if not isinstance(slider.drive, AngleLaw):
+        return True
+    f = sp.lambdify(S.t, slider.drive.speed(S.t), "numpy")
+    grid = np.linspace(0.0, max(float(ts[-1]), 1e-9), 2001)
+    return bool(np.all(np.asarray(f(grid), dtype=float) > 0))

@@ -1,0 +1,90 @@
+"""``symkin cardan``: s, v, a on a time grid; other paths reported, bad input refused in one line."""
+
+import json
+import math
+
+import pytest
+
+from symkin.cli import main
+
+
+def run(capsys, *argv):
+    code = main(["cardan", *argv])
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def test_table1_mechanism_text(capsys):
+    code, out, _ = run(capsys, "--length", "0.02", "--omega", "0.8*pi", "--samples", "5")
+    assert code == 0
+    assert "path: line" in out and "period: 5/2 = 2.5 s" in out and "ratio K = 1" in out
+    rows = [line.split() for line in out.splitlines()[-5:]]
+    t, s, v, a = map(float, rows[2])  # t = 1.25 s: the far end, s = -2 l, at rest, a = 2 l omega^2
+    assert (t, s) == (1.25, -0.04) and abs(v) < 1e-15 and a == pytest.approx(0.04 * (0.8 * math.pi) ** 2)
+
+
+def test_elliptical_json(capsys):
+    code, out, _ = run(capsys, "--length", "20e-3", "--omega", "0.8*pi", "-e", "0.4", "-m", "1", "--carrier-angle", "pi/2",
+                       "--times", "0,0.5,1", "--json")
+    data = json.loads(out)
+    assert code == 0 and data["drive"] == {"kind": "elliptical", "omega": "4*pi/5", "eccentricity": "2/5", "order": "1"}
+    assert data["mechanism"]["pin_angle"] == "-pi" and data["path"]["on_guide"] is True
+    assert data["columns"]["t"] == [0.0, 0.5, 1.0] and set(data["columns"]) == {"t", "s", "v", "a"}
+    # at t = 0 the carrier is at pi/2 and fastest: v = 2 l omega (1 + e)/(1 - e) sin(-pi/2)
+    assert data["columns"]["v"][0] == pytest.approx(-0.04 * 0.8 * math.pi * 1.4 / 0.6)
+    assert data["stroke_times"]["ratio"] > 2.8
+
+
+def test_law_drive(capsys):
+    code, out, _ = run(capsys, "--length", "1", "--angle-law", "t + t**3", "--t-end", "2", "--samples", "3", "--json")
+    data = json.loads(out)
+    assert code == 0 and data["drive"]["kind"] == "law" and data["period"] is None
+    assert data["columns"]["s"][2] == pytest.approx(2 * math.cos(10))
+
+
+@pytest.mark.parametrize(
+    "extra, kind, phrase",
+    [
+        (["--teeth", "20,60"], "hypocycloid", "3 cusps"),
+        (["--pin-radius", "0.01"], "ellipse", "semi-axes 3/100"),
+        (["--pin-angle", "pi"], "line off the guide", "must be 0"),
+        (["--teeth", "20,60", "--pin-radius", "0.005"], "hypotrochoid", "ring : planet = 3"),
+    ],
+)
+def test_other_paths_are_not_errors_and_are_named(capsys, extra, kind, phrase):
+    code, out, _ = run(capsys, "--length", "0.02", "--omega", "1", "--samples", "3", *extra)
+    assert code == 0 and f"path: {kind}:" in out and phrase in out
+    assert "no slider on the guide can follow" in out and "deviation" in out and "stroke times" not in out
+
+
+BAD = [
+    (["--length", "0.02", "--omega", "1", "-e", "1"], "[0, 1)"),
+    (["--length", "0.02", "--omega", "1", "-e", "-0.2"], "[0, 1)"),
+    (["--length", "0.02", "--omega", "1", "-e", "0.3", "-m", "0"], "--order must be positive"),
+    (["--length", "0.02", "--omega", "1", "-e", "0.3", "-m", "-1"], "--order must be positive"),
+    (["--length", "0", "--omega", "1"], "--length must be positive"),
+    (["--length", "-0.02", "--omega", "1"], "--length must be positive"),
+    (["--length", "0.02", "--omega", "0"], "--omega must be positive"),
+    (["--length", "0.02", "--omega", "-1"], "--omega must be positive"),
+    (["--length", "0.02", "--omega", "1", "--pin-radius", "0"], "--pin-radius must be positive"),
+    (["--length", "abc", "--omega", "1"], "not allowed"),
+    (["--length", "0.02", "--omega", "nan"], "not allowed"),
+    (["--length", "0.02", "--omega", "1", "--times", ","], "--times is empty"),
+    (["--length", "0.02", "--omega", "1", "--times", "0,2,1"], "strictly increasing"),
+    (["--length", "0.02", "--omega", "1", "--times", "0,0"], "strictly increasing"),
+    (["--length", "0.02", "--omega", "1", "--t-start", "3", "--t-end", "1"], "must increase"),
+    (["--length", "0.02", "--omega", "1", "--samples", "0"], "at least 1"),
+    (["--length", "0.02", "--omega", "1", "--samples", "2.5"], "whole number"),
+    (["--length", "0.02", "--omega", "1", "--teeth", "40,20"], "more teeth"),
+    (["--length", "0.02"], "needs --omega"),
+    (["--length", "0.02", "--omega", "1", "-m", "2"], "belong to the elliptical drive"),
+    (["--length", "0.02", "--angle-law", "t"], "has no known period; give --t-end"),
+    (["--length", "0.02", "--angle-law", "__import__('os')", "--t-end", "1"], "not allowed"),
+]
+
+
+@pytest.mark.parametrize("argv, message", BAD)
+def test_bad_input_one_line_exit_2(capsys, argv, message):
+    code, out, err = run(capsys, *argv)
+    assert code == 2 and message in err, err
+    assert len(err.strip().splitlines()) == 1 and "Traceback" not in err and not out
