@@ -351,9 +351,15 @@ class CardanSlider:
         return self.carrier_angle0 + self.motion.angle("H")
 
     @cached_property
+    def planet_turn_ratio(self) -> sp.Expr:
+        """The planet's turn relative to the carrier per carrier turn (contact condition at the ring)."""
+        speeds = self.mechanism.speeds({"H": S.omega("H")})
+        return sp.cancel((speeds["1"] - S.omega("H")) / S.omega("H"))
+
+    @cached_property
     def planet_angle(self) -> sp.Expr:
-        """``theta_1(t)``: the pin's angle on the planet, from the carrier (contact condition)."""
-        return self.pin_angle + sp.expand(self.motion.angle("1") - self.motion.angle("H"))
+        """``theta_1(t)``: the pin's angle on the planet, measured from the carrier."""
+        return self.pin_angle + self.planet_turn_ratio * self.motion.angle("H")
 
     # ---- the vector-loop route
     @cached_property

@@ -172,7 +172,7 @@ class EllipticalGears(Drive):
     >>> d.speed(S.t)
     3/(5 - 4*cos(2*t))
     >>> d.angle(S.t)
-    t + atan(sin(2*t)/(2*(1 - cos(2*t)/2)))
+    t + atan(sin(2*t)/(2 - cos(2*t)))
     >>> sp.simplify(d.angle(S.t).diff(S.t) - d.speed(S.t))
     0
     """
@@ -220,7 +220,7 @@ class EllipticalGears(Drive):
 
     def angle(self, t: sp.Symbol) -> sp.Expr:
         e, m, u = self.eccentricity, self.order, self.order * self.omega * t
-        return self.omega * t + 2 / m * sp.atan(e * sp.sin(u) / (1 - e * sp.cos(u)))
+        return self.omega * t + 2 / m * sp.atan(sp.together(e * sp.sin(u) / (1 - e * sp.cos(u))))
 
     def time_of_angle(self, angle: Any) -> sp.Expr:
         """The time at which the driven gear has turned ``angle`` (continuous, no branch).
@@ -235,7 +235,7 @@ class EllipticalGears(Drive):
         e, m = self.eccentricity, self.order
         psi = _expr(angle, "angle")
         v = m * psi
-        return (psi - 2 / m * sp.atan(e * sp.sin(v) / (1 + e * sp.cos(v)))) / self.omega
+        return (psi - 2 / m * sp.atan(sp.together(e * sp.sin(v) / (1 + e * sp.cos(v))))) / self.omega
 
 
 def as_drive(value: Any, what: str = "drive") -> Drive:
