@@ -221,14 +221,27 @@ class StrokeTimes:
         return self.forward / self.back
 
 
+def _angle(value: Any, what: str) -> sp.Expr:
+    """An angle: a number or expression, or safe text such as ``"pi/6"``."""
+    if isinstance(value, str):
+        from .parsing import parse_expression
+
+        return parse_expression(value, what=what)
+    if isinstance(value, bool):
+        raise InputError(f"{what} must be a number or an expression, got {value!r}")
+    try:
+        expr = sp.sympify(value, strict=True)
+    except (sp.SympifyError, TypeError):
+        raise InputError(f"{what} must be a number or an expression, got {value!r}") from None
+    if not isinstance(expr, sp.Expr) or (expr.is_number and (not expr.is_finite or expr.is_extended_real is False)):
+        raise InputError(f"{what} must be a finite real angle, got {value!r}")
+    return expr
+
+
 def _decide(expr: sp.Expr) -> bool | None:
     """True/False when ``expr`` is decidably zero / non-zero, else None."""
-    value = sp.simplify(expr)
-    if value == 0:
-        return True
-    if value.is_number:
-        return False
-    return None
+    zero = sp.simplify(expr).is_zero
+    return None if zero is None else bool(zero)
 
 
 def _is_multiple(expr: sp.Expr, period: sp.Expr) -> bool | None:
@@ -313,16 +326,16 @@ class CardanSlider:
             z1, z3 = (as_teeth(z, f"tooth number of gear {g}") for z, g in zip(teeth, ("1", "3")))
             if (z3 - z1).is_positive is False:
                 raise ModelError(f"the ring (z3 = {z3}) must have more teeth than the planet (z1 = {z1})")
-        mech = schemes.cardan(radii=(arm * z1 / (z3 - z1), arm * z3 / (z3 - z1)), carrier_angle=carrier_angle)
+        mech = schemes.cardan(
+            radii=(arm * z1 / (z3 - z1), arm * z3 / (z3 - z1)), carrier_angle=_angle(carrier_angle, "carrier angle theta_H(0)")
+        )
         radius = mech.gear("1").radius if pin_radius is None else as_length(pin_radius, "pin radius l_1")
-        guide = sp.sympify(guide_angle, strict=True) if not isinstance(guide_angle, str) else None
-        if guide is None:
-            raise InputError("the guide angle must be a number or a SymPy expression; parse text with symkin.parsing")
+        guide = _angle(guide_angle, "guide angle theta_2")
         if pin_angle is None:
             rule = line_conditions().installation
             pin_angle = rule.rhs.subs({theta_2: guide, theta_H0: mech.link("1").position_angle})
         drive = as_drive(S.omega("H") if drive is None else drive, "carrier drive")
-        return cls(mech, drive, radius, sp.sympify(pin_angle, strict=True), guide)
+        return cls(mech, drive, radius, _angle(pin_angle, "pin angle theta_1(0)"), guide)
 
     # ---- geometry
     @property
@@ -427,41 +440,55 @@ class CardanSlider:
             ),
         }
 
+    @property
+    def required_pin_angle(self) -> sp.Expr:
+        """The installation angle theta_1(0) that keeps the pin on this guide (mod 2 pi)."""
+        rule = line_conditions().installation
+        return sp.simplify(rule.rhs.subs({theta_2: self.guide_angle, theta_H0: self.carrier_angle0}))
+
     def path(self) -> Path:
-        """The curve the pin traces, and whether the slider can follow it."""
+        """The curve the pin traces, and whether the slider can follow it.
+
+        >>> CardanSlider.build(3, drive=1, pin_radius=1).path().description
+        'an ellipse with semi-axes 4 (along angle 0) and 2, not a line: the pin is off the pitch circle (l_1 = 1, l_H = 3)'
+        """
         met = self.conditions_met()
-        lh, l1 = self.arm, self.pin_radius
+        lh, l1, ratio = self.arm, self.pin_radius, self.ring_ratio
+        if None in met.values():
+            undecided = [k for k, v in met.items() if v is None]
+            return Path(
+                "undecided",
+                f"for these symbols the {' and '.join(undecided)} condition{'s' if len(undecided) > 1 else ''} cannot be "
+                "decided: the pin moves on the guide exactly when "
+                f"ring : planet = 2, l_1 = l_H and theta_1(0) = {self.required_pin_angle} (mod 2 pi); otherwise it traces "
+                "a hypotrochoid (an ellipse or a line off the guide when the ratio is 2)",
+            )
         if met["ratio"]:
             direction = sp.simplify(self.carrier_angle0 + self.pin_angle / 2)
-            if met["lengths"]:
-                if met["installation"]:
-                    return Path("line", f"a straight line along the guide (theta_2 = {self.guide_angle}), stroke {4 * lh}",
-                                {"direction": direction, "stroke": 4 * lh})
-                right = line_conditions().installation.rhs.subs({theta_2: self.guide_angle, theta_H0: self.carrier_angle0})
+            if not met["lengths"]:
+                major, minor = lh + l1, sp.Abs(lh - l1)
+                return Path(
+                    "ellipse",
+                    f"an ellipse with semi-axes {major} (along angle {direction}) and {minor}, not a line: the pin is off "
+                    f"the pitch circle (l_1 = {l1}, l_H = {lh})",
+                    {"semi_major": major, "semi_minor": minor, "direction": direction},
+                )
+            if not met["installation"]:
                 return Path(
                     "line off the guide",
-                    f"a straight line at angle {direction} through O_H, not along the guide (theta_2 = {self.guide_angle}): "
-                    f"the slider cannot follow; the pin angle theta_1(0) must be {sp.simplify(right)} (mod 2 pi)",
+                    f"a straight line through O_H at angle {direction}, not along the guide (theta_2 = {self.guide_angle}): "
+                    f"the slider cannot follow; the pin angle theta_1(0) must be {self.required_pin_angle} (mod 2 pi)",
                     {"direction": direction, "stroke": 4 * lh},
                 )
-            major, minor = lh + l1, sp.Abs(lh - l1)
-            return Path(
-                "ellipse",
-                f"an ellipse with semi-axes {major} (at angle {direction}) and {minor}, not a line: the pin is "
-                f"{'off the pitch circle' if met['lengths'] is False else 'at l_1 != l_H'} (l_1 = {l1}, l_H = {lh})",
-                {"semi_major": major, "semi_minor": minor, "direction": direction},
-            )
-        ratio = self.ring_ratio
-        p, q = (sp.fraction(ratio) if ratio.is_Rational else (None, None))
-        cusps = f"{p} cusps, closing after {q} carrier turn{'s' if q != 1 else ''}" if p is not None else "not closing"
-        on_pitch = _decide(l1 - self.mechanism.gear("1").radius)
-        kind = "hypocycloid" if on_pitch else "hypotrochoid"
-        return Path(
-            kind,
-            f"a {kind} ({cusps if on_pitch else f'ring : planet = {ratio}'}), not a line: ring : planet = {ratio}, "
-            "a straight line needs 2",
-            {"ring_ratio": ratio, "arm": lh, "pin_radius": l1},
-        )
+            return Path("line", f"a straight line along the guide (theta_2 = {self.guide_angle}), stroke {4 * lh}",
+                        {"direction": direction, "stroke": 4 * lh})
+        params = {"ring_ratio": ratio, "arm": lh, "pin_radius": l1}
+        reason = f"ring : planet = {ratio}, a straight line needs 2"
+        if _decide(l1 - self.mechanism.gear("1").radius):
+            p, q = sp.fraction(ratio) if ratio.is_Rational else (None, None)
+            shape = f"{p} cusps, closing after {q} carrier turn{'s' if q != 1 else ''}" if p is not None else "not closing"
+            return Path("hypocycloid", f"a hypocycloid ({shape}), not a line: {reason}", params)
+        return Path("hypotrochoid", f"a hypotrochoid (pin at {l1} from the planet axis), not a line: {reason}", params)
 
     # ---- numbers
     def _numeric(self, exprs: Sequence[sp.Expr], values: Mapping[Any, Any] | None) -> Any:

@@ -114,6 +114,12 @@ def test_true_paths_off_the_line():
     assert wrong.path().kind == "line off the guide" and "pi/4" in wrong.path().description
 
 
+def test_symbolic_parameters_leave_the_path_undecided_and_say_what_decides_it():
+    path = CardanSlider.build(l, teeth=(z1, z3)).path()
+    assert path.kind == "undecided" and "ratio and lengths conditions" in path.description and not path.on_guide
+    assert "installation condition" in CardanSlider.build(l, pin_angle=sp.Symbol("x")).path().description
+
+
 def test_stroke_times():
     uniform = CardanSlider.build(sp.Rational(1, 50), drive=sp.Rational(4, 5) * sp.pi)
     st = uniform.stroke_times()
