@@ -38,12 +38,13 @@ from typing import Any, Mapping, Sequence
 import numpy as np
 import sympy as sp
 
+from . import schemes
 from . import symbols as S
 from .drives import ConstantSpeed, Drive, EllipticalGears, as_drive
 from .errors import InputError, ModelError, UnsupportedError
 from .laws import Law
-from .model import Mechanism
-from .vectorloop import LinkVector, VectorLoop, _invert, harmonics
+from .model import Mechanism, as_length, as_teeth
+from .vectorloop import LinkVector, VectorLoop, harmonics, solve_linear
 
 __all__ = [
     "l",
@@ -57,6 +58,7 @@ __all__ = [
     "theta_H0",
     "theta_10",
     "loop",
+    "planet_turn_ratio",
     "LineConditions",
     "line_conditions",
     "Path",
@@ -90,10 +92,16 @@ def loop() -> VectorLoop:
     )
 
 
-def _planet_turn(mech: Mechanism) -> sp.Expr:
-    """The planet's turn relative to the carrier per carrier turn ``alpha`` (engine route)."""
-    motion = mech.motion({"H": 1})
-    return sp.expand((motion.angle("1") - motion.angle("H")).subs(S.t, alpha))
+def planet_turn_ratio(mech: Mechanism) -> sp.Expr:
+    """The planet's turn relative to the carrier per carrier turn, from the contact
+    condition with the fixed ring (the engine's speed solution).
+
+    >>> from symkin import schemes
+    >>> planet_turn_ratio(schemes.cardan())
+    -r_3/r_1
+    """
+    speeds = mech.speeds({"H": S.omega("H")})
+    return sp.cancel((speeds["1"] - S.omega("H")) / S.omega("H"))
 
 
 # --------------------------------------------------------------------------- conditions
@@ -141,8 +149,8 @@ def _vanishing_pair(coefficient: sp.Expr) -> tuple[sp.Eq, sp.Eq]:
         amplitude = sp.Mul(*(f for f in factors if not isinstance(f, sp.exp)))
         polar.append((sp.Abs(amplitude), sp.expand(phase + sp.arg(amplitude))))
     (m1, p1), (m2, p2) = polar
-    length = _invert(m1 - m2, l_1, 0)
-    angle = sp.expand(_invert(p1 - p2 - sp.pi, theta_10, 0))  # modulo 2 pi: drop whole turns
+    length = solve_linear(m1 - m2, l_1, 0)
+    angle = sp.expand(solve_linear(p1 - p2 - sp.pi, theta_10, 0))  # modulo 2 pi: drop whole turns
     turns = sp.floor(angle.subs({x: 0 for x in angle.free_symbols}) / (2 * sp.pi) + sp.Rational(1, 2))
     return sp.Eq(l_1, length), sp.Eq(theta_10, angle - 2 * sp.pi * turns)
 
@@ -163,10 +171,8 @@ def line_conditions() -> LineConditions:
     >>> c.ratio, c.lengths, c.installation
     (Eq(r_3, 2*r_1), Eq(l_1, l_H), Eq(theta_10, 2*theta_2 - 2*theta_H0))
     """
-    from . import schemes
-
     r1, r3 = S.radius("1"), S.radius("3")
-    turn = _planet_turn(schemes.cardan())
+    turn = planet_turn_ratio(schemes.cardan()) * alpha
     (sol,) = loop().solve(s)
     deviation = sol.conditions[0].subs({theta_H: theta_H0 + alpha, theta_1: theta_10 + turn})
     parts = harmonics(deviation, alpha)
@@ -174,7 +180,7 @@ def line_conditions() -> LineConditions:
     pin = sp.expand(sp.diff(theta_H0 + alpha + theta_10 + turn, alpha))
     candidates, excluded = [], []
     for target, why in ((-carrier, "opposite"), (carrier, "equal"), (sp.Integer(0), "zero")):
-        for value in (sp.cancel(_invert(pin - target, r3, 0)),):
+        for value in (sp.cancel(solve_linear(pin - target, r3, 0)),):
             try:
                 schemes.cardan(radii=(r1, value))
             except ModelError as err:
@@ -312,17 +318,12 @@ class CardanSlider:
         >>> CardanSlider.build(20, teeth=(20, 60)).path().kind
         'hypocycloid'
         """
-        from . import schemes
-        from .model import as_length
-
         arm = as_length(length, "carrier length l_H")
         if teeth is None:
             z1, z3 = sp.Integer(1), sp.Integer(2)
         else:
             if isinstance(teeth, (str, bytes)) or not hasattr(teeth, "__len__") or len(teeth) != 2:
                 raise InputError(f"teeth are two tooth numbers (planet, ring), got {teeth!r}")
-            from .model import as_teeth
-
             z1, z3 = (as_teeth(z, f"tooth number of gear {g}") for z, g in zip(teeth, ("1", "3")))
             if (z3 - z1).is_positive is False:
                 raise ModelError(f"the ring (z3 = {z3}) must have more teeth than the planet (z1 = {z1})")
@@ -364,15 +365,9 @@ class CardanSlider:
         return self.carrier_angle0 + self.motion.angle("H")
 
     @cached_property
-    def planet_turn_ratio(self) -> sp.Expr:
-        """The planet's turn relative to the carrier per carrier turn (contact condition at the ring)."""
-        speeds = self.mechanism.speeds({"H": S.omega("H")})
-        return sp.cancel((speeds["1"] - S.omega("H")) / S.omega("H"))
-
-    @cached_property
     def planet_angle(self) -> sp.Expr:
         """``theta_1(t)``: the pin's angle on the planet, measured from the carrier."""
-        return self.pin_angle + self.planet_turn_ratio * self.motion.angle("H")
+        return self.pin_angle + planet_turn_ratio(self.mechanism) * self.motion.angle("H")
 
     # ---- the vector-loop route
     @cached_property

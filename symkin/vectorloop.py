@@ -38,7 +38,7 @@ import sympy as sp
 
 from .errors import InputError, SingularConfigurationError, UnsupportedError
 
-__all__ = ["LinkVector", "VectorLoop", "LoopSolution", "harmonics"]
+__all__ = ["LinkVector", "VectorLoop", "LoopSolution", "harmonics", "solve_linear"]
 
 
 def _expr(value: Any, what: str) -> sp.Expr:
@@ -241,9 +241,9 @@ class VectorLoop:
             others = [(sg, w) for j, (sg, w) in enumerate(signed) if j != k]
             along = -sign * sp.Add(*(sg * w.length * sp.cos(w.angle - v.angle) for sg, w in others))
             across = sp.Add(*(sg * w.length * sp.sin(w.angle - v.angle) for sg, w in others))  # left - right
-            return (LoopSolution({u: _invert(v.length, u, along)}, (across,)),)
+            return (LoopSolution({u: solve_linear(v.length, u, along)}, (across,)),)
         phi = sp.atan2(sign * cy, sign * cx)  # the vector's direction; its length must fit
-        return (LoopSolution({u: _invert(v.angle, u, phi)}, (cx**2 + cy**2 - v.length**2,)),)
+        return (LoopSolution({u: solve_linear(v.angle, u, phi)}, (cx**2 + cy**2 - v.length**2,)),)
 
     def _solve_same_vector(self, unknowns, located, signed, cx, cy) -> tuple[LoopSolution, ...]:
         sign, v = signed[located[0][0]]
@@ -254,7 +254,7 @@ class VectorLoop:
             angle = sp.atan2(branch * sign * cy, branch * sign * cx)
             values = {}
             for u, (_, which) in zip(unknowns, located):
-                values[u] = _invert(v.length if which == "length" else v.angle, u, length if which == "length" else angle)
+                values[u] = solve_linear(v.length if which == "length" else v.angle, u, length if which == "length" else angle)
             out.append(LoopSolution(values))
         return tuple(out)
 
@@ -275,7 +275,7 @@ class VectorLoop:
                 )
             la = (cy * sp.cos(b) - cx * sp.sin(b)) / (sa * det)
             lb = (cy * sp.cos(a) - cx * sp.sin(a)) / (-sb * det)
-            return (LoopSolution({ua: _invert(va.length, ua, la), ub: _invert(vb.length, ub, lb)}),)
+            return (LoopSolution({ua: solve_linear(va.length, ua, la), ub: solve_linear(vb.length, ub, lb)}),)
         if wa == "angle" and wb == "length":  # put the length first
             return tuple(
                 LoopSolution({ua: s.values[ua], ub: s.values[ub]})
@@ -291,7 +291,7 @@ class VectorLoop:
                 signed_la = p + branch * root  # sa * length of a
                 bx, by = sb * (cx - signed_la * sp.cos(a)), sb * (cy - signed_la * sp.sin(a))
                 phi = sp.atan2(by / vb.length, bx / vb.length) if not vb.length.is_positive else sp.atan2(by, bx)
-                out.append(LoopSolution({ua: _invert(va.length, ua, sa * signed_la), ub: _invert(vb.angle, ub, phi)}))
+                out.append(LoopSolution({ua: solve_linear(va.length, ua, sa * signed_la), ub: solve_linear(vb.angle, ub, phi)}))
             return tuple(out)
         # two angles: the triangle of A = sa*la, B = sb*lb and C
         A, B = sa * va.length, sb * vb.length
@@ -302,12 +302,17 @@ class VectorLoop:
         for branch in (1, -1):
             phi_a = base + branch * gamma
             phi_b = sp.atan2((cy - A * sp.sin(phi_a)) / B, (cx - A * sp.cos(phi_a)) / B)
-            out.append(LoopSolution({ua: _invert(va.angle, ua, phi_a), ub: _invert(vb.angle, ub, phi_b)}))
+            out.append(LoopSolution({ua: solve_linear(va.angle, ua, phi_a), ub: solve_linear(vb.angle, ub, phi_b)}))
         return tuple(out)
 
 
-def _invert(slot: sp.Expr, unknown: sp.Symbol, value: sp.Expr) -> sp.Expr:
-    """Solve ``slot(unknown) = value`` for an unknown that enters ``slot`` linearly."""
+def solve_linear(slot: sp.Expr, unknown: sp.Symbol, value: Any = 0) -> sp.Expr:
+    """Solve ``slot(unknown) = value`` for an unknown that enters ``slot`` linearly.
+
+    >>> x, y = sp.symbols("x y")
+    >>> solve_linear(y + 2 * x, x, 1)
+    1/2 - y/2
+    """
     coeff = sp.diff(slot, unknown)
     if coeff == 0 or coeff.has(unknown):
         raise UnsupportedError(
