@@ -21,7 +21,7 @@ from sympy.calculus.util import maximum, minimum
 
 from symkin import cardan
 from symkin import symbols as S
-from symkin.cardan import CardanSlider, l, l_1, l_H, s, theta_1, theta_2, theta_H, theta_H0, theta_10
+from symkin.cardan import CardanSlider, l, l_1, l_H, s, theta_1, theta_2, theta_H, theta_H0
 from symkin.drives import AngleLaw, ConstantSpeed, EllipticalGears
 from symkin.report import Check, Comparison, Verdict, compare_exact, compare_rounded, compare_symbolic, slip
 
