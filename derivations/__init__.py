@@ -11,5 +11,6 @@ A module provides ``KEY``, ``CITATION``, ``checks() -> list[Check]`` and
 #: Paper key -> module, in the order `symkin reproduce all` runs them.
 PAPERS = {
     "alyushin2009": "symkin.derivations.alyushin2009",
+    "kladova2010": "symkin.derivations.kladova2010",
     "luo2018": "symkin.derivations.luo2018",
 }

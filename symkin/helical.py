@@ -28,7 +28,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from fractions import Fraction
-from functools import cached_property
+from functools import cached_property, lru_cache
 from typing import Any
 
 import sympy as sp
@@ -315,6 +315,7 @@ class HelicalMesh:
             if not math.isfinite(v):
                 raise ModelError(f"{name.replace('_', ' ')} must be finite, got {v!r}")
             object.__setattr__(self, name, v)
+        _ = self.alpha_tw  # a shift the involute cannot take is refused now, not later
 
     # ---- sums that differ for external and internal meshes
     @property
@@ -569,6 +570,20 @@ class HelicalTrain:
 
     @property
     def ratio(self) -> Fraction:
-        """i_1H^(4) = omega_1 / omega_H with gear 4 fixed, derived by the engine, exact."""
-        value = self.mechanism.ratio("1", "H", fixed="4").rhs
+        """i_1H^(4) = omega_1 / omega_H with gear 4 fixed, exact.
+
+        The engine's law for the scheme (derived once, in pitch radii) at this train's
+        exact working radii: the same value as ``self.mechanism.ratio("1", "H", fixed="4")``.
+        """
+        law = _ratio_in_radii(self.scheme)
+        radii = {sp.Symbol(f"r_{n}", positive=True): sp.Rational(r.numerator, r.denominator)
+                 for n, r in zip((1, 2, 3, 4), self.working_radii_exact)}
+        value = sp.nsimplify(law.subs(radii))
         return Fraction(int(sp.numer(value)), int(sp.denom(value)))
+
+
+@lru_cache(maxsize=None)
+def _ratio_in_radii(scheme: str) -> sp.Expr:
+    from .schemes import two_row
+
+    return two_row(scheme).ratio("1", "H", fixed="4").rhs

@@ -201,9 +201,8 @@ def working_coaxiality(scheme: str) -> sp.Expr:
     return sp.expand(num if lead > 0 else -num)
 
 
-def _helical_mechanism(scheme: str, shifted: bool) -> Mechanism:
-    from .schemes import two_row
-
+def _helical_radii(scheme: str, shifted: bool) -> dict[sp.Symbol, sp.Expr]:
+    """The engine's radius symbols r_1..r_4 -> working pitch radii of helical gears."""
     in1, in4 = SCHEME_MESHES[_scheme(scheme)]
     a12 = (ALPHA_T12, ALPHA_TW12) if shifted else (None, None)
     a34 = (ALPHA_T34, ALPHA_TW34) if shifted else (None, None)
@@ -213,21 +212,26 @@ def _helical_mechanism(scheme: str, shifted: bool) -> Mechanism:
         helical_gear("3", Z[3], M34, BETA34, alpha_t=a34[0], alpha_tw=a34[1]),
         helical_gear("4", Z[4], M34, BETA34, internal=in4, alpha_t=a34[0], alpha_tw=a34[1]),
     ]
-    return two_row(scheme, radii=[g.radius for g in gears])
+    return {S.radius(g.name): g.radius for g in gears}
 
 
 @lru_cache(maxsize=None)
 def helical_coaxiality(scheme: str, shifted: bool = True) -> sp.Eq:
     """Coaxiality of helical meshes: a_w12 = a_w34, from the engine with helical gears.
 
-    With ``shifted`` the working pitch radii carry the transverse and working transverse
-    pressure angles; without, the meshes are unshifted (working = reference cylinders).
+    The engine's coaxiality of the scheme (where each mesh puts the planet axis), with the
+    working pitch radii of helical gears (:func:`symkin.helical.helical_gear`).  With
+    ``shifted`` the radii carry the transverse and working transverse pressure angles;
+    without, the meshes are unshifted (working = reference cylinders).
 
     >>> helical_coaxiality("AA", shifted=False)
     Eq(m_n12*z_1/(2*cos(beta_12)) + m_n12*z_2/(2*cos(beta_12)), m_n34*z_3/(2*cos(beta_34)) + m_n34*z_4/(2*cos(beta_34)))
     """
-    (coax,) = _helical_mechanism(scheme, shifted).coaxiality
-    return coax
+    from .schemes import two_row
+
+    (coax,) = two_row(_scheme(scheme)).coaxiality
+    radii = _helical_radii(scheme, shifted)
+    return sp.Eq(sp.expand(coax.lhs.subs(radii)), sp.expand(coax.rhs.subs(radii)), evaluate=False)
 
 
 @lru_cache(maxsize=None)
@@ -237,8 +241,8 @@ def working_diameter_ratio(shifted: bool = True) -> sp.Expr:
     >>> working_diameter_ratio(shifted=False)
     m_n12*z_2*cos(beta_34)/(m_n34*z_3*cos(beta_12))
     """
-    mech = _helical_mechanism("AI", shifted)
-    return sp.simplify(mech.gear("2").radius / mech.gear("3").radius)
+    radii = _helical_radii("AI", shifted)
+    return sp.simplify(radii[S.radius("2")] / radii[S.radius("3")])
 
 
 @lru_cache(maxsize=None)
@@ -367,19 +371,21 @@ def tooth_equations(scheme: str) -> ToothEquations:
         sp.Eq(working_coaxiality(scheme), 0),
         asm,
     )
-    polys = [sp.numer(sp.together(e.lhs - e.rhs)) for e in equations]
-    sols = sp.solve(polys, [z1, z2, z3, z4], dict=True)
-    sols = [s for s in sols if all(s.get(z, 0) != 0 for z in (z1, z2, z3, z4))]
-    if len(sols) != 1:
-        raise UnsupportedError(f"expected one non-trivial tooth-number solution for {scheme}, got {len(sols)}")
-    solution = {z: sp.factor(v) for z, v in sols[0].items()}
-    # the chain, as the paper writes it
-    z3_of_z2 = sp.solve(equations[1].subs(z3, z3), z3)[0]
+    # eliminate one unknown per equation, each linear in it: Z3 from x, Z4 from the
+    # ratio, Z1 from assembly, Z2 from coaxiality
+    (z3_of_z2,) = sp.solve(equations[1].lhs - equations[1].rhs, z3)
     (z4_of_z1,) = sp.solve(sp.numer(sp.together((law - RATIO).subs(z2, X * z3))), z4)
     (z1_of_asm,) = sp.solve(sp.numer(sp.together((asm.lhs - asm.rhs).subs(z2, X * z3))), z1)
     coax = working_coaxiality(scheme).subs({z3: z2 / X, z4: z4_of_z1})
     (z2_of_z1,) = sp.solve(sp.numer(sp.together(coax)), z2)
     chain = {z1: sp.factor(z1_of_asm), z4: sp.factor(z4_of_z1), z2: sp.factor(z2_of_z1), z3: z3_of_z2}
+    solution = {z1: chain[z1]}
+    solution[z4] = sp.factor(chain[z4].subs(z1, solution[z1]))
+    solution[z2] = sp.factor(chain[z2].subs(z1, solution[z1]))
+    solution[z3] = sp.factor(chain[z3].subs(z2, solution[z2]))
+    for eq in equations:  # the solution satisfies all four conditions
+        if sp.simplify(sp.together((eq.lhs - eq.rhs).subs(solution))) != 0:
+            raise UnsupportedError(f"{scheme}: the tooth numbers do not satisfy {eq}")  # pragma: no cover
     return ToothEquations(scheme, equations, solution, chain)
 
 
@@ -404,7 +410,7 @@ def _region_setup(scheme: str) -> _RegionSetup:
     (r4_solved,) = sp.solve(coax, r4)
     subs = {r4: r4_solved}
     scale = {r2: DELTA, r3: sp.Integer(1)}
-    ratio = sp.simplify(mech.ratio("1", "H", fixed="4").rhs.subs(subs).subs(scale))
+    ratio = sp.cancel(mech.ratio("1", "H", fixed="4").rhs.subs(subs).subs(scale))
     arm = sp.expand(mech.arm("23").subs(subs).subs(scale))
     constraints = [("r_4 > 0", sp.expand(r4_solved.subs(scale))), ("r_1 > 0", R1)]
     for mesh in mech.meshes:  # an internal gear is larger than the gear inside it
@@ -424,7 +430,7 @@ def _lower_bounds(setup: _RegionSetup, larger_rim: sp.Expr, sin_pi_k: sp.Expr) -
             continue  # no bound on r1 (a condition on delta alone, checked by the caller)
         if not (sp.sympify(a).is_positive):
             raise UnsupportedError(f"constraint {name} bounds r_1 from above; existence regions expect lower bounds")
-        bounds.append((name, sp.simplify(-b / a)))
+        bounds.append((name, sp.cancel(-b / a)))
     return bounds
 
 
@@ -447,6 +453,11 @@ _SAMPLES = {  # delta values and satellite counts on which the binding constrain
     "delta < 1": [sp.Rational(n, 20) for n in (1, 3, 7, 10, 13, 17, 19)],
     "delta > 1": [sp.Rational(n, 10) for n in (11, 13, 17, 25, 40, 90)],
 }
+
+
+@lru_cache(maxsize=None)
+def _numeric(expr: sp.Expr) -> Callable[[float, float, int], float]:
+    return sp.lambdify([DELTA, _S, K], expr, "numpy")
 
 
 @lru_cache(maxsize=None)
@@ -475,15 +486,17 @@ def existence_bounds(scheme: str) -> tuple[ExistenceBounds, ExistenceBounds]:
         samples = [(d, kk) for d in _SAMPLES[case] for kk in (2, 3, 4, 5, 6, 8, 12)]
 
         def value(expr: sp.Expr, d: sp.Expr, kk: int) -> float:
-            v = expr.subs({DELTA: d, _S: sp.sin(sp.pi / kk), K: kk})
-            return math.inf if v.has(sp.zoo, sp.oo) else float(v)  # k = 2 may leave a range unbounded
+            f = _numeric(expr)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                v = float(f(float(d), math.sin(math.pi / kk), kk))
+            return v if math.isfinite(v) else math.inf  # k = 2 may leave a range unbounded
 
         best = {(d, kk): max(value(b, d, kk) for _, b in bounds) for d, kk in samples}
         always = [nb for nb in bounds if all(value(nb[1], d, kk) >= best[d, kk] - 1e-12 for d, kk in samples)]
         if not always:
             raise UnsupportedError(f"{scheme}, {case}: the binding constraint changes with delta and k")
         binding = always[-1]  # the neighbour condition when it ties with another
-        at_bound = sp.factor(sp.simplify(setup.ratio.subs(R1, binding[1]))).subs(_S, SIN_PI_K)
+        at_bound = sp.factor(sp.cancel(setup.ratio.subs(R1, binding[1]))).subs(_S, SIN_PI_K)
         lower, upper = limit_inf, at_bound
         d0, k0 = _SAMPLES[case][0], 3
         if value(lower, d0, k0) > value(upper, d0, k0):
@@ -499,7 +512,7 @@ def existence_interval(scheme: str, satellites: int, delta: Any) -> tuple[sp.Exp
     delta = 1 and k = 1.  ``None`` when the interval is empty.
 
     >>> existence_interval("II", 3, sp.Rational(1, 2))
-    (8/13 - 2*sqrt(3)/13, 1/2)
+    ((8 - 2*sqrt(3))/13, 1/2)
     >>> existence_interval("AA", 3, 1) is None
     True
     """
@@ -529,9 +542,20 @@ def existence_interval(scheme: str, satellites: int, delta: Any) -> tuple[sp.Exp
             continue
         bound = -b / a
         lower = bound if lower is None or bool(bound > lower) else lower
-    ratio = setup.ratio.subs(subs)
-    ends = [sp.nsimplify(sp.limit(ratio, R1, sp.oo)), sp.radsimp(sp.simplify(ratio.subs(R1, lower)))]
-    lo, hi = sorted(ends, key=lambda v: float(v))
+    num, den = sp.fraction(sp.cancel(setup.ratio.subs(subs)))
+    pn, pd = sp.Poly(num, R1), sp.Poly(den, R1)
+    if pn.is_zero:  # i = 0 for every size: the carrier cannot be driven
+        return None
+    if pn.degree() != pd.degree():
+        raise UnsupportedError("the ratio is not of the form a + b / r_1")  # pragma: no cover
+    at_infinity = sp.cancel(pn.LC() / pd.LC())  # large central gears
+    den_at = pd.eval(lower)
+    if den_at == 0:  # a pole at the bound (k = 2): the range is unbounded there
+        at_bound = sp.oo * sp.sign(pn.eval(lower) * pd.diff(R1).eval(lower))
+    else:
+        at_bound = sp.radsimp(sp.cancel(pn.eval(lower) / den_at))
+    ends = [at_infinity, at_bound]
+    lo, hi = sorted(ends, key=_as_float)
     if sp.simplify(hi - lo) == 0:
         return None
     return lo, hi

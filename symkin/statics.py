@@ -164,27 +164,30 @@ def planet_statics(mech: Mechanism, planet: str | None = None) -> PlanetStatics:
         (F3_solved,) = sp.solve(balance, F3)
         # circumferential (counter-clockwise about the planet axis) component at (0, rho)
         ft2, ft3 = (-sp.sign(rho) * F for rho, F in ((rho2, F2), (rho3, F3_solved)))
-        # a tooth force is normal to the helix t = h sin(beta) e_theta + cos(beta) e_z
-        h, beta, f_theta, f_z = sp.Symbol("h", nonzero=True), sp.Symbol("beta", positive=True), *sp.symbols("f_theta f_z", real=True)
-        (axial_law,) = sp.solve(sp.Eq(h * sp.sin(beta) * f_theta + sp.cos(beta) * f_z, 0), f_z)
-        axial_law = sp.simplify(axial_law)
+        # a tooth force is normal to the helix, whose tangent on the cylinder is
+        # t = h sin(beta) e_theta + cos(beta) e_z, i.e. along h tan(beta) e_theta + e_z
+        h, tan_beta, f_theta, f_z = sp.Symbol("h", nonzero=True), sp.Symbol("tan_beta", positive=True), *sp.symbols("f_theta f_z", real=True)
+        (axial_law,) = sp.solve(sp.Eq(h * tan_beta * f_theta + f_z, 0), f_z)
         h2, h3 = sp.Symbol(f"h_{a}", nonzero=True), sp.Symbol(f"h_{b}", nonzero=True)
         bw2, bw3 = sp.Symbol(f"beta_w{a}", positive=True), sp.Symbol(f"beta_w{b}", positive=True)
-        fa2 = axial_law.subs({h: h2, beta: bw2, f_theta: ft2})
-        fa3 = axial_law.subs({h: h3, beta: bw3, f_theta: ft3})
-        total = sp.simplify(fa2 + fa3)
+        fa2 = axial_law.subs({h: h2, tan_beta: sp.tan(bw2), f_theta: ft2})
+        fa3 = axial_law.subs({h: h3, tan_beta: sp.tan(bw3), f_theta: ft3})
+        total = sp.factor(sp.together(fa2 + fa3))
         T2, T3 = sp.symbols("T_2 T_3", positive=True)  # tan(beta_w2), tan(beta_w3)
         (T2_solved,) = sp.solve(total.subs({sp.tan(bw2): T2, sp.tan(bw3): T3}), T2)
-        ratio = sp.simplify(T2_solved / T3)  # tan ratio the balance needs: (h3/h2) r2/r3
-        same = sp.simplify(ratio.subs({h2: 1, h3: 1})) > 0
-        opposite = sp.simplify(ratio.subs({h2: 1, h3: -1})) > 0
-        if bool(same) == bool(opposite):
+        ratio = sp.cancel(T2_solved / T3)  # the tangent ratio the balance needs
+        same = ratio.subs({h2: 1, h3: 1}).is_positive
+        opposite = ratio.subs({h2: 1, h3: -1}).is_positive
+        if same is None or opposite is None or same == opposite:
             raise UnsupportedError("the axial balance does not single out a pair of hands for this planet")
-        r_ratio = sp.simplify(ratio.subs({h2: 1, h3: 1 if same else -1}))
+        r_ratio = sp.cancel(ratio.subs({h2: 1, h3: 1 if same else -1}))
         condition = sp.Eq(sp.tan(bw2) / sp.tan(bw3), r_ratio, evaluate=False)
         Ft2, Ft3 = sp.Symbol(f"F_t{a}", positive=True), sp.Symbol(f"F_t{b}", positive=True)
         magnitudes = sp.Eq(Ft2 * 2 * sp.Abs(rho2), Ft3 * 2 * sp.Abs(rho3), evaluate=False)
-        same_direction = bool(sp.simplify(F3_solved / F2) > 0)
+        direction = sp.cancel(F3_solved / F2).is_positive
+        if direction is None:
+            raise UnsupportedError("cannot decide whether the planet's tangential forces point the same way")
+        same_direction = bool(direction)
         return PlanetStatics(
             link.name, (a, b), (rho2, rho3), balance, (F2, F3_solved), magnitudes, same_direction,
             (fa2, fa3), total, bool(same), condition,
