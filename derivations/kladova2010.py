@@ -17,7 +17,6 @@ are derived and checked on the 2009 paper's AA example.
 from __future__ import annotations
 
 import math
-from fractions import Fraction
 from functools import lru_cache
 from pathlib import Path
 
@@ -27,7 +26,7 @@ from symkin import helical_synthesis as HS
 from symkin import schemes
 from symkin import symbols as S
 from symkin.helical_synthesis import DELTA, K, LAMBDA, P, Q, RATIO, X, Z
-from symkin.report import Check, Comparison, Verdict, compare_exact, compare_symbolic, slip
+from symkin.report import Check, Comparison, Verdict, compare_symbolic, slip
 from symkin.statics import balancing_hands, planet_forces, planet_statics
 
 KEY = "kladova2010"

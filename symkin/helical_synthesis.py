@@ -24,10 +24,9 @@ Everything here is derived from the engine and then used:
 
 from __future__ import annotations
 
-import heapq
 import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from fractions import Fraction
 from functools import lru_cache
 from typing import Any, Callable, Mapping, Sequence
@@ -36,9 +35,8 @@ import numpy as np
 import sympy as sp
 
 from . import symbols as S
-from .errors import InputError, ModelError, UnsupportedError
+from .errors import InputError, UnsupportedError
 from .helical import SCHEME_MESHES, HelicalTrain, hand_name, helical_gear
-from .model import Mechanism
 
 __all__ = [
     "RATIO",

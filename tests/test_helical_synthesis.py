@@ -2,7 +2,6 @@
 independent route: the engine's ratio on the built mechanism, a tooth-phase brute force,
 a sampled Willis ratio, and a plain enumeration with helix angles found by bisection."""
 
-import itertools
 import math
 import random
 from fractions import Fraction
