@@ -26,6 +26,7 @@ from __future__ import annotations
 import heapq
 import math
 import time
+import warnings
 from bisect import bisect_left, bisect_right
 from dataclasses import dataclass, field
 from fractions import Fraction
@@ -257,7 +258,7 @@ class ContinuousSplit:
         p, n = self.problem, self.problem.stages
         lines = []
         for i, (u, a) in enumerate(zip(self.ratios, self.active), 1):
-            exact = f" = {self.exact_ratios[i - 1]}" if self.exact_ratios else ""
+            exact = f" = {self.exact_ratios[i - 1]}" if self.exact_ratios and not self.exact_ratios[i - 1].is_Integer else ""
             where = {"lower": f"on its lower bound {p.lower[i - 1]}", "upper": f"on its upper bound {p.upper[i - 1]}",
                      "fixed": "fixed (lower = upper)", "free": "free (inside its bounds)"}[a]
             lines.append(f"stage {i}: u = {u:.6g}{exact}, {where}")
@@ -379,24 +380,32 @@ def _minimise(problem: SplitProblem, lo: np.ndarray, hi: np.ndarray, L: float) -
     starts = [_fill(lo, hi, L, range(n - 1, -1, -1)), _fill(lo, hi, L, range(n)), _equal(lo, hi, L)]
     cons = [{"type": "eq", "fun": lambda x: np.array([x.sum() - L]), "jac": lambda x: np.ones((1, n))}]
     best, best_f, method = None, math.inf, "SLSQP"
+
+    def consider(x: np.ndarray, how: str) -> None:
+        nonlocal best, best_f, method
+        x = np.clip(x, lo, hi)
+        x = x + (L - x.sum()) * _slack(x, lo, hi)
+        if abs(x.sum() - L) > 1e-9 * max(1.0, abs(L)):
+            return
+        f = fun(x)
+        if best is None or f < best_f - 1e-15 * abs(best_f):
+            best, best_f, method = x, f, how
+
     for x0 in starts:
         if np.all(hi - lo <= _BOUND_TOL):
-            candidates = [(x0, "bounds")]
-        else:
-            res = minimize(fun, x0, jac=jac, method="SLSQP", bounds=list(zip(lo, hi)), constraints=cons,
-                           options={"ftol": 1e-15, "maxiter": 1000})
-            candidates = [(np.clip(res.x, lo, hi), "SLSQP")]
-            if not res.success:
-                res2 = minimize(fun, x0, jac=jac, method="trust-constr", bounds=list(zip(lo, hi)),
-                                constraints=cons, options={"gtol": 1e-12, "xtol": 1e-14, "maxiter": 3000})
-                candidates.append((np.clip(res2.x, lo, hi), "trust-constr"))
-        for x, how in candidates:
-            x = x + (L - x.sum()) * _slack(x, lo, hi)
-            if abs(x.sum() - L) > 1e-9 * max(1.0, abs(L)):
-                continue
-            f = fun(x)
-            if best is None or f < best_f - 1e-15 * abs(best_f):
-                best, best_f, method = x, f, how
+            consider(x0, "bounds")
+            continue
+        # SLSQP may report a failed line search at a point that is already optimal: the
+        # KKT check below decides, not its status
+        res = minimize(fun, x0, jac=jac, method="SLSQP", bounds=list(zip(lo, hi)), constraints=cons,
+                       options={"ftol": 1e-15, "maxiter": 1000})
+        consider(res.x, "SLSQP")
+    if best is not None and _kkt(problem, best, lo, hi)[4] > 1e-6:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            res = minimize(fun, best, jac=jac, method="trust-constr", bounds=list(zip(lo, hi)), constraints=cons,
+                           options={"gtol": 1e-12, "xtol": 1e-14, "maxiter": 3000})
+        consider(res.x, "trust-constr")
     if best is None:
         raise SymkinError("the optimiser found no feasible split; please report this problem")
     return best, len(starts), method
@@ -568,10 +577,12 @@ class DiscreteSplit:
         if self.meets_tolerance:
             return f"{len(self.designs)} best design(s) with the total ratio within {float(self.tolerance):.4g} (relative)"
         best = self.designs[0] if self.designs else None
+        if best is None:
+            return "no design found"
+        total = str(best.total) if best.total.is_Integer else f"{best.total} = {float(best.total):.6g}"
         return (
-            f"no design meets the tolerance {float(self.tolerance):.4g}; the nearest total ratio is "
-            f"{best.total} = {float(best.total):.6g} (deviation {float(best.deviation):+.4%}); the nearest designs follow"
-            if best else "no design found"
+            f"no design meets the tolerance {float(self.tolerance):.4g}; the nearest total ratio is {total} "
+            f"(deviation {float(best.deviation):+.4%}); the nearest designs follow"
         )
 
     def to_json(self) -> dict[str, Any]:

@@ -28,12 +28,13 @@ import math
 import numbers
 from dataclasses import dataclass, field
 from functools import lru_cache
-from typing import Any, Iterator, Sequence
+from fractions import Fraction
+from typing import Any, Callable, Iterator, Sequence
 
 import sympy as sp
 
 from . import symbols as S
-from .errors import InputError
+from .errors import InputError, ModelError
 
 __all__ = [
     "Stage",
@@ -82,6 +83,50 @@ class StageLaws:
     planet_from_coaxiality: sp.Expr
     neighbour_margin: sp.Expr
     centre_distance: sp.Expr
+
+
+def _exact_function(expr: sp.Expr, args: Sequence[sp.Symbol]) -> Callable[..., Fraction]:
+    """An exact evaluator of a rational function with rational coefficients (ints in, Fraction out)."""
+    num, den = sp.fraction(sp.together(expr))
+
+    def terms(poly_expr: sp.Expr) -> list[tuple[Fraction, tuple[int, ...]]]:
+        poly = sp.Poly(poly_expr, *args)
+        return [(Fraction(int(c.p), int(c.q)), m) for m, c in poly.terms()]
+
+    tn, td = terms(num), terms(den)
+
+    def value(*xs: Any) -> Fraction:
+        def ev(ts: list[tuple[Fraction, tuple[int, ...]]]) -> Fraction:
+            total = Fraction(0)
+            for c, m in ts:
+                v = c
+                for x, e in zip(xs, m):
+                    if e:
+                        v *= Fraction(x) ** e
+                total += v
+            return total
+
+        return ev(tn) / ev(td)
+
+    return value
+
+
+@lru_cache(maxsize=1)
+def _compiled() -> dict[str, Callable[..., Fraction]]:
+    laws = stage_laws()
+    s = sp.sin(sp.pi / K)
+    slope = laws.neighbour_margin.coeff(s)
+    rest = sp.expand(laws.neighbour_margin - slope * s)
+    if rest.has(s) or slope.has(s):
+        raise ModelError("the neighbour margin is not linear in sin(pi/k)")  # pragma: no cover
+    return {
+        "planet": _exact_function(laws.planet_from_coaxiality, (Z_SUN, Z_RING)),
+        "ring": _exact_function(laws.ring_from_coaxiality, (Z_SUN, Z_PLANET)),
+        "ratio": _exact_function(laws.ratio, (Z_SUN, Z_RING)),
+        "arm": _exact_function(laws.centre_distance, (Z_SUN, Z_PLANET)),
+        "margin_constant": _exact_function(rest, (Z_SUN, Z_PLANET, HA)),
+        "margin_slope": _exact_function(slope, (Z_SUN, Z_PLANET)),
+    }
 
 
 @lru_cache(maxsize=1)
@@ -146,17 +191,18 @@ def planet_teeth(sun: int, ring: int) -> int | None:
     >>> planet_teeth(18, 180), planet_teeth(19, 180)
     (81, None)
     """
-    value = stage_laws().planet_from_coaxiality.subs({Z_SUN: sun, Z_RING: ring})
-    return int(value) if value.is_Integer else None
+    value = _compiled()["planet"](sun, ring)
+    return int(value) if value.denominator == 1 else None
 
 
 def stage_ratio(sun: int, ring: int) -> sp.Rational:
     """The exact ratio omega_sun / omega_carrier with the ring fixed (the engine's law).
 
-    >>> stage_ratio(18, 180)
-    11
+    >>> stage_ratio(18, 180), stage_ratio(144, 180)
+    (11, 9/4)
     """
-    return sp.Rational(stage_laws().ratio.subs({Z_SUN: sun, Z_RING: ring}))
+    value = _compiled()["ratio"](sun, ring)
+    return sp.Rational(value.numerator, value.denominator)
 
 
 def coaxial(sun: int, planet: int, ring: int) -> bool:
@@ -165,7 +211,7 @@ def coaxial(sun: int, planet: int, ring: int) -> bool:
     >>> coaxial(18, 81, 180), coaxial(18, 80, 180)
     (True, False)
     """
-    return stage_laws().ring_from_coaxiality.subs({Z_SUN: sun, Z_PLANET: planet}) == ring
+    return _compiled()["ring"](sun, planet) == ring
 
 
 def assembles(sun: int, ring: int, satellites: int) -> bool:
@@ -177,20 +223,22 @@ def assembles(sun: int, ring: int, satellites: int) -> bool:
     return (sun + ring) % satellites == 0
 
 
-def _sign(margin: sp.Expr) -> int:
-    """Exact sign of a number built from integers, rationals and sin(pi/k).
+def _sign(constant: Fraction, slope: Fraction, k: int) -> int:
+    """Exact sign of constant + slope * sin(pi/k) (rationals constant and slope).
 
-    sin(pi/k) is rational only for k = 1, 2, 6, where SymPy evaluates it exactly; for
-    every other k the margin is irrational, never zero, and enough digits decide it.
+    sin(pi/k) is rational only for k = 1, 2, 6; for every other k it is irrational, so
+    the sum is zero only when both parts are, and enough digits decide its sign.
     """
-    if margin.is_Rational:
-        return int(sp.sign(margin))
-    scale = 1 + max(abs(float(a)) for a in margin.atoms(sp.Number))
-    for digits in (30, 100, 300):
-        value = margin.evalf(digits)
-        if abs(value) > scale * sp.Float(10) ** (10 - digits):
-            return 1 if value > 0 else -1
-    raise InputError(f"cannot decide the sign of the neighbour margin {margin}; it is zero to 290 digits")
+    exact_sin = {1: Fraction(0), 2: Fraction(1), 6: Fraction(1, 2)}
+    if k in exact_sin or slope == 0:
+        value = constant + slope * exact_sin.get(k, Fraction(0))
+        return (value > 0) - (value < 0)
+    approx = float(constant) + float(slope) * math.sin(math.pi / k)
+    if abs(approx) > 1e-9 * (abs(float(constant)) + abs(float(slope))):
+        return 1 if approx > 0 else -1
+    precise = (sp.Rational(constant.numerator, constant.denominator)
+               + sp.Rational(slope.numerator, slope.denominator) * sp.sin(sp.pi / k)).evalf(60)
+    return 1 if precise > 0 else -1
 
 
 def neighbours_clear(sun: int, planet: int, satellites: int, ha: Any = 1) -> bool:
@@ -200,12 +248,16 @@ def neighbours_clear(sun: int, planet: int, satellites: int, ha: Any = 1) -> boo
 
     >>> neighbours_clear(18, 81, 3), neighbours_clear(10, 85, 3)
     (True, False)
+    >>> neighbours_clear(24, 20, 6), neighbours_clear(25, 20, 6)  # equality is not clearance
+    (False, True)
     """
     k = _integer(satellites, "the number of satellites")
     if k == 1:
         return True
-    margin = stage_laws().neighbour_margin.subs({Z_SUN: sun, Z_PLANET: planet, K: k, HA: _tip_height(ha)})
-    return _sign(margin) > 0
+    h = _tip_height(ha)
+    c = _compiled()
+    constant = c["margin_constant"](sun, planet, Fraction(int(h.p), int(h.q)))
+    return _sign(constant, c["margin_slope"](sun, planet), k) > 0
 
 
 def max_satellites(sun: int, planet: int, ha: Any = 1) -> int:
@@ -259,7 +311,8 @@ class Stage:
     @property
     def centre_distance(self) -> sp.Rational:
         """The planet arm a_w in modules, (z_sun + z_planet)/2."""
-        return sp.Rational(stage_laws().centre_distance.subs({Z_SUN: self.sun, Z_PLANET: self.planet}))
+        value = _compiled()["arm"](self.sun, self.planet)
+        return sp.Rational(value.numerator, value.denominator)
 
     def to_json(self) -> dict[str, Any]:
         return {
@@ -378,13 +431,13 @@ def enumerate_stages(ring: int, satellites: int, *, zmin: int = 1, zmax: int | N
     if not zmin <= ring <= zmax:
         raise InputError(f"the ring's {ring} teeth are outside the limits {zmin} <= z <= {zmax}; widen the limits")
     rejected = {"limits": 0, "coaxiality": 0, "assembly": 0, "neighbours": 0}
-    laws = stage_laws()
+    planet_of = _compiled()["planet"]
     candidates: list[tuple[int, int, bool, bool]] = []  # coaxial, within limits: sun, planet, assembly, neighbours
     for sun in range(1, ring):
-        planet_value = laws.planet_from_coaxiality.subs({Z_SUN: sun, Z_RING: ring})
+        planet_value = planet_of(sun, ring)
         if not (zmin <= sun <= zmax and zmin <= planet_value <= zmax):
             rejected["limits"] += 1
-        elif not planet_value.is_Integer:
+        elif planet_value.denominator != 1:
             rejected["coaxiality"] += 1
         else:
             planet = int(planet_value)
