@@ -12,5 +12,6 @@ A module provides ``KEY``, ``CITATION``, ``checks() -> list[Check]`` and
 PAPERS = {
     "alyushin2009": "symkin.derivations.alyushin2009",
     "kladova2010": "symkin.derivations.kladova2010",
+    "khai2014": "symkin.derivations.khai2014",
     "luo2018": "symkin.derivations.luo2018",
 }

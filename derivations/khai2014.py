@@ -1,0 +1,363 @@
+"""KhAI (2014), multistage common-ring train: feasible stages and the ratio split of least lost motion.
+
+The n-stage train is built with the engine (:func:`symkin.schemes.common_ring_train`);
+its total ratio, each stage's ratio and the transfer of each stage's angular error to
+the output carrier are derived from it (:mod:`symkin.lostmotion`).  The stage
+enumeration derives coaxiality, assembly and neighbour conditions from the single-row
+AI scheme (:mod:`symkin.stages`).  The continuous optimum and the discrete designs come
+from :mod:`symkin.ratiosplit`.  The published forms and numbers below are transcribed
+from the paper (OCR in shared/papers) and are only compared against.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import sympy as sp
+
+from symkin import schemes
+from symkin import symbols as S
+from symkin.lostmotion import (
+    StageErrorModel,
+    backlash_symbol,
+    diameter_symbol,
+    lost_motion,
+    max_lost_motion,
+    probable_max_backlash,
+    ratio_symbol,
+)
+from symkin.ratiosplit import best_designs, optimise_split
+from symkin.report import Check, compare_exact, compare_rounded, compare_symbolic, slip
+from symkin.stages import enumerate_stages, stage_laws
+
+KEY = "khai2014"
+CITATION = (
+    "V. T. Abramov et al. (KhAI), Optimisation of the kinematic scheme of a multistage planetary "
+    "mechanism by the criterion of minimum lost motion, Kharkiv Aviation Institute, 2014"
+)
+
+# ---- published inputs and results (for comparison only)
+RING, SATELLITES, Z_MIN, Z_MAX = 180, 3, 18, 180  # "z3 = 180, S = 3, 18 <= z <= 180"
+PUBLISHED_STAGE_COUNT = 22
+PUBLISHED_U_MIN, PUBLISHED_U_MAX = "2.25", "11"
+TOTAL, STAGES = 6000, 4  # fig. 4, step 1
+U_LOWER, U_UPPER = "2.25", "11"  # fig. 4, step 3
+START = 3  # fig. 4, step 2: u_1 = ... = u_4 = 3
+A_LINEAR, B_LINEAR = "0.854", "0.858"  # (5) for curve 1 of fig. 3 (grade 8, mating F, m = 0.5 mm)
+PUBLISHED_OPTIMUM = ("4.508", "11", "11", "11")  # fig. 4, step 7
+PUBLISHED_OBJECTIVE = "0.343"  # fig. 4, step 8
+LINE_J0, LINE_J_END, LINE_A_END = 50, 120, 180  # (7): j_n max(a_w) = 50 + (120 - 50)/180 a_w
+PUBLISHED_SLOPE = "0.389"
+REGRESSION = ("51.932", "0.352")  # MathCAD line() on the GOST data (not given in the paper)
+MODULE = sp.Rational(1, 2)
+
+a, b = sp.symbols("a b", real=True)  # the paper's abi_1, abi_2
+
+
+def _published_1(n: int) -> sp.Expr:
+    """(1): sum_i Delta phi_Hi / (u_(i+1) ... u_n), Delta phi_Hi = Phi_i / (d_(3i-2) u_i)."""
+    u = [ratio_symbol(i) for i in range(1, n + 1)]
+    carrier = [backlash_symbol(i) / (diameter_symbol(i) * u[i - 1]) for i in range(1, n + 1)]
+    return sp.Add(*(carrier[i - 1] / sp.Mul(*u[i:]) for i in range(1, n + 1)))
+
+
+def _published_2_first(n: int) -> sp.Expr:
+    """(2), first line: Phi_1/(d_1 u_1 ... u_n) + Phi_2/(d_4 u_2 ... u_n) + ... + Phi_n/(d_(3n-2) u_n)."""
+    u = [ratio_symbol(i) for i in range(1, n + 1)]
+    return sp.Add(*(backlash_symbol(i) / (diameter_symbol(i) * sp.Mul(*u[i - 1:])) for i in range(1, n + 1)))
+
+
+def _published_2_expanded(n: int) -> sp.Expr:
+    """(2), second line: (1/u_S)(Phi_1/d_1 + Phi_2/d_4 u_1 + ... + Phi_n/d_(3n-2) u_1 ... u_(n-1))."""
+    u = [ratio_symbol(i) for i in range(1, n + 1)]
+    inner = sp.Add(*(backlash_symbol(i) / diameter_symbol(i) * sp.Mul(*u[: i - 1]) for i in range(1, n + 1)))
+    return inner / sp.Mul(*u)
+
+
+def _published_2_closed(n: int, upper: str) -> sp.Expr:
+    """(2), closed sum: (1/u_S)(Phi_1/d_1 + sum_(i=2)^n Phi_i/d_(3i-2) prod_(j=1)^(upper) u_j)."""
+    u = [ratio_symbol(i) for i in range(1, n + 1)]
+    top = (lambda i: i) if upper == "i" else (lambda i: i - 1)
+    inner = backlash_symbol(1) / diameter_symbol(1) + sp.Add(
+        *(backlash_symbol(i) / diameter_symbol(i) * sp.Mul(*u[: top(i)]) for i in range(2, n + 1))
+    )
+    return inner / sp.Mul(*u)
+
+
+def _published_fig4_FF(Fd: list) -> sp.Expr:
+    """Fig. 4, step 6: FF(u) = (1/U_S)(Fd1 + Fd2 u1 + Fd3 u1 u2 + Fd4 u1 u2 u3)."""
+    u1, u2, u3, u4 = (ratio_symbol(i) for i in range(1, 5))
+    U_S = sp.Symbol("U_Sigma", positive=True)
+    return (Fd[0] + Fd[1] * u1 + Fd[2] * u1 * u2 + Fd[3] * u1 * u2 * u3) / U_S, U_S
+
+
+def _published_6() -> sp.Expr:
+    """(6) as printed: j_n max = j_n min + sqrt(0.5 (T_H1^2 + T_H2^2)) + 2 f_a^2 (f_a outside the root)."""
+    j, t1, t2, fa = sp.symbols("j_min T_H1 T_H2 f_a", positive=True)
+    return j + sp.sqrt(sp.Rational(1, 2) * (t1**2 + t2**2)) + 2 * fa**2
+
+
+def _published_8() -> sp.Expr:
+    """(8): J_t max = 0.7 (E_HS1 + E_HS2) + sqrt(0.5 (T_H1^2 + T_H2^2) + 2 f_a^2 + G_r1^2 + G_r2^2)."""
+    e1, e2, t1, t2, fa, g1, g2 = sp.symbols("E_HS1 E_HS2 T_H1 T_H2 f_a G_r1 G_r2")
+    return sp.Rational(7, 10) * (e1 + e2) + sp.sqrt(sp.Rational(1, 2) * (t1**2 + t2**2) + 2 * fa**2 + g1**2 + g2**2)
+
+
+def _check(label: str, description: str, derived, published, comparison, **extra) -> Check:
+    return Check.make(KEY, label, description, derived, published, comparison, **extra)
+
+
+# ---------------------------------------------------------------------------- shared results
+def stage_set():
+    return enumerate_stages(RING, SATELLITES, zmin=Z_MIN, zmax=Z_MAX)
+
+
+def paper_model() -> StageErrorModel:
+    return StageErrorModel.linear(A_LINEAR, B_LINEAR)
+
+
+def mathcad_model() -> StageErrorModel:
+    """Fd_i as MathCAD evaluated it: the assignment Fd_i := abi_1 + abi_2 u_i at the start values u_i = 3."""
+    return StageErrorModel(paper_model().at(START), f"Fd frozen at the start value u = {START}")
+
+
+def line_model() -> StageErrorModel:
+    """Phi/d from the straight backlash line (7) through the engine's centre distances (m = 0.5 mm)."""
+    slope = sp.Rational(LINE_J_END - LINE_J0, LINE_A_END)
+    return StageErrorModel.from_backlash_line(LINE_J0, slope, module=MODULE, ring=RING)
+
+
+_CACHE: dict = {}
+
+
+def optimum():
+    if "optimum" not in _CACHE:
+        _CACHE["optimum"] = optimise_split(TOTAL, STAGES, lower=U_LOWER, upper=U_UPPER, model=paper_model())
+    return _CACHE["optimum"]
+
+
+def discrete(tolerance: str):
+    key = ("discrete", tolerance)
+    if key not in _CACHE:
+        _CACHE[key] = best_designs(TOTAL, stage_set(), STAGES, model=paper_model(), tolerance=tolerance, top=5)
+    return _CACHE[key]
+
+
+# ---------------------------------------------------------------------------- checks
+def checks() -> list[Check]:
+    """Every result of the paper, derived and compared."""
+    out: list[Check] = []
+    out += _train_checks()
+    out += _stage_checks()
+    out += _objective_checks()
+    out += _optimum_checks()
+    out += _model_checks()
+    return out
+
+
+def _train_checks() -> list[Check]:
+    out = []
+    laws = stage_laws()
+    z1, z2, z4 = (S.teeth(g) for g in ("1", "2", "4"))
+    out.append(_check("stage ratio", "single-row AI stage: u = omega_sun/omega_carrier, ring fixed (2009 paper (13b))",
+                      laws.ratio, 1 + z4 / z1, compare_symbolic(laws.ratio, 1 + z4 / z1)))
+    out.append(_check("coaxiality", "single-row AI: ring teeth from coaxiality with equal modules",
+                      laws.ring_from_coaxiality, z1 + 2 * z2, compare_symbolic(laws.ring_from_coaxiality, z1 + 2 * z2)))
+    for n in (2, 3, STAGES):
+        train = schemes.common_ring_train(n)
+        total = train.ratio("s1", f"H{n}", fixed="4").rhs
+        r4 = train.gear("4").radius
+        stage_product = sp.Mul(*[1 + r4 / train.gear(f"s{i}").radius for i in range(1, n + 1)])
+        out.append(_check(f"(2) u_S, n = {n}", f"{n}-stage common-ring train: total ratio i_s1Hn^(4) = prod u_i",
+                          total, stage_product, compare_symbolic(total, stage_product)))
+    return out
+
+
+def _stage_checks() -> list[Check]:
+    found = stage_set()
+    out = [
+        _check("stages: count", f"feasible single-row AI stages, ring {RING}, {SATELLITES} satellites, {Z_MIN} <= z <= {Z_MAX}",
+               len(found), PUBLISHED_STAGE_COUNT, compare_exact(len(found), PUBLISHED_STAGE_COUNT)),
+        _check("stages: u min", "smallest feasible stage ratio", found[0].ratio, PUBLISHED_U_MIN,
+               compare_rounded(found[0].ratio, PUBLISHED_U_MIN), teeth=(found[0].sun, found[0].planet, found[0].ring)),
+        _check("stages: u max", "largest feasible stage ratio", found[-1].ratio, PUBLISHED_U_MAX,
+               compare_rounded(found[-1].ratio, PUBLISHED_U_MAX), teeth=(found[-1].sun, found[-1].planet, found[-1].ring)),
+    ]
+    return out
+
+
+def _objective_checks() -> list[Check]:
+    out = []
+    for n in (2, 3, STAGES, 5):
+        lm = lost_motion(n)
+        out.append(_check(f"(1) n = {n}", f"objective (1): each carrier's error carried to H_{n}",
+                          lm.objective, _published_1(n), compare_symbolic(lm.objective, _published_1(n))))
+    lm = lost_motion(STAGES)
+    n = STAGES
+    u = lm.ratios
+    for i in range(1, n + 1):
+        pub = backlash_symbol(i) / (diameter_symbol(i) * u[i - 1])
+        out.append(_check(f"(1) Delta phi_H{i}", f"stage {i}: its error Phi_{i}/d_{3 * i - 2} carried from sun to carrier H_{i}",
+                          lm.carrier_errors[i - 1], pub, compare_symbolic(lm.carrier_errors[i - 1], pub)))
+    sun_route = sp.Add(*(e * t for e, t in zip(lm.sun_errors, lm.sun_transfers)))
+    out.append(_check("(2) line 1", "(2) first form: each stage's error at its sun carried to the output",
+                      sun_route, _published_2_first(n), compare_symbolic(sun_route, _published_2_first(n))))
+    out.append(_check("(2) line 2", "(2) expanded form (1/u_S)(Phi_1/d_1 + Phi_2/d_4 u_1 + ...)",
+                      lm.objective, _published_2_expanded(n), compare_symbolic(lm.objective, _published_2_expanded(n))))
+    printed = _published_2_closed(n, "i")
+    u_S = sp.Mul(*u)
+    ratios = [sp.factor((backlash_symbol(i) / diameter_symbol(i) * sp.Mul(*u[:i]) / u_S) / (lm.sun_errors[i - 1] * lm.sun_transfers[i - 1]))
+              for i in range(2, n + 1)]
+    out.append(_check(
+        "(2) closed sum", "(2) closed form as printed, prod_(j=1)^(i) u_j",
+        lm.objective, printed,
+        slip(
+            f"with prod_(j=1)^(i) the i-th term is Phi_i/d_(3i-2) * u_1...u_i / u_S = Phi_i/(d_(3i-2) u_(i+1)...u_n), "
+            f"without the stage's own 1/u_i: printed term / derived term = {', '.join(map(str, ratios))} for i = 2..{n}. The paper's own "
+            "first and expanded forms of (2) and fig. 4 step 6 (Fd2 u1, Fd3 u1 u2, Fd4 u1 u2 u3) use u_1...u_(i-1), and "
+            "the printed i = 1 term Phi_1/d_1 (no u_1) also fits only i - 1: the upper limit should be i - 1"
+        ),
+    ))
+    corrected = _published_2_closed(n, "i-1")
+    out.append(_check("(2) closed sum, j <= i-1", "(2) closed form with the upper limit i - 1",
+                      lm.objective, corrected, compare_symbolic(lm.objective, corrected)))
+    Fd = [a + b * ui for ui in u]
+    FF, U_S = _published_fig4_FF(Fd)
+    derived = lm.objective.subs({p: d * (a + b * ui) for p, d, ui in zip(lm.backlash, lm.diameters, u)})
+    out.append(_check("fig. 4 FF", "fig. 4 step 6: FF with Fd_i = abi_1 + abi_2 u_i, on u_1 u_2 u_3 u_4 = U_S",
+                      derived, FF, compare_symbolic(derived, FF, under={U_S: sp.Mul(*u)})))
+    return out
+
+
+def _optimum_checks() -> list[Check]:
+    out = []
+    best = optimum()
+    for i, pub in enumerate(PUBLISHED_OPTIMUM, 1):
+        value = best.exact_ratios[i - 1]
+        out.append(_check(f"fig. 4 u_{i}", f"optimal u_{i} (U = {TOTAL}, {U_LOWER} <= u <= {U_UPPER}), bound: {best.active[i - 1]}",
+                          value, pub, compare_rounded(value, pub)))
+    derived_value = best.exact_objective
+    frozen = optimise_split(TOTAL, STAGES, lower=U_LOWER, upper=U_UPPER, model=mathcad_model())
+    frozen_value = frozen.exact_objective
+    out.append(_check(
+        "fig. 4 FF value", "objective at the optimum with Fd_i = a + b u_i as (5) defines it",
+        derived_value, PUBLISHED_OBJECTIVE,
+        slip(
+            f"the derived objective at the optimum is {sp.N(derived_value, 6)}, not {PUBLISHED_OBJECTIVE}: with b = "
+            f"{B_LINEAR} it can never fall below b (on u_S = U it equals b + (a + (a + b)(u_1 + u_1 u_2 + u_1 u_2 u_3))/U). "
+            f"MathCAD evaluates the assignments Fd_i := abi_1 + abi_2 u_i of step 4 once, at the start values u_i = {START} "
+            f"of step 2, so FF used the constant Fd = {sp.N(mathcad_model().expr, 6)}; that objective at the same optimum is "
+            f"{sp.N(frozen_value, 6)}, which rounds to the published {PUBLISHED_OBJECTIVE} (next check). Both objectives "
+            "have the same minimiser, so the published optimum stands"
+        ),
+    ))
+    out.append(_check("fig. 4 FF value (MathCAD)", f"objective at the optimum with Fd frozen at u = {START}, as MathCAD evaluated it",
+                      frozen_value, PUBLISHED_OBJECTIVE, compare_rounded(frozen_value, PUBLISHED_OBJECTIVE)))
+    same = tuple(frozen.exact_ratios) == tuple(best.exact_ratios)
+    out += _kkt_checks()
+    out.append(_check("fig. 4 optimum (MathCAD)", "the frozen-Fd objective has the same minimiser",
+                      tuple(frozen.exact_ratios), tuple(best.exact_ratios), compare_exact(int(same), 1)))
+    return out
+
+
+def _kkt_checks() -> list[Check]:
+    """Why the output stages take the upper bound: the gradient in ln u falls along the train."""
+    lm = lost_motion(STAGES)
+    u, n = lm.ratios, STAGES
+    ai = sp.symbols(f"a_1:{n + 1}", real=True)
+    bi = sp.symbols(f"b_1:{n + 1}", real=True)
+    f = lm.objective.subs({p: d * (ai[i] + bi[i] * u[i]) for i, (p, d) in enumerate(zip(lm.backlash, lm.diameters))})
+    g = [u[j] * sp.diff(f, u[j]) for j in range(n)]
+    out = []
+    for j in range(n - 1):
+        derived = sp.factor(g[j] - g[j + 1])
+        closed = (ai[j + 1] + bi[j]) / sp.Mul(*u[j + 1:])
+        out.append(_check(f"KKT g_{j + 1} - g_{j + 2}", "gradient difference in x = ln u for linear models a_i + b_i u "
+                          "(closed form of the notes, not in the paper)", derived, closed, compare_symbolic(derived, closed)))
+    return out
+
+
+def _model_checks() -> list[Check]:
+    out = []
+    slope = sp.Rational(LINE_J_END - LINE_J0, LINE_A_END)
+    out.append(_check("(7) slope", "(7): slope (120 - 50)/180 of the two-point line", slope, PUBLISHED_SLOPE,
+                      compare_rounded(slope, PUBLISHED_SLOPE)))
+    j, t1, t2, fa = sp.symbols("j_min T_H1 T_H2 f_a", positive=True)
+    derived6 = probable_max_backlash(j, t1, t2, fa)
+    printed6 = _published_6()
+    lam = sp.Symbol("lambda", positive=True)
+    scale = {j: lam * j, t1: lam * t1, t2: lam * t2, fa: lam * fa}
+    defect_printed = sp.factor(sp.expand(printed6.xreplace(scale) - lam * printed6))
+    defect_derived = sp.simplify(derived6.xreplace(scale) - lam * derived6)
+    out.append(_check(
+        "(6)", "(6): probable maximum backlash (GOST 9178-81, appendix 4)",
+        derived6, printed6,
+        slip(
+            f"as printed, 2 f_a^2 stands outside the root and the formula mixes a length with a squared length: scaling "
+            f"every length by lambda changes it by lambda times itself plus {defect_printed}, whereas with 2 f_a^2 under "
+            f"the root it scales exactly (defect {defect_derived}); the paper's own (8) has 2 f_a^2 under the root"
+        ),
+    ))
+    e1, e2, g1, g2 = sp.symbols("E_HS1 E_HS2 G_r1 G_r2")
+    t1r, t2r, far = sp.symbols("T_H1 T_H2 f_a")
+    derived8 = max_lost_motion(e1, e2, t1r, t2r, far, g1, g2)
+    out.append(_check("(8)", "(8): maximum lost motion J_t max (GOST 21098-82)", derived8, _published_8(),
+                      compare_symbolic(derived8, _published_8())))
+    reduced = derived8.subs({g1: 0, g2: 0}).subs(sp.Rational(7, 10) * (e1 + e2), sp.Symbol("j_min", positive=True))
+    out.append(_check("(6) from (8)", "(8) without bearing clearances, guaranteed part as j_min, is (6) with f_a under the root",
+                      reduced, probable_max_backlash(j, t1, t2, fa),
+                      compare_symbolic(reduced.subs({t1r: t1, t2r: t2, far: fa}), probable_max_backlash(j, t1, t2, fa))))
+    return out
+
+
+# ---------------------------------------------------------------------------- notes and figures
+def notes() -> list[str]:
+    found = stage_set()
+    best = optimum()
+    line = line_model()
+    out = [
+        "Stages (ring 180, 3 satellites, 18 <= z <= 180), sun/planet teeth and ratio: "
+        + "; ".join(f"{s.sun}/{s.planet}: {s.ratio}" for s in found) + ".",
+        f"Candidate suns rejected (first failing condition): {found.rejected}. The assembly condition makes the sun a "
+        "multiple of 6 and cuts 64 coaxial suns to 22; with 3 satellites the neighbour condition binds only below "
+        "z_sun = 16, so it never rejects a sun of at least 18 teeth.",
+        "Continuous optimum (fig. 4 case): " + " | ".join(best.explain()),
+        "Why the bounds are active, for any linear model Phi/d = a_i + b_i u: in x = ln u the objective is "
+        "sum_i [a_i exp(-S_i) + b_i exp(-S_(i+1))] with S_i = x_i + ... + x_n, so g_j - g_(j+1) = (a_(j+1) + b_j) exp(-S_(j+1)) "
+        "(the KKT checks): with a_(j+1) + b_j > 0 moving ratio toward the output always helps, the "
+        "output stages sit on their upper bounds and one input stage takes what is left. The minimiser does not depend on "
+        "a and b, which is why the MathCAD slip in the objective value leaves the optimum intact.",
+        f"Line (7) through the engine's centre distances gives exactly Phi/d = {line.expr} for m = 0.5 mm and ring 180 "
+        "(each centre distance is m z_ring u/(4(u - 1))); curve 2 of fig. 3. The coefficients of (5) (0.854, 0.858) "
+        "and the regression (51.932, 0.352) need the GOST 9178-81 tables, which are not in the paper: not reproduced.",
+        "Delta phi is 'relative': Phi_i/d_(3i-2) is half the angle in radians that a circular backlash Phi_i turns the "
+        "sun (2 Phi/d); the factor cancels from the optimum.",
+        "Sign of E_HS in (8): the paper takes E_HS negative for external gears; two external gears would then give a "
+        "negative guaranteed part. GOST 21098-82 is not available here; symkin takes E_HS as given.",
+    ]
+    for tol in ("0.01", "0.05"):
+        d = discrete(tol)
+        rows = "; ".join(
+            f"{[(s.sun, s.planet) for s in x.stages]} u = {tuple(str(r) for r in x.ratios)} total {x.total} "
+            f"({float(x.deviation):+.2%}) objective {float(x.objective):.6f}"
+            for x in d.designs
+        )
+        out.append(f"Discrete designs, tolerance {tol}: {d.message()}: {rows}")
+    return out
+
+
+def figures(folder: Path) -> list[Path]:
+    from symkin.plotting import save
+    from symkin.splitplot import split_figure, stage_model_figure
+
+    paths = []
+    fig = stage_model_figure(
+        stage_set(),
+        {"(5): 0.854 + 0.858 u (fig. 3, curve 1)": paper_model(), "from line (7), derived (fig. 3, curve 2 analogue)": line_model()},
+        module=float(MODULE),
+        title="KhAI 2014: 22 feasible stages (ring 180, 3 satellites), Phi/d and a_w (mm, m = 0.5)",
+    )
+    paths += save(fig, folder / "khai2014_stages")
+    fig = split_figure(optimum(), discrete("0.05"), title="KhAI 2014 fig. 4 case: least objective with u_i held")
+    paths += save(fig, folder / "khai2014_split")
+    return paths
