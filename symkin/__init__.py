@@ -13,7 +13,7 @@ compiles them into fast numeric functions.
 
 from __future__ import annotations
 
-from . import cardan, drives, schemes, symbols, vectorloop
+from . import cardan, drives, lostmotion, ratiosplit, schemes, stages, symbols, vectorloop
 from .errors import (
     CoaxialityWarning,
     DeterminacyError,
@@ -56,6 +56,9 @@ __all__ = [
     "drives",
     "cardan",
     "vectorloop",
+    "stages",
+    "lostmotion",
+    "ratiosplit",
     "symbols",
     "SymkinError",
     "ModelError",

@@ -261,13 +261,13 @@ class StageErrorModel:
     def from_backlash_line(cls, intercept: Any, slope: Any, *, module: Any, ring: int) -> "StageErrorModel":
         """Phi / d from a straight line j(a_w) = intercept + slope * a_w of each mesh's backlash.
 
-        The paper's (7) is such a line.  Phi is the sum over the stage's two meshes (its
+        The 2014 paper's (7) is such a line.  Phi is the sum over the stage's two meshes (its
         (3)); each mesh's centre distance comes from the engine's single-row AI geometry,
         the sun's diameter is its pitch diameter, and the sun's teeth follow from u and the
         common ring.  With one ring the result is exactly linear in u.
 
-        >>> StageErrorModel.from_backlash_line(50, sp.Rational(7, 18), module=sp.Rational(1, 2), ring=180).expr
-        47*u/36 - 10/9
+        >>> StageErrorModel.from_backlash_line(40, sp.Rational(1, 2), module=1, ring=100).expr
+        21*u/20 - 4/5
         """
         from .schemes import single_row_AI
         from .stages import stage_laws

@@ -49,6 +49,7 @@ __all__ = [
 ]
 
 _BOUND_TOL = 1e-7  # in ln u: a stage this close to a bound is on it
+_TABLE_SIZE = 200_000  # largest table of completion products the discrete search keeps per depth
 
 
 # --------------------------------------------------------------------------- inputs
@@ -468,7 +469,7 @@ def optimise_split(total: Any, stages: int, *, lower: Any, upper: Any, model: An
     Parameters
     ----------
     total : number
-        The total ratio U (exact: ``"6000"``, ``1e4``, ``Fraction``).
+        The total ratio U (exact: ``"5000"``, ``1e4``, ``Fraction``).
     stages : int
     lower, upper : number or sequence of numbers
         Bounds of each stage ratio.
@@ -627,8 +628,99 @@ class _Search:
         self.min_self = [min(self.F[i][k] * self.r[k] ** self.exponents[i][i] for k in range(len(self.r))) for i in range(n)]
         self.min_pow = {e: min(r**e for r in self.r) for row in self.exponents for e in set(row)}
         self.log_r = [math.log(r) for r in self.r]
+        self._tables: dict[tuple[int, int], np.ndarray] = {}
+        m = len(self.r)
+        self.table_depth = max(r for r in range(0, n + 1) if math.comb(m + r - 1, r) <= _TABLE_SIZE)
+        # serial transfers (each stage's error divided by its own and every later ratio, as
+        # derived): the best objective of the first r stages for each product is then a
+        # dynamic programme, an exact bound for the deepest levels of the search
+        self.serial = all(e[j] == (-1 if j >= i else 0) for i, e in enumerate(self.exponents) for j in range(n))
+        self.prefix_best = self._prefix_best() if self.serial else []
+        # best order of a stage set: swapping adjacent stages p (input side) and q changes only
+        # their two terms, F(p)/(p q) + F(q)/q against F(q)/(q p) + F(p)/p (times the later
+        # ratios); with u > 1 the first is no larger iff F(p)/(p - 1) >= F(q)/(q - 1).  So
+        # with one model for every stage the best order sorts the stages by this key, and
+        # when each stage set is wanted once only that order is searched (ties by index).
+        same_model = all(m.expr == problem.models[0].expr for m in problem.models)
+        self.order_key = None
+        if distinct and self.serial and same_model and min(self.r) > 1:
+            self.order_key = [self.F[0][k] / (self.r[k] - 1) for k in range(len(self.r))]
         self.nodes = 0
         self.last_report = time.perf_counter()
+
+    def in_order(self, k_input: int, k_output: int) -> bool:
+        """May ratio k_input sit just before (on the input side of) ratio k_output?"""
+        if self.order_key is None:
+            return True
+        a, b = self.order_key[k_input], self.order_key[k_output]
+        return a > b or (a == b and k_input <= k_output)
+
+    def _prefix_best(self) -> list[tuple[np.ndarray, np.ndarray]]:
+        """For r = 1, 2, ...: sorted ln(product) of the first r stages and the least objective
+        sum_(j<r) F_j(u_j) / (u_j ... u_(r-1)) over the sequences with that product.
+
+        Adding stage r - 1 with ratio u divides every earlier term by u and adds F(u)/u, so
+        best_r(P) = min_u [best_(r-1)(P/u) + F_(r-1)(u)] / u.  Products equal to 1e-9 in ln
+        share an entry (their minimum), which keeps every value a lower bound.
+        """
+        out: list[tuple[np.ndarray, np.ndarray]] = []
+        log_r = np.array(self.log_r)
+        r_arr = np.array(self.r)
+        prev_log, prev_val = np.zeros(1), np.zeros(1)
+        for depth in range(min(self.table_depth, self.n - 1)):
+            F = np.array(self.F[depth])
+            logs = (prev_log[None, :] + log_r[:, None]).ravel()
+            vals = ((prev_val[None, :] + F[:, None]) / r_arr[:, None]).ravel()
+            keys = np.round(logs * 1e9).astype(np.int64)
+            uniq, inverse = np.unique(keys, return_inverse=True)
+            best = np.full(len(uniq), np.inf)
+            np.minimum.at(best, inverse, vals)
+            first_log = np.zeros(len(uniq))
+            first_log[inverse] = logs
+            if len(uniq) > _TABLE_SIZE:
+                break
+            prev_log, prev_val = first_log, best
+            out.append((prev_log, prev_val))
+        return out
+
+    def prefix_bound(self, r: int, low: float, high: float) -> float | None:
+        """The least objective of the first r stages with ln(product) in [low, high] (inf if none), or None beyond the tables."""
+        if r == 0 or r > len(self.prefix_best):
+            return None
+        logs, vals = self.prefix_best[r - 1]
+        a = int(np.searchsorted(logs, low - 1e-9))
+        b = int(np.searchsorted(logs, high + 1e-9, side="right"))
+        return float(vals[a:b].min()) if b > a else math.inf
+
+    def table(self, r: int, k: int) -> np.ndarray:
+        """Sorted ln-products of every multiset of r stages taken from indices >= k."""
+        key = (r, k)
+        if key not in self._tables:
+            if r == 0:
+                value = np.zeros(1)
+            else:
+                parts = [self.log_r[j] + self.table(r - 1, j) for j in range(k, len(self.r))]
+                value = np.sort(np.concatenate(parts)) if parts else np.zeros(0)
+            self._tables[key] = value
+        return self._tables[key]
+
+    def completes(self, r: int, k: int, low: float, high: float) -> bool:
+        """Can r more stages (indices >= k) bring ln of the product into [low, high]?"""
+        if r <= self.table_depth:
+            t = self.table(r, k)
+            i = int(np.searchsorted(t, low - 1e-12))
+            return i < len(t) and t[i] <= high + 1e-12
+        return r * min(self.log_r[k:]) <= high + 1e-12 and r * max(self.log_r[k:]) >= low - 1e-12
+
+    def nearest_gap(self, r: int, k: int, need: float) -> float:
+        """The least |ln(product) - need| that r more stages (indices >= k) can reach (a lower bound beyond the tables)."""
+        if r <= self.table_depth:
+            t = self.table(r, k)
+            i = int(np.searchsorted(t, need))
+            near = [abs(t[j] - need) for j in (i - 1, i) if 0 <= j < len(t)]
+            return min(near) if near else math.inf
+        lo, hi = r * min(self.log_r[k:]), r * max(self.log_r[k:])
+        return max(0.0, lo - need, need - hi)
 
     # -- progress: fraction of the first two levels done
     def _tick(self, k0: int, k1: int) -> None:
@@ -666,7 +758,7 @@ class _Search:
         lo_x, hi_x = U * (1 - tol), U * (1 + tol)
         asc = sorted(range(len(self.r)), key=lambda k: self.r[k])
         asc_r = [self.r[k] for k in asc]
-        rmin, rmax = min(self.r), max(self.r)
+        log_lo, log_hi = math.log(lo_f), math.log(hi_f) if hi_f > 0 else -math.inf
         best: dict[Any, tuple[float, tuple[int, ...]]] = {}
         threshold = [math.inf]
         n = self.n
@@ -693,6 +785,8 @@ class _Search:
                 b = bisect_right(asc_r, hi_u * (1 + 1e-12))
                 for k in asc[a:b]:
                     self.nodes += 1
+                    if n > 1 and not self.in_order(k, chosen[1]):
+                        continue
                     if not lo_x <= Qx * self.exact[k] <= hi_x:
                         continue
                     chosen[0] = k
@@ -703,17 +797,24 @@ class _Search:
                 return
             for k in range(len(self.r)):
                 self.nodes += 1
+                if i < n - 1 and not self.in_order(k, chosen[i + 1]):
+                    continue
                 if i == n - 1:
                     top_index = (k, 0)
                 elif i == n - 2:
                     top_index = (top_index[0], k)
                     self._tick(*top_index)
                 q = Q * self.r[k]
-                if q * rmax**remaining < lo_f * (1 - 1e-12) or q * rmin**remaining > hi_f * (1 + 1e-12):
-                    continue
+                lq = math.log(q)
                 chosen[i] = k
                 part = partial + self._term(i, k, chosen)
-                if part + self._bound(i - 1, chosen) > threshold[0] * (1 + 1e-12):
+                exact_tail = self.prefix_bound(remaining, log_lo - lq, log_hi - lq)
+                if exact_tail is not None:
+                    if exact_tail == math.inf or part + exact_tail / q * (1 - 1e-12) > threshold[0] * (1 + 1e-12):
+                        continue
+                elif not self.completes(remaining, 0, log_lo - lq, log_hi - lq):
+                    continue
+                elif part + self._bound(i - 1, chosen) > threshold[0] * (1 + 1e-12):
                     continue
                 visit(i - 1, chosen, q, Qx * self.exact[k], part, top_index)
             chosen.pop(i, None)
@@ -724,7 +825,6 @@ class _Search:
     def nearest_multisets(self, U: Fraction) -> list[tuple[int, ...]]:
         """The ``top`` multisets of stages whose product is nearest the target in |ln(total/U)|."""
         logU = math.log(float(U))
-        lmin = min(self.log_r)
         found: list[tuple[float, tuple[int, ...]]] = []  # max-heap by gap (negated)
         n, top = self.n, self.top
 
@@ -736,11 +836,8 @@ class _Search:
             for k in range(start, len(self.r)):  # ratios descending: later picks are not larger
                 self.nodes += 1
                 lq = logQ + self.log_r[k]
-                need = logU - lq
-                gap = max(0.0, need - rem * self.log_r[k], rem * lmin - need)
+                gap = self.nearest_gap(rem, k, logU - lq)
                 if gap > threshold() * (1 + 1e-12) + 1e-15:
-                    if need - rem * self.log_r[k] > 0:
-                        return  # smaller ratios from here on only fall further short
                     continue
                 if rem == 0:
                     item = (-gap, tuple(picked + [k]))
@@ -755,11 +852,16 @@ class _Search:
         return [m for _, m in sorted(found, key=lambda t: -t[0])]
 
     def orders(self, multiset: Sequence[int]) -> list[tuple[float, tuple[int, ...]]]:
-        """Every distinct order of a multiset of stages, with its objective."""
+        """The orders of a multiset of stages worth listing (all, or the best one), with objectives."""
         from itertools import permutations
 
         out = []
-        for order in set(permutations(multiset)):
+        if self.order_key is not None:  # the best order sorts the stages by the swap key
+            key = self.order_key
+            orders = [tuple(sorted(multiset, key=lambda k: (-key[k], k)))]
+        else:
+            orders = list(set(permutations(multiset)))
+        for order in orders:
             chosen = dict(enumerate(order))
             out.append((sum(self._term(i, chosen[i], chosen) for i in range(self.n)), order))
         return sorted(out)

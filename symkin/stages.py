@@ -188,8 +188,8 @@ def _tip_height(ha: Any) -> sp.Rational:
 def planet_teeth(sun: int, ring: int) -> int | None:
     """The planet's tooth number that makes a sun and ring coaxial, or None if not whole.
 
-    >>> planet_teeth(18, 180), planet_teeth(19, 180)
-    (81, None)
+    >>> planet_teeth(20, 100), planet_teeth(21, 100)
+    (40, None)
     """
     value = _compiled()["planet"](sun, ring)
     return int(value) if value.denominator == 1 else None
@@ -198,8 +198,8 @@ def planet_teeth(sun: int, ring: int) -> int | None:
 def stage_ratio(sun: int, ring: int) -> sp.Rational:
     """The exact ratio omega_sun / omega_carrier with the ring fixed (the engine's law).
 
-    >>> stage_ratio(18, 180), stage_ratio(144, 180)
-    (11, 9/4)
+    >>> stage_ratio(20, 100), stage_ratio(60, 100)
+    (6, 8/3)
     """
     value = _compiled()["ratio"](sun, ring)
     return sp.Rational(value.numerator, value.denominator)
@@ -208,7 +208,7 @@ def stage_ratio(sun: int, ring: int) -> sp.Rational:
 def coaxial(sun: int, planet: int, ring: int) -> bool:
     """True when both meshes put the planet axis at one distance (equal modules).
 
-    >>> coaxial(18, 81, 180), coaxial(18, 80, 180)
+    >>> coaxial(20, 40, 100), coaxial(20, 41, 100)
     (True, False)
     """
     return _compiled()["ring"](sun, planet) == ring
@@ -217,7 +217,7 @@ def coaxial(sun: int, planet: int, ring: int) -> bool:
 def assembles(sun: int, ring: int, satellites: int) -> bool:
     """True when ``satellites`` evenly spaced planets can be assembled: (z_sun + z_ring)/k whole.
 
-    >>> assembles(18, 180, 3), assembles(20, 180, 3)
+    >>> assembles(20, 100, 4), assembles(22, 100, 4)
     (True, False)
     """
     return (sun + ring) % satellites == 0
@@ -246,7 +246,7 @@ def neighbours_clear(sun: int, planet: int, satellites: int, ha: Any = 1) -> boo
 
     One planet has no neighbour, so the condition holds for ``satellites = 1``.
 
-    >>> neighbours_clear(18, 81, 3), neighbours_clear(10, 85, 3)
+    >>> neighbours_clear(20, 40, 4), neighbours_clear(16, 42, 4)
     (True, False)
     >>> neighbours_clear(24, 20, 6), neighbours_clear(25, 20, 6)  # equality is not clearance
     (False, True)
@@ -263,8 +263,8 @@ def neighbours_clear(sun: int, planet: int, satellites: int, ha: Any = 1) -> boo
 def max_satellites(sun: int, planet: int, ha: Any = 1) -> int:
     """The largest satellite count whose neighbours clear each other (assembly not checked).
 
-    >>> max_satellites(18, 81)
-    3
+    >>> max_satellites(20, 40)
+    4
     """
     k = 1
     while neighbours_clear(sun, planet, k + 1, ha):
@@ -276,8 +276,8 @@ def check_stage(sun: int, planet: int, ring: int, satellites: int, *, zmin: int 
                 ha: Any = 1) -> dict[str, bool]:
     """Each condition of a stage: coaxiality, assembly, neighbours, limits.
 
-    >>> check_stage(18, 81, 180, 3, zmin=18, zmax=180)
-    {'coaxiality': True, 'assembly': True, 'neighbours': True, 'limits': True}
+    >>> check_stage(16, 42, 100, 4, zmin=15, zmax=100)
+    {'coaxiality': True, 'assembly': True, 'neighbours': False, 'limits': True}
     """
     zmax = max(sun, planet, ring) if zmax is None else zmax
     return {
@@ -413,13 +413,13 @@ def enumerate_stages(ring: int, satellites: int, *, zmin: int = 1, zmax: int | N
 
     Examples
     --------
-    >>> s = enumerate_stages(180, 3, zmin=18, zmax=180)
-    >>> len(s), s[0].ratio, s[-1].ratio, (s[-1].sun, s[-1].planet)
-    (22, 9/4, 11, (18, 81))
-    >>> enumerate_stages(30, 3, zmin=18, zmax=180)
+    >>> s = enumerate_stages(100, 4, zmin=15)
+    >>> len(s), s[0].ratio, s[-1].ratio, (s[-1].sun, s[-1].planet), s.rejected["neighbours"]
+    (13, 42/17, 6, (20, 40), 1)
+    >>> enumerate_stages(40, 4, zmin=15, zmax=100)
     Traceback (most recent call last):
     ...
-    symkin.errors.InputError: no single-row AI stage fits a ring of 30 teeth with 18 <= z <= 180: coaxiality z_ring = z_sun + 2 z_planet leaves no sun and planet of at least 18 teeth each; use a ring of at least 54 teeth or lower zmin
+    symkin.errors.InputError: no single-row AI stage fits a ring of 40 teeth with 15 <= z <= 100: coaxiality z_ring = z_sun + 2 z_planet leaves no sun and planet of at least 15 teeth each; use a ring of at least 45 teeth or lower zmin
     """
     ring = _integer(ring, "the ring's tooth number")
     k = _integer(satellites, "the number of satellites")

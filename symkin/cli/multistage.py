@@ -36,7 +36,7 @@ def register(sub: Any) -> None:
         "designs, every stage from the ring's feasible tooth sets, the total within --tolerance, ranked by the "
         "objective (or the nearest designs when none meets it).",
     )
-    q.add_argument("--total", required=True, help="total ratio U, e.g. 6000")
+    q.add_argument("--total", required=True, help="total ratio U, e.g. 5000")
     q.add_argument("--stages", required=True, help=f"number of stages n (1 to {MAX_STAGES})")
     q.add_argument("--umin", help="lower bound of every stage ratio (default: the smallest feasible stage with --ring)")
     q.add_argument("--umax", help="upper bound of every stage ratio (default: the largest feasible stage with --ring)")
