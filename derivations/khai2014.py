@@ -32,8 +32,9 @@ from symkin.stages import enumerate_stages, stage_laws
 
 KEY = "khai2014"
 CITATION = (
-    "V. T. Abramov et al. (KhAI), Optimisation of the kinematic scheme of a multistage planetary "
-    "mechanism by the criterion of minimum lost motion, Kharkiv Aviation Institute, 2014"
+    "National Aerospace University \"Kharkiv Aviation Institute\" (KhAI), Optimisation of the kinematic scheme "
+    "of a multistage planetary mechanism by the criterion of minimum lost motion, 2014 (the authors' names are "
+    "not in the available text)"
 )
 
 # ---- published inputs and results (for comparison only)
@@ -243,8 +244,8 @@ def _optimum_checks() -> list[Check]:
         "fig. 4 FF value", "objective at the optimum with Fd_i = a + b u_i as (5) defines it",
         derived_value, PUBLISHED_OBJECTIVE,
         slip(
-            f"the derived objective at the optimum is {sp.N(derived_value, 6)}, not {PUBLISHED_OBJECTIVE}: with b = "
-            f"{B_LINEAR} it can never fall below b (on u_S = U it equals b + (a + (a + b)(u_1 + u_1 u_2 + u_1 u_2 u_3))/U). "
+            f"the derived objective at the optimum is {sp.N(derived_value, 6)}, not {PUBLISHED_OBJECTIVE}: on u_S = U it "
+            f"equals b + (a + (a + b)(u_1 + u_1 u_2 + u_1 u_2 u_3))/U, always above b = {B_LINEAR}. "
             f"MathCAD evaluates the assignments Fd_i := abi_1 + abi_2 u_i of step 4 once, at the start values u_i = {START} "
             f"of step 2, so FF used the constant Fd = {sp.N(mathcad_model().expr, 6)}; that objective at the same optimum is "
             f"{sp.N(frozen_value, 6)}, which rounds to the published {PUBLISHED_OBJECTIVE} (next check). Both objectives "
