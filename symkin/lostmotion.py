@@ -51,17 +51,29 @@ U = sp.Symbol("u", positive=True)
 
 
 def ratio_symbol(i: int) -> sp.Symbol:
-    """u_i, the ratio omega_sun / omega_carrier of stage i with the ring fixed."""
+    """u_i, the ratio omega_sun / omega_carrier of stage i with the ring fixed.
+
+    >>> ratio_symbol(2)
+    u_2
+    """
     return sp.Symbol(f"u_{i}", positive=True)
 
 
 def backlash_symbol(i: int) -> sp.Symbol:
-    """Phi_i, the summed probable maximum backlash of stage i's two meshes."""
+    """Phi_i, the summed probable maximum backlash of stage i's two meshes.
+
+    >>> backlash_symbol(2)
+    Phi_2
+    """
     return sp.Symbol(f"Phi_{i}", positive=True)
 
 
 def diameter_symbol(i: int) -> sp.Symbol:
-    """d_(3i-2), the pitch diameter of stage i's sun (the paper numbers gears 3i-2, 3i-1, 3i)."""
+    """d_(3i-2), the pitch diameter of stage i's sun (gears are numbered 3i-2, 3i-1, 3i).
+
+    >>> diameter_symbol(2)
+    d_4
+    """
     return sp.Symbol(f"d_{3 * i - 2}", positive=True)
 
 
@@ -139,7 +151,11 @@ class LostMotion:
         return sp.Add(*self.terms(model))
 
     def substitute(self, model: "StageErrorModel | Sequence[StageErrorModel]") -> dict[sp.Symbol, sp.Expr]:
-        """{Phi_i: d_(3i-2) * model(u_i)}: the substitution that puts a model into :attr:`objective`."""
+        """{Phi_i: d_(3i-2) * model(u_i)}: the substitution that puts a model into :attr:`objective`.
+
+        >>> lost_motion(1).substitute(StageErrorModel.linear(1, 2))
+        {Phi_1: d_1*(2*u_1 + 1)}
+        """
         models = _models(model, self.stages)
         return {p: d * m.at(u) for p, d, m, u in zip(self.backlash, self.diameters, models, self.ratios)}
 
@@ -291,16 +307,30 @@ class StageErrorModel:
         return cls(expr, f"Phi/d from j(a_w) = {c0} + {c1} a_w per mesh, module {m}, ring {ring}")
 
     def at(self, u: Any) -> sp.Expr:
-        """The model at a ratio (a number or a symbol)."""
+        """The model at a ratio (a number or a symbol).
+
+        >>> StageErrorModel.linear(1, 2).at(3)
+        7
+        """
         return self.expr.subs(U, u)
 
     def numeric(self) -> Callable[[float], float]:
-        """A float function of u."""
+        """A float function of u.
+
+        >>> StageErrorModel.from_expression("u**2").numeric()(1.5)
+        2.25
+        """
         f = sp.lambdify(U, self.expr, "math")
         return lambda x: float(f(x))
 
     def check_positive(self, lower: Any, upper: Any) -> None:
-        """Raise unless Phi/d > 0 over [lower, upper] (a lost motion is positive)."""
+        """Raise unless Phi/d > 0 over [lower, upper] (a lost motion is positive).
+
+        >>> StageErrorModel.linear(-3, 1).check_positive(2, 10)
+        Traceback (most recent call last):
+        ...
+        symkin.errors.InputError: the stage error model u - 3 is not positive at u = 2; a lost motion must be positive over the whole ratio range, so change the model or the bounds
+        """
         import numpy as np
 
         f = sp.lambdify(U, self.expr, "numpy")

@@ -45,6 +45,7 @@ __all__ = [
     "Design",
     "DiscreteSplit",
     "optimise_split",
+    "profile",
     "best_designs",
 ]
 
@@ -255,7 +256,12 @@ class ContinuousSplit:
     method: str
 
     def explain(self) -> list[str]:
-        """Sentences saying which bounds are active and why."""
+        """Sentences saying which bounds are active and why.
+
+        >>> r = optimise_split(100, 2, lower=2, upper=20, model=StageErrorModel.linear(1, 1))
+        >>> r.explain()[:2]
+        ['stage 1: u = 5, free (inside its bounds)', 'stage 2: u = 20, on its upper bound 20']
+        """
         p, n = self.problem, self.problem.stages
         lines = []
         for i, (u, a) in enumerate(zip(self.ratios, self.active), 1):

@@ -71,6 +71,12 @@ def stage_model_figure(stage_set: Any, models: dict[str, Any], *, module: float 
 
     ``models`` maps a label to a :class:`~symkin.lostmotion.StageErrorModel`; with
     ``module``, a right axis shows each stage's centre distance in length units.
+
+    >>> from symkin.lostmotion import StageErrorModel
+    >>> from symkin.stages import enumerate_stages
+    >>> fig = stage_model_figure(enumerate_stages(100, 4, zmin=15), {"a + b u": StageErrorModel.linear(1, 1)}, module=1)
+    >>> len(fig.axes)
+    2
     """
     fig = Figure(figsize=(6, 4.2))
     ax = fig.add_subplot()

@@ -362,7 +362,11 @@ class StageSet:
         return tuple(s.ratio for s in self.stages)
 
     def by_ratio(self, ratio: Any) -> Stage:
-        """The stage with this exact ratio."""
+        """The stage with this exact ratio.
+
+        >>> enumerate_stages(100, 4, zmin=15).by_ratio(6).sun
+        20
+        """
         r = sp.Rational(ratio)
         for s in self.stages:
             if s.ratio == r:
