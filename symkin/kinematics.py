@@ -17,7 +17,7 @@ from __future__ import annotations
 import itertools
 import random
 from collections.abc import Mapping as MappingABC
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any, Iterator, Mapping, Sequence
 
 import sympy as sp
@@ -244,33 +244,47 @@ class Speeds(MappingABC):
     """Angular velocity of every link of a mechanism for given known speeds.
 
     A read-only mapping from link name to its angular velocity (the known ones included);
-    gear names are accepted for the link that holds the gear.
+    gear names are accepted for the link that holds the gear.  Each link's law is put in
+    its printed form only when it is asked for.
 
     Attributes
     ----------
     mechanism : Mechanism
     known : tuple of (str, sympy expression)
-    link_speeds : tuple of (str, sympy expression)
-        Every moving link's speed, in the mechanism's link order.
+        The given speeds.
     coefficients : tuple of (str, tuple of sympy expression)
-        How each link's speed depends linearly on the known speeds (constant coefficients),
-        in the order of ``known``.
+        For every moving link, d omega_link / d omega_k for each known link k, in the
+        order of ``known``: constant laws (the speeds are linear in the known ones).
     """
 
     mechanism: Mechanism
     known: tuple[tuple[str, sp.Expr], ...]
-    link_speeds: tuple[tuple[str, sp.Expr], ...]
     coefficients: tuple[tuple[str, tuple[sp.Expr, ...]], ...]
+    _cache: dict = field(default_factory=dict, init=False, repr=False, compare=False, hash=False)
 
     def __getitem__(self, name: str) -> sp.Expr:
         link = self.mechanism.link(name).name
-        return dict(self.link_speeds)[link] if link != FRAME else sp.Integer(0)
+        if link == FRAME:
+            return sp.Integer(0)
+        if link not in self._cache:
+            given = dict(self.known)
+            if link in given:
+                self._cache[link] = given[link]
+            else:
+                row = dict(self.coefficients)[link]
+                self._cache[link] = _tidy(sp.Add(*(c * v for c, (_, v) in zip(row, self.known))))
+        return self._cache[link]
 
     def __iter__(self) -> Iterator[str]:
-        return (n for n, _ in self.link_speeds)
+        return (n for n, _ in self.coefficients)
 
     def __len__(self) -> int:
-        return len(self.link_speeds)
+        return len(self.coefficients)
+
+    @property
+    def link_speeds(self) -> tuple[tuple[str, sp.Expr], ...]:
+        """(link, speed) for every moving link, in the mechanism's order."""
+        return tuple((n, self[n]) for n in self)
 
     def law(self, name: str) -> Law:
         """The speed of one link as a :class:`~symkin.laws.Law`."""
@@ -281,7 +295,7 @@ class Speeds(MappingABC):
     def laws(self) -> tuple[Law, ...]:
         """The laws of every link whose speed was not given."""
         known = {n for n, _ in self.known}
-        return tuple(self.law(n) for n, _ in self.link_speeds if n not in known)
+        return tuple(self.law(n) for n in self if n not in known)
 
     def coefficient(self, link: str, known_link: str) -> sp.Expr:
         """d omega_link / d omega_known: the constant factor in the linear law."""
@@ -289,15 +303,29 @@ class Speeds(MappingABC):
         return dict(self.coefficients)[self.mechanism.link(link).name][names.index(self.mechanism.link(known_link).name)]
 
 
+def _omega_symbols(expr: sp.Expr) -> list[sp.Symbol]:
+    return sorted((s for s in expr.free_symbols if s.name.startswith("omega_")), key=str)
+
+
 def _tidy(expr: sp.Expr) -> sp.Expr:
-    """One fraction, cancelled, its numerator grouped by angular velocity.  Over a monomial
-    denominator a law with a constant term is split as a paper writes it (1 + z2 z4/(z1 z3))."""
+    """A law in the form a paper prints.
+
+    One fraction, cancelled.  A numerator that factors into several sums is printed as
+    their product ((r4 + r_s1)(r4 + r_s2)/(r_s1 r_s2) for two stages); over a monomial
+    denominator a law with a constant term is split (1 + z2 z4/(z1 z3)); a numerator with
+    angular velocities is grouped by them.
+    """
     num, den = sp.fraction(sp.cancel(sp.together(expr)))
+    speeds = _omega_symbols(num)
+    if not speeds and num.is_Add:
+        factored = sp.factor(num)
+        sums = [f for f in sp.Mul.make_args(factored) if (f.base if f.is_Pow else f).is_Add]
+        if len(sums) >= 2 or (sums and sums[0].is_Pow):
+            return factored / sp.factor(den)
     if not den.is_Add:
         split = sp.expand(num / den)
         if any(term.is_number for term in sp.Add.make_args(split)):
             return split
-    speeds = sorted((s for s in num.free_symbols if s.name.startswith("omega_")), key=str)
     if speeds:
         num = sp.collect(sp.expand(num), speeds, sp.factor)
     return sp.factor_terms(num) / sp.factor_terms(den)
@@ -342,45 +370,95 @@ def solve_speeds(mech: Mechanism, known: Mapping[str, Any]) -> Speeds:
         resolved[link] = _value(value, f"speed of link {link}")
     names = tuple(resolved)
     check_known_links(mech, names)
-    general = _general_solution(mech, tuple(sorted(names)))
-    subs = {S.omega(n): resolved[n] for n in names}
-    values = tuple((n, _tidy(general[n].subs(subs, simultaneous=True)) if n not in resolved else resolved[n]) for n in mech.link_names)
-    coeffs = []
-    for n in mech.link_names:
-        row = [sp.cancel(sp.diff(general[n], S.omega(k))) for k in names]
-        coeffs.append((n, tuple(row)))
-    return Speeds(mech, tuple(resolved.items()), values, tuple(coeffs))
+    order = tuple(sorted(names))
+    table = _coefficient_table(mech, order)
+    permutation = [order.index(n) for n in names]
+    coefficients = tuple((n, tuple(table[n][i] for i in permutation)) for n in mech.link_names)
+    return Speeds(mech, tuple(resolved.items()), coefficients)
 
 
-def _general_solution(mech: Mechanism, names: tuple[str, ...]) -> dict[str, sp.Expr]:
-    """Speeds of all links as linear laws in the symbols omega_k of the known links (cached)."""
+def _coefficient_table(mech: Mechanism, names: tuple[str, ...]) -> dict[str, tuple[sp.Expr, ...]]:
+    """d omega_link / d omega_k for every link and every known link k (cached).
 
-    def build() -> dict[str, sp.Expr]:
+    The contact conditions M omega = 0 split into A omega_unknown = B omega_known; A and B
+    hold polynomials in the dimensions, so the system is solved in their fraction field,
+    where every entry stays a cancelled rational function (fast even for long trains).
+    """
+
+    def build() -> dict[str, tuple[sp.Expr, ...]]:
         system = kinematic_system(mech)
         unknown = [n for n in system.links if n not in names]
-        unknown_syms = [S.omega(n) for n in unknown]
-        exprs = [e.lhs - e.rhs for e in system.equations]
-        out = {n: S.omega(n) for n in names}
-        if unknown:
-            sol = sp.linsolve(exprs, unknown_syms)
-            if not sol or sol is sp.S.EmptySet:
-                raise SingularConfigurationError(
-                    f"the contact conditions have no solution for known links {_fmt_links(names)}",
-                    dof=system.dof,
-                    admissible=system.admissible_choice(prefer=names),
-                )
-            (values,) = tuple(sol)
-            for n, v in zip(unknown, values):
-                if v.free_symbols & set(unknown_syms):
-                    raise SingularConfigurationError(
-                        f"the speed of link {n} is not determined by {_fmt_links(names)} for these dimensions",
-                        dof=system.dof,
-                        admissible=system.admissible_choice(prefer=names),
-                    )
-                out[n] = _tidy(v)
-        return out
+        table = {n: tuple(sp.Integer(int(n == k)) for k in names) for n in names}
+        if not unknown:
+            return table
+        column = {n: i for i, n in enumerate(system.links)}
+        rows = _independent_rows(system.matrix.extract(list(range(system.matrix.rows)), [column[u] for u in unknown]))
+        if len(rows) < len(unknown):
+            raise SingularConfigurationError(
+                f"the speeds of {_fmt_links(names)} do not determine every other link",
+                dof=system.dof,
+                admissible=system.admissible_choice(prefer=names),
+            )
+        A = system.matrix.extract(rows, [column[u] for u in unknown])
+        B = -system.matrix.extract(rows, [column[k] for k in names])
+        X = _solve_rational(A, B)
+        if X is None or any(e.has(sp.zoo, sp.nan, sp.oo) for e in X):
+            raise SingularConfigurationError(
+                f"the contact conditions cannot be solved for the speeds of {_fmt_links(names)} with these dimensions",
+                dof=system.dof,
+                admissible=system.admissible_choice(prefer=names),
+            )
+        for i, n in enumerate(unknown):
+            table[n] = tuple(X[i, j] for j in range(len(names)))
+        return table
 
-    return mech._memo(("general_solution", names), build)
+    return mech._memo(("coefficients", names), build)
+
+
+def _independent_rows(A: sp.Matrix) -> list[int]:
+    """Rows of A that are independent for generic dimensions, up to A's column count."""
+    generic = A.subs(_generic_values(A.free_symbols, 1)) if A.free_symbols else A
+    chosen: list[int] = []
+    for i in range(A.rows):
+        if len(chosen) == A.cols:
+            break
+        if generic.extract(chosen + [i], list(range(A.cols))).rank() > len(chosen):
+            chosen.append(i)
+    return chosen
+
+
+def _solve_rational(A: sp.Matrix, B: sp.Matrix) -> sp.Matrix | None:
+    """X with A X = B, computed in the fraction field of A's and B's entries.
+
+    Non-polynomial atoms (cos(beta), sqrt(2), ...) are treated as independent generators.
+    Returns None when A is singular.
+    """
+    from sympy.polys.matrices import DomainMatrix
+    from sympy.polys.matrices.exceptions import DMNonInvertibleMatrixError
+
+    entries = list(A) + list(B)
+    atoms = {a for e in entries for a in sp.preorder_traversal(e) if _is_generator(a)}
+    to_dummy = {a: sp.Dummy() for a in atoms}
+    back = {d: a for a, d in to_dummy.items()}
+    dA = DomainMatrix.from_Matrix(A.xreplace(to_dummy))
+    dB = DomainMatrix.from_Matrix(B.xreplace(to_dummy))
+    domain = dA.domain.unify(dB.domain)
+    if domain.has_assoc_Field:
+        domain = domain.get_field()
+    try:
+        X = dA.convert_to(domain).lu_solve(dB.convert_to(domain)).to_Matrix()
+    except DMNonInvertibleMatrixError:
+        return None
+    return X.xreplace(back) if back else X
+
+
+def _is_generator(expr: sp.Basic) -> bool:
+    """A sub-expression that is neither a number, a symbol, nor built by + * and integer powers."""
+    if expr.is_Symbol or expr.is_Rational or expr.is_Add or expr.is_Mul:
+        return False
+    if expr.is_Pow:
+        return not expr.exp.is_Integer
+    return isinstance(expr, sp.Expr) and not expr.is_Integer
 
 
 def ratio(mech: Mechanism, driver: str, driven: str, fixed: str | Sequence[str] | None = None) -> Law:
@@ -417,14 +495,14 @@ def ratio(mech: Mechanism, driver: str, driven: str, fixed: str | Sequence[str] 
         raise InputError("the frame (link 0) cannot drive; name a moving link as driver")
     known[a] = S.omega(a)
     speeds = solve_speeds(mech, known)
-    wb = speeds[b]
-    if sp.simplify(wb) == 0:
+    coefficient = speeds.coefficient(b, a)  # omega_b / omega_a: a cancelled rational function
+    if coefficient == 0:
         raise SingularConfigurationError(
             f"link {b} stays still when {a} drives with {_fmt_links(cs)} fixed, so the ratio is infinite",
             dof=kinematic_system(mech).dof,
             admissible=(a,) + cs,
         )
-    value = _tidy(S.omega(a) / wb)
+    value = _tidy(1 / coefficient)
     label = [mech.link(x).name for x in (driver, driven)]
     desc = f"ratio omega_{label[0]}/omega_{label[1]} with {_fmt_links(cs) if cs else 'nothing'} fixed"
     return Law(S.ratio_symbol(a, b, cs), value, desc)
