@@ -17,6 +17,9 @@ from . import cardan, drives, lostmotion, ratiosplit, schemes, stages, symbols, 
 from .errors import (
     CoaxialityWarning,
     DeterminacyError,
+    PoleError,
+    PoleWarning,
+    PrecisionWarning,
     InputError,
     ModelError,
     OverdeterminedError,
@@ -31,6 +34,7 @@ from .kinematics import Speeds, ratio, solve_speeds
 from .laws import Law
 from .model import FRAME, Gear, Link, Mechanism, Mesh
 from .numeric import NumericFunction, compile
+from .numeric.scene import Scene
 from .particles import FrameMotion, Motion, Particle
 from .printing import latex
 
@@ -48,6 +52,7 @@ __all__ = [
     "Particle",
     "FrameMotion",
     "NumericFunction",
+    "Scene",
     "ratio",
     "solve_speeds",
     "latex",
@@ -71,4 +76,7 @@ __all__ = [
     "ToolError",
     "SymkinWarning",
     "CoaxialityWarning",
+    "PoleError",
+    "PoleWarning",
+    "PrecisionWarning",
 ]

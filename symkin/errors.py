@@ -26,6 +26,9 @@ __all__ = [
     "ToolError",
     "SymkinWarning",
     "CoaxialityWarning",
+    "PoleError",
+    "PoleWarning",
+    "PrecisionWarning",
 ]
 
 
@@ -70,6 +73,10 @@ class SingularConfigurationError(DeterminacyError):
     """The law asked for is singular for these dimensions (a vanishing denominator)."""
 
 
+class PoleError(InputError):
+    """A compiled law was evaluated at a pole (a denominator vanishes at these inputs)."""
+
+
 class UnsupportedError(SymkinError, NotImplementedError):
     """A valid description that this version of symkin cannot handle yet."""
 
@@ -84,3 +91,11 @@ class SymkinWarning(UserWarning):
 
 class CoaxialityWarning(SymkinWarning):
     """The tooth numbers or radii put a planet's axis at two different distances."""
+
+
+class PoleWarning(SymkinWarning):
+    """A float evaluation met a pole: the points concerned hold inf or nan, never a finite wrong value."""
+
+
+class PrecisionWarning(SymkinWarning):
+    """A numeric request was served at a different speed or precision than asked (a fallback), or loses digits."""

@@ -1,0 +1,58 @@
+"""The four laws the numeric benchmarks measure, each behind one function.
+
+``slider_acceleration`` builds the elliptical-drive slider law from the drive law of the
+Luo & Li (2018) section 3 as given in the papers guide (theta_H(t) with the principal
+arctan, omega_H(t) = omega (1 - e^2)/(1 - 2 e cos(m omega t) + e^2)) substituted into
+s = 2 l cos(theta_2 - theta_H) and differentiated by SymPy.  When the engine's
+elliptical drive lands, switch this one function to the engine's derived law.
+"""
+
+from __future__ import annotations
+
+import sympy as sp
+
+from symkin import schemes
+from symkin import symbols as S
+
+E = sp.Symbol("e", positive=True)  # eccentricity, 0 < e < 1
+M = sp.Symbol("m", positive=True)  # order of the elliptical gears
+W = sp.Symbol("omega", positive=True)  # input speed
+L = sp.Symbol("l", positive=True)  # carrier length = planet radius
+THETA2 = sp.Symbol("theta_2", real=True)  # slider line angle
+THETA0 = sp.Symbol("theta_H0", real=True)  # initial carrier angle
+RANGES = {E: (0, 1)}
+
+
+def ratio_law() -> sp.Expr:
+    """AA, i_1H^(4) in tooth numbers (the 2009 paper's numeric examples)."""
+    return schemes.two_row("AA", teeth=True).ratio("1", "H", fixed="4").rhs
+
+
+def differential_law() -> sp.Expr:
+    """II, omega_H given omega_1 and omega_4, with r_4 from coaxiality (r4 = r1 - r2 + r3)."""
+    law = schemes.two_row("II").speeds({"1": S.omega("1"), "4": S.omega("4")}).law("H").rhs
+    r1, r2, r3, r4 = (S.radius(i) for i in "1234")
+    return sp.factor(law.subs(r4, r1 - r2 + r3))
+
+
+def planet_acceleration() -> sp.ImmutableMatrix:
+    """AI two-row, gear 4 fixed, sun 1 at omega_1: acceleration of the planet particle at
+    the pitch point with gear 1 at t = 0, (r_1, 0)."""
+    motion = schemes.two_row("AI").motion({"1": S.omega("1"), "4": 0})
+    return motion.particle("23", (S.radius("1"), 0)).acceleration
+
+
+def slider_laws() -> tuple[sp.Expr, sp.Expr, sp.Expr]:
+    """(s, V_s, a_s) of the Cardan slider driven by an elliptical gear pair."""
+    t = S.t
+    theta = THETA0 + 2 / M * sp.atan((1 + E) / (1 - E) * sp.tan(M * W * t / 2))
+    omega_h = W * (1 - E**2) / (1 - 2 * E * sp.cos(M * W * t) + E**2)
+    th = sp.Function("theta_H")(t)
+    s = 2 * L * sp.cos(THETA2 - th)
+    v, a = sp.diff(s, t), sp.diff(s, t, 2)
+    subs = [(sp.Derivative(th, (t, 2)), sp.diff(omega_h, t)), (sp.Derivative(th, t), omega_h), (th, theta)]
+    return tuple(x.subs(subs) for x in (s, v, a))  # type: ignore[return-value]
+
+
+def slider_acceleration() -> sp.Expr:
+    return slider_laws()[2]

@@ -1,0 +1,474 @@
+"""The backends :func:`symkin.compile` chooses by name, and how each evaluates.
+
+Each backend is a class in :data:`BACKENDS` whose ``build(plan)`` returns an evaluator
+``evaluate(values) -> list of outputs``; :class:`~symkin.numeric.function.NumericFunction`
+wraps it.  Adding a backend means adding a class and a key.
+
+========  ==========================================  =====================
+key       what                                        precision
+========  ==========================================  =====================
+numpy     vectorised NumPy, cse, in chunks            float64 or float32
+numba     one fused compiled loop per call, threads   float64 or float32
+mpmath    arbitrary precision, point by point         ``digits`` digits
+exact     rational arithmetic (fractions.Fraction)    exact
+========  ==========================================  =====================
+
+    >>> sorted(BACKENDS)
+    ['exact', 'mpmath', 'numba', 'numpy']
+"""
+
+from __future__ import annotations
+
+import math
+import threading
+import warnings
+from dataclasses import dataclass, field
+from fractions import Fraction
+from typing import Any, Callable, Sequence
+
+import numpy as np
+import sympy as sp
+
+from ..errors import InputError, PoleError, PrecisionWarning, UnsupportedError
+from . import runtime
+from .codegen import ExactPrinter, FloatPrinter, kernel_source
+from .stable import ExactRatio, plain_form
+
+__all__ = ["Plan", "BACKENDS", "NumpyBackend", "NumbaBackend", "MpmathBackend", "ExactBackend", "numba_available"]
+
+_INT64_SAFE = 2**62
+
+
+@dataclass(frozen=True)
+class Plan:
+    """What to compile: the laws as given, their stable forms, and the options."""
+
+    exprs: tuple[sp.Expr, ...]  # as given
+    stable: tuple[sp.Expr, ...]  # rewritten (float backends) or as given
+    args: tuple[sp.Symbol, ...]
+    names: tuple[str, ...]
+    precision: str
+    digits: int | None
+    cse: bool
+    chunk: int
+    threads: int | None
+    integer_args: tuple[bool, ...] = field(default=())
+
+    @property
+    def dtype(self) -> Any:
+        return np.float32 if self.precision == "float32" else np.float64
+
+
+# --------------------------------------------------------------------------- inputs
+def _as_integers(a: np.ndarray, name: str) -> np.ndarray:
+    if a.dtype.kind in "iu":
+        return a.astype(np.int64, copy=False)
+    if a.dtype == object:
+        try:
+            return np.asarray([int(v) if float(v) == int(v) else math.nan for v in a.ravel()], dtype=object).reshape(a.shape)
+        except (TypeError, ValueError, OverflowError):
+            raise InputError(f"{name} is an integer (a tooth number); got values that are not whole numbers") from None
+    if a.dtype.kind == "f":
+        ok = np.isfinite(a).all() and (np.abs(a) < 2.0**53).all() and (a == np.round(a)).all()
+        if ok:
+            return a.astype(np.int64)
+    raise InputError(f"{name} is an integer (a tooth number); give whole numbers below 2^53, got {a.dtype} values that are not")
+
+
+def _as_floats(a: np.ndarray, name: str, dtype: Any) -> np.ndarray:
+    if a.dtype.kind in "fiu":
+        return a.astype(dtype, copy=False)
+    if a.dtype.kind == "b":
+        raise InputError(f"{name} must be a number, got booleans")
+    try:
+        return a.astype(dtype)
+    except (TypeError, ValueError):
+        raise InputError(f"{name} must be a real number or an array of them, got {a.dtype} values") from None
+
+
+def broadcast_flat(values: Sequence[np.ndarray], names: Sequence[str]) -> tuple[tuple[int, ...], list[np.ndarray]]:
+    """The common shape and each value as a flat array of that size, or a 0-d scalar."""
+    try:
+        shape = np.broadcast_shapes(*(v.shape for v in values))
+    except ValueError:
+        shapes = ", ".join(f"{n} {v.shape}" for n, v in zip(names, values))
+        raise InputError(f"the argument arrays do not broadcast to one shape ({shapes}); give arrays of matching shapes") from None
+    n = math.prod(shape)
+    flat = []
+    for v in values:
+        if v.size == 1 and n != 1 or v.ndim == 0:
+            flat.append(v.reshape(()))
+        elif v.shape == shape:
+            flat.append(np.ascontiguousarray(v).reshape(-1))
+        else:
+            flat.append(np.ascontiguousarray(np.broadcast_to(v, shape)).reshape(-1))
+    return shape, flat
+
+
+# --------------------------------------------------------------------------- numpy
+class NumpyBackend:
+    """Vectorised NumPy code (``sympy.lambdify`` with a printer for the stable forms),
+    evaluated in chunks so that temporaries stay small and are reused."""
+
+    key = "numpy"
+    precisions = ("float64", "float32")
+
+    def __init__(self, plan: Plan):
+        self.plan = plan
+        self.integer_syms = self._exact_integer_symbols(plan)
+        self.twins = {s: sp.Symbol(f"_int_{s.name}", integer=True) for s in self.integer_syms}
+        exprs = [self._twin(e) for e in plan.stable]
+        printer = FloatPrinter(plan.precision)
+        modules = [runtime.NAMESPACE[plan.precision], "numpy"]
+        target = list(exprs)
+        self.func = sp.lambdify(
+            list(plan.args) + list(self.twins.values()), target, modules=modules, printer=printer, cse=plan.cse, docstring_limit=0
+        )
+        self.source = _lambdify_source(self.func)
+        self.polys = [a for e in plan.stable for node in sp.preorder_traversal(e) if isinstance(node, ExactRatio) for a in node.args]
+        outside = set()
+        for e in plan.stable:
+            outside |= e.replace(lambda n: isinstance(n, ExactRatio), lambda n: sp.Integer(1)).free_symbols
+        self.float_used = tuple(s in outside for s in plan.args)
+
+    @staticmethod
+    def _exact_integer_symbols(plan: Plan) -> tuple[sp.Symbol, ...]:
+        used: set[sp.Symbol] = set()
+        for e in plan.stable:
+            for node in sp.preorder_traversal(e):
+                if isinstance(node, ExactRatio):
+                    used |= node.free_symbols
+        return tuple(s for s in plan.args if s in used)
+
+    def _twin(self, e: sp.Expr) -> sp.Expr:
+        if not self.twins:
+            return e
+        return e.replace(lambda n: isinstance(n, ExactRatio), lambda n: n.xreplace(self.twins))
+
+    def prepare(self, values: Sequence[Any]) -> tuple[tuple[int, ...], list[np.ndarray], list[np.ndarray]]:
+        plan = self.plan
+        arrays = [np.asarray(v) for v in values]
+        ints = [
+            _as_integers(a, s.name) if s in self.twins else None for a, s in zip(arrays, plan.args)
+        ]
+        floats = []
+        for a, i, s, used in zip(arrays, ints, plan.args, self.float_used):
+            if i is None:
+                floats.append(_as_floats(a, s.name, plan.dtype))
+            elif not used:  # only its exact integer value is needed
+                floats.append(np.zeros((), dtype=plan.dtype))
+            else:
+                floats.append(np.asarray(i, dtype=np.float64).astype(plan.dtype, copy=False))
+        int_list = [i for i in ints if i is not None]
+        shape, flat = broadcast_flat(floats + int_list, [s.name for s in plan.args] + [s.name for s in self.twins])
+        k = len(floats)
+        return shape, flat[:k], flat[k:]
+
+    def needs_python_integers(self, ints: Sequence[np.ndarray]) -> bool:
+        """True when an integer polynomial could overflow int64 for these inputs."""
+        if not self.polys or not ints:
+            return False
+        if any(i.dtype == object for i in ints):
+            return True
+        big = {s: max(abs(int(i.max())), abs(int(i.min()))) if i.size else 0 for s, i in zip(self.integer_syms, ints)}
+        for poly in self.polys:
+            bound = 0
+            for term in sp.Add.make_args(sp.expand(poly)):
+                c, factors = term.as_coeff_mul()
+                mag = abs(int(c))
+                for f in factors:
+                    b, e = f.as_base_exp()
+                    mag *= big.get(b, 0) ** int(e)
+                bound += mag
+            if bound >= _INT64_SAFE:
+                return True
+        return False
+
+    def run(self, floats: Sequence[Any], ints: Sequence[Any]) -> list[Any]:
+        with np.errstate(all="ignore"):
+            out = self.func(*floats, *ints)
+        return list(out)
+
+    def evaluate(self, values: Sequence[Any], outs: Sequence[np.ndarray] | None = None) -> tuple[tuple[int, ...], list[np.ndarray]]:
+        shape, floats, ints = self.prepare(values)
+        if self.needs_python_integers(ints):
+            ints = [i.astype(object) for i in ints]
+        n = math.prod(shape)
+        results = _allocate(outs, len(self.plan.stable), n, self.plan.dtype)
+        chunk = max(1, self.plan.chunk)
+        flagged = False
+        for start in range(0, n, chunk):
+            sl = slice(start, min(n, start + chunk))
+            part = self.run([f[sl] if f.ndim else f for f in floats], [i[sl] if i.ndim else i for i in ints])
+            for o, r in zip(results, part):
+                o[sl] = r
+                flagged = flagged or not np.isfinite(o[sl]).all()
+        self.flagged = flagged
+        return shape, results
+
+    def evaluate_points(self, values: Sequence[Any], index: np.ndarray) -> list[np.ndarray]:
+        """Re-evaluate a few points (given by flat index) with Python integers."""
+        shape, floats, ints = self.prepare(values)
+        take = lambda a: a[index] if a.ndim else a  # noqa: E731
+        ints = [take(i).astype(object) for i in ints]
+        part = self.run([take(f) for f in floats], ints)
+        return [np.broadcast_to(np.asarray(r, dtype=self.plan.dtype), index.shape) for r in part]
+
+
+def _allocate(outs: Sequence[np.ndarray] | None, count: int, n: int, dtype: Any) -> list[np.ndarray]:
+    if outs is None:
+        return [np.empty(n, dtype=dtype) for _ in range(count)]
+    outs = list(outs)
+    if len(outs) != count:
+        raise InputError(f"out= needs {count} arrays, one per output, got {len(outs)}")
+    flat = []
+    for o in outs:
+        if not isinstance(o, np.ndarray) or o.size != n or o.dtype != dtype or not o.flags.c_contiguous:
+            raise InputError(f"each out= array must be a C-contiguous {np.dtype(dtype).name} array of {n} elements")
+        flat.append(o.reshape(-1))
+    return flat
+
+
+def _lambdify_source(func: Callable[..., Any]) -> str:
+    import inspect
+
+    try:
+        return inspect.getsource(func)
+    except (OSError, TypeError):  # pragma: no cover
+        return ""
+
+
+# --------------------------------------------------------------------------- numba
+def numba_available() -> bool:
+    """True when Numba can be imported."""
+    try:
+        import numba  # noqa: F401
+    except ImportError:
+        return False
+    return True
+
+
+_NUMBA_LOCK = threading.Lock()
+_PARALLEL_FROM = 1 << 15
+
+
+class NumbaBackend(NumpyBackend):
+    """One fused loop per call, compiled by Numba (``parallel=True`` over the available
+    threads for large calls); integer parts in int64, checked in the loop for overflow,
+    and re-evaluated with Python integers where int64 could overflow."""
+
+    key = "numba"
+
+    def __init__(self, plan: Plan):
+        super().__init__(plan)  # the NumPy code re-evaluates flagged points exactly
+        self.kernels: dict[tuple[tuple[bool, ...], bool], Any] = {}
+        self.kernel_sources: dict[tuple[bool, ...], str] = {}
+        self.namespace = runtime.numba_namespace(plan.precision)
+
+    def _kernel(self, scalar: tuple[bool, ...], parallel: bool) -> Any:
+        key = (scalar, parallel)
+        if key not in self.kernels:
+            import numba
+
+            plan = self.plan
+            integer = tuple(s in self.twins for s in plan.args)
+            src = kernel_source(plan.stable, plan.args, integer, scalar, plan.precision, plan.cse)
+            self.kernel_sources[scalar] = src
+            ns: dict[str, Any] = {"numpy": np, "prange": numba.prange, "_F": plan.dtype, **self.namespace}
+            exec(compile(src, "<symkin kernel>", "exec"), ns)  # generated from SymPy, no user text
+            with _NUMBA_LOCK:
+                self.kernels[key] = numba.njit(parallel=parallel, error_model="numpy", fastmath=False, nogil=True)(ns["_kernel"])
+        return self.kernels[key]
+
+    @property
+    def source(self) -> str:  # type: ignore[override]
+        return next(iter(self.kernel_sources.values()), "(compiled on first call)")
+
+    @source.setter
+    def source(self, value: str) -> None:
+        pass
+
+    def evaluate(self, values: Sequence[Any], outs: Sequence[np.ndarray] | None = None) -> tuple[tuple[int, ...], list[np.ndarray]]:
+        plan = self.plan
+        arrays = [np.asarray(v) for v in values]
+        conv = [
+            _as_integers(a, s.name) if s in self.twins else _as_floats(a, s.name, plan.dtype) for a, s in zip(arrays, plan.args)
+        ]
+        if any(c.dtype == object for c in conv):
+            return super().evaluate(values, outs)
+        shape, flat = broadcast_flat(conv, [s.name for s in plan.args])
+        n = math.prod(shape)
+        results = _allocate(outs, len(plan.stable), n, plan.dtype)
+        scalar = tuple(f.ndim == 0 for f in flat)
+        parallel = n >= _PARALLEL_FROM
+        kernel = self._kernel(scalar, parallel)
+        inputs = [f[()] if f.ndim == 0 else f for f in flat]
+        if plan.threads and parallel:
+            import numba
+
+            before = numba.get_num_threads()
+            numba.set_num_threads(min(plan.threads, numba.config.NUMBA_NUM_THREADS))
+            try:
+                bad = kernel(*inputs, *results, n)
+            finally:
+                numba.set_num_threads(before)
+        else:
+            bad = kernel(*inputs, *results, n)
+        if bad and self.twins:
+            index = np.flatnonzero(np.logical_or.reduce([~np.isfinite(r) for r in results]))
+            fixed = self.evaluate_points(values, index)
+            for r, f in zip(results, fixed):
+                r[index] = f
+        self.flagged = bool(bad)
+        return shape, results
+
+
+# --------------------------------------------------------------------------- mpmath
+def _to_mpf(v: Any, name: str) -> Any:
+    import mpmath
+
+    if isinstance(v, (mpmath.mpf, mpmath.mpc)):
+        return v
+    if isinstance(v, (bool, np.bool_)):
+        raise InputError(f"{name} must be a number, got {v!r}")
+    if isinstance(v, (int, np.integer)):
+        return mpmath.mpf(int(v))
+    if isinstance(v, (float, np.floating)):
+        return mpmath.mpf(float(v))  # the binary value, exactly
+    if isinstance(v, Fraction):
+        return mpmath.mpf(v.numerator) / v.denominator
+    if isinstance(v, sp.Rational):
+        return mpmath.mpf(int(v.p)) / int(v.q)
+    if isinstance(v, str):
+        from ..parsing import parse_number
+
+        r = parse_number(v, what=name)
+        return mpmath.mpf(int(r.p)) / int(r.q)
+    if isinstance(v, sp.Expr) and v.is_number:
+        return mpmath.mpf(sp.N(v, mpmath.mp.dps + 5))
+    raise InputError(f"{name} must be a number (int, float, Fraction or decimal text), got {v!r}")
+
+
+def _object_points(values: Sequence[Any], names: Sequence[str]) -> tuple[tuple[int, ...], list[np.ndarray]]:
+    arrays = []
+    for v, nm in zip(values, names):
+        a = np.empty((), dtype=object)
+        if isinstance(v, (list, tuple, np.ndarray)):
+            a = np.asarray(v, dtype=object)
+        else:
+            a[()] = v
+        arrays.append(a)
+    try:
+        shape = np.broadcast_shapes(*(a.shape for a in arrays))
+    except ValueError:
+        raise InputError("the argument arrays do not broadcast to one shape; give arrays of matching shapes") from None
+    return shape, [np.broadcast_to(a, shape) for a in arrays]
+
+
+class MpmathBackend:
+    """mpmath at ``digits`` significant digits, point by point (the reference backend)."""
+
+    key = "mpmath"
+    precisions = ("mpmath",)
+
+    def __init__(self, plan: Plan):
+        self.plan = plan
+        exprs = [plain_form(e) for e in plan.exprs]
+        self.func = sp.lambdify(list(plan.args), exprs, modules="mpmath", cse=plan.cse, docstring_limit=0)
+        self.source = _lambdify_source(self.func)
+
+    def evaluate(self, values: Sequence[Any], outs: Sequence[np.ndarray] | None = None) -> tuple[tuple[int, ...], list[np.ndarray]]:
+        import mpmath
+
+        names = [s.name for s in self.plan.args]
+        shape, arrays = _object_points(values, names)
+        results = [np.empty(shape, dtype=object) for _ in self.plan.exprs]
+        with mpmath.workdps(self.plan.digits or 50):
+            for idx in np.ndindex(shape):
+                point = [_to_mpf(a[idx], nm) for a, nm in zip(arrays, names)]
+                try:
+                    out = self.func(*point)
+                except ZeroDivisionError:
+                    raise PoleError(_pole_message(self.plan, names, point)) from None
+                for r, v in zip(results, out):
+                    r[idx] = v
+        return shape, [r.reshape(-1) for r in results]
+
+
+# --------------------------------------------------------------------------- exact
+def _to_fraction(v: Any, name: str) -> Any:
+    if isinstance(v, (bool, np.bool_)):
+        raise InputError(f"{name} must be a number, got {v!r}")
+    if isinstance(v, (int, np.integer)):
+        return Fraction(int(v))  # so that / stays exact
+    if isinstance(v, Fraction):
+        return v
+    if isinstance(v, sp.Rational):
+        return Fraction(int(v.p), int(v.q))
+    if isinstance(v, str):
+        from ..parsing import parse_number
+
+        r = parse_number(v, what=name)
+        return Fraction(int(r.p), int(r.q))
+    raise InputError(
+        f"{name} must be exact for the exact backend (int, Fraction, or decimal text such as '0.8'), got {v!r}; "
+        "use backend='mpmath' for floats"
+    )
+
+
+class ExactBackend:
+    """Exact rational arithmetic on :class:`fractions.Fraction` (rational laws only)."""
+
+    key = "exact"
+    precisions = ("exact",)
+
+    def __init__(self, plan: Plan):
+        self.plan = plan
+        exprs = [plain_form(e) for e in plan.exprs]
+        for e in exprs:
+            bad = [n for n in sp.preorder_traversal(e) if not (n.is_Symbol or n.is_Rational or n.is_Add or n.is_Mul or (n.is_Pow and n.exp.is_Integer))]
+            if bad:
+                raise UnsupportedError(
+                    f"the exact backend evaluates rational laws only, and this one contains {bad[0]}; "
+                    "use backend='mpmath' with digits=... instead"
+                )
+        self.func = sp.lambdify(
+            list(plan.args), exprs, modules=[{"Fraction": Fraction}], printer=ExactPrinter(), cse=plan.cse, docstring_limit=0
+        )
+        self.source = _lambdify_source(self.func)
+
+    def evaluate(self, values: Sequence[Any], outs: Sequence[np.ndarray] | None = None) -> tuple[tuple[int, ...], list[np.ndarray]]:
+        names = [s.name for s in self.plan.args]
+        shape, arrays = _object_points(values, names)
+        results = [np.empty(shape, dtype=object) for _ in self.plan.exprs]
+        for idx in np.ndindex(shape):
+            point = [_to_fraction(a[idx], nm) for a, nm in zip(arrays, names)]
+            try:
+                out = self.func(*point)
+            except ZeroDivisionError:
+                raise PoleError(_pole_message(self.plan, names, point)) from None
+            for r, v in zip(results, out):
+                r[idx] = Fraction(v)
+        return shape, [r.reshape(-1) for r in results]
+
+
+def _pole_message(plan: Plan, names: Sequence[str], point: Sequence[Any]) -> str:
+    at = ", ".join(f"{n}={v}" for n, v in zip(names, point))
+    return f"{', '.join(plan.names)} has a pole at {at} (a denominator vanishes); choose inputs away from it"
+
+
+#: Backends by key (see the module docstring).
+BACKENDS: dict[str, type] = {
+    "numpy": NumpyBackend,
+    "numba": NumbaBackend,
+    "mpmath": MpmathBackend,
+    "exact": ExactBackend,
+}
+
+
+def warn_no_numba() -> None:
+    warnings.warn(
+        "numba is not installed (pip install 'symkin[numba]'); compiling with NumPy instead",
+        PrecisionWarning,
+        stacklevel=4,
+    )

@@ -1,0 +1,197 @@
+"""Printers and generated source for the compiled laws.
+
+:class:`FloatPrinter` prints NumPy code (vectorised) or, with ``kernel=True``, scalar
+code for a Numba loop; it knows the stable-form nodes of :mod:`symkin.numeric.stable`.
+:func:`kernel_source` writes the fused loop.  :class:`ExactPrinter` prints rational
+arithmetic on :class:`fractions.Fraction`.
+
+    >>> import sympy as sp
+    >>> from symkin.numeric.stable import ExactRatio
+    >>> z = sp.Symbol("z", integer=True)
+    >>> FloatPrinter().doprint(ExactRatio(z - 1, z) + sp.Rational(1, 3))
+    '_symkin_exact_ratio(z - 1, z) + 1/3'
+"""
+
+from __future__ import annotations
+
+from typing import Any, Sequence
+
+import sympy as sp
+from sympy.printing.numpy import NumPyPrinter
+from sympy.printing.pycode import PythonCodePrinter
+
+from .stable import ExactRatio, Group, ReducedPhase
+
+__all__ = ["FloatPrinter", "ExactPrinter", "kernel_source", "abs_bound"]
+
+
+class FloatPrinter(NumPyPrinter):
+    """NumPy printer for float32/float64 code, vectorised or scalar (``kernel=True``)."""
+
+    def __init__(self, precision: str = "float64", kernel: bool = False, settings: dict | None = None):
+        super().__init__(settings or {})
+        self.precision = precision
+        self.kernel = kernel
+        self._integer_mode = False
+
+    # numbers: a float32 kernel wraps constants so that Numba keeps float32
+    def _wrap(self, text: str) -> str:
+        if self.kernel and self.precision == "float32" and not self._integer_mode:
+            return f"_F({text})"
+        return text
+
+    def _print_Integer(self, expr: sp.Integer) -> str:
+        return self._wrap(str(expr.p))
+
+    def _print_Rational(self, expr: sp.Rational) -> str:
+        return self._wrap(f"{expr.p}/{expr.q}")
+
+    def _print_Float(self, expr: sp.Float) -> str:
+        return self._wrap(repr(float(expr)))
+
+    def _print_NumberSymbol(self, expr: Any) -> str:
+        return self._wrap(repr(float(expr)))
+
+    _print_Pi = _print_NumberSymbol
+    _print_Exp1 = _print_NumberSymbol
+
+    def _print_Pow(self, expr: sp.Pow, rational: bool = False) -> str:
+        base, exp = expr.as_base_exp()
+        if self.kernel and exp.is_Integer and 0 < abs(int(exp)) <= 4:
+            b = self.parenthesize(base, 100)
+            prod = "*".join([b] * abs(int(exp)))
+            return f"({prod})" if exp > 0 else f"({self._print(sp.Integer(1))}/({prod}))"
+        if self.kernel and self.precision == "float32" and not (exp.is_Rational and exp.q == 2):
+            return f"{self.parenthesize(base, 100)}**{self._print(exp)}"
+        return super()._print_Pow(expr, rational=rational)
+
+    def _print_Group(self, expr: Group) -> str:
+        return f"({self._print(expr.args[0])})"
+
+    def _print_ExactRatio(self, expr: ExactRatio) -> str:
+        saved, self._integer_mode = self._integer_mode, True
+        try:
+            num, den = (self._print(a) for a in expr.args)
+        finally:
+            self._integer_mode = saved
+        if self.kernel:
+            bn, bd = (self._print(abs_bound(a)) for a in expr.args)
+            return f"_symkin_exact_ratio({num}, {den}, {bn}, {bd})"
+        return f"_symkin_exact_ratio({num}, {den})"
+
+    def _print_ReducedPhase(self, expr: ReducedPhase) -> str:
+        p, q, *xs = expr.args
+        xs = list(xs) + [sp.Integer(1)] * (3 - len(xs))
+        saved, self._integer_mode = self._integer_mode, True
+        try:
+            parts = [self._print(x) for x in xs]
+        finally:
+            self._integer_mode = saved
+        return f"_symkin_reduced_phase({int(p)}, {int(q)}, {', '.join(parts)})"
+
+
+#: Name prefix of the float twin of an integer symbol inside a kernel.
+FLOAT_TWIN = "_f_"
+
+
+def abs_bound(poly: sp.Expr) -> sp.Expr:
+    """sum |c| prod |z|^d over the terms of an integer polynomial, in the float twins of
+    its symbols: an upper bound of every partial sum met while evaluating it."""
+    terms = []
+    for term in sp.Add.make_args(sp.expand(poly)):
+        coeff, factors = term.as_coeff_mul()
+        mags = []
+        for f in factors:
+            base, exp = f.as_base_exp()
+            mags.append(sp.Abs(sp.Symbol(FLOAT_TWIN + base.name)) ** exp)
+        terms.append(sp.Float(abs(float(coeff))) * sp.Mul(*mags))
+    return sp.Add(*terms)
+
+
+def kernel_source(
+    exprs: Sequence[sp.Expr],
+    args: Sequence[sp.Symbol],
+    integer_args: Sequence[bool],
+    scalar: Sequence[bool],
+    precision: str,
+    cse: bool,
+) -> str:
+    """Source of ``_kernel(A0, ..., O0, ..., n)``: one fused loop over n points writing
+    every output, returning how many outputs are not finite.
+
+    Integer arguments arrive as int64 (their float values are ``_f_<name>``); scalar
+    arguments arrive as numbers.
+    """
+    names = [f"a{i}" for i in range(len(args))]
+    ren = {}
+    for s, nm, is_int in zip(args, names, integer_args):
+        ren[s] = sp.Symbol(nm)  # in ExactRatio: the integer value; elsewhere: its float twin
+    exprs = [e.xreplace(ren) for e in exprs]
+    float_ren = {sp.Symbol(nm): sp.Symbol(FLOAT_TWIN + nm) for nm, is_int in zip(names, integer_args) if is_int}
+
+    def floats_outside_exact(e: sp.Expr) -> sp.Expr:
+        if not float_ren:
+            return e
+        if isinstance(e, ExactRatio) or e.is_Atom:
+            return float_ren.get(e, e)  # type: ignore[arg-type]
+        if isinstance(e, ReducedPhase):
+            return e.func(*(float_ren.get(a, a) for a in e.args))
+        return e.func(*(floats_outside_exact(a) for a in e.args))
+
+    exprs = [floats_outside_exact(e) for e in exprs]
+    # exact ratios first, each into its own variable: cse must not move integer arithmetic
+    ratios: dict[sp.Expr, sp.Symbol] = {}
+    for e in exprs:
+        for node in sp.preorder_traversal(e):
+            if isinstance(node, ExactRatio) and node not in ratios:
+                ratios[node] = sp.Symbol(f"_r{len(ratios)}")
+    exprs = [e.xreplace(ratios) for e in exprs]
+    if cse:
+        repl, reduced = sp.cse(exprs, symbols=sp.numbered_symbols("_x"), optimizations=None)
+    else:
+        repl, reduced = [], list(exprs)
+    printer = FloatPrinter(precision, kernel=True)
+    outs = [f"O{k}" for k in range(len(exprs))]
+    lines = [f"def _kernel({', '.join(n.upper() for n in names)}, {', '.join(outs)}, n):", "    _bad = 0"]
+    for nm, is_int, sc in zip(names, integer_args, scalar):
+        if sc:
+            lines.append(f"    {nm} = {nm.upper()}")
+            if is_int:
+                lines.append(f"    {FLOAT_TWIN}{nm} = _F({nm})")
+    lines.append("    for _i in prange(n):")
+    for nm, is_int, sc in zip(names, integer_args, scalar):
+        if not sc:
+            lines.append(f"        {nm} = {nm.upper()}[_i]")
+            if is_int:
+                lines.append(f"        {FLOAT_TWIN}{nm} = _F({nm})")
+    for node, sym in ratios.items():
+        lines.append(f"        {sym} = {printer.doprint(node)}")
+    for sym, value in repl:
+        lines.append(f"        {sym} = {printer.doprint(value)}")
+    for k, e in enumerate(reduced):
+        lines.append(f"        _v = {printer.doprint(e) if not e.is_Number else printer.doprint(sp.Float(e))}")
+        lines.append(f"        O{k}[_i] = _v")
+        lines.append("        if not numpy.isfinite(_v):")
+        lines.append("            _bad += 1")
+    lines.append("    return _bad")
+    return "\n".join(lines) + "\n"
+
+
+class ExactPrinter(PythonCodePrinter):
+    """Python code on :class:`fractions.Fraction`: rationals stay exact.
+
+    >>> import sympy as sp
+    >>> x = sp.Symbol("x")
+    >>> ExactPrinter().doprint(x / 3 + sp.Rational(1, 2))
+    '(Fraction(1, 3))*x + Fraction(1, 2)'
+    """
+
+    def _print_Rational(self, expr: sp.Rational) -> str:
+        return f"Fraction({expr.p}, {expr.q})" if expr.q != 1 else str(expr.p)
+
+    def _print_Integer(self, expr: sp.Integer) -> str:
+        return str(expr.p)
+
+    def _print_Pow(self, expr: sp.Pow, rational: bool = False) -> str:
+        base, exp = expr.as_base_exp()
+        return f"{self.parenthesize(base, 100)}**({int(exp)})"

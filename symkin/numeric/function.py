@@ -1,0 +1,138 @@
+"""The compiled function a user calls: argument order, precision and backend stated.
+
+    >>> import symkin
+    >>> f = symkin.compile(symkin.schemes.two_row("AI", teeth=True).ratio("1", "H", fixed="4"))
+    >>> f
+    <NumericFunction i_{1H}^{(4)}(z_1, z_2, z_3, z_4): numpy float64>
+    >>> f(20, 30, 20, 70)
+    np.float64(6.25)
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from typing import Any, Sequence
+
+import numpy as np
+
+from ..errors import InputError, PoleError, PoleWarning
+
+__all__ = ["NumericFunction"]
+
+_REBUILT: dict[Any, "NumericFunction"] = {}
+
+
+class NumericFunction:
+    """A compiled law, or several sharing their common subexpressions.
+
+    Call it with numbers or arrays in the order of :attr:`args` (they broadcast); it
+    returns one array per law (a tuple when several), of the shape of the broadcast
+    inputs, or a scalar for scalar inputs.
+
+    Attributes
+    ----------
+    args : tuple of str
+        Argument order.
+    outputs : tuple of str
+        What each output is (the laws' left-hand sides).
+    backend : str
+        ``"numpy"``, ``"numba"``, ``"mpmath"`` or ``"exact"``.
+    precision : str
+        ``"float64"``, ``"float32"``, ``"50 digits"`` (mpmath) or ``"exact"``.
+    notes : tuple of str
+        What the stable-form rewriting changed.
+    source : str
+        The generated code (for numba: the loop of the first call).
+
+    Notes
+    -----
+    Float backends never return a finite wrong number at a pole: the points where a
+    law is infinite or undefined hold inf or nan and a :class:`~symkin.errors.PoleWarning`
+    says how many (``on_pole="raise"`` raises :class:`~symkin.errors.PoleError` instead).
+    """
+
+    def __init__(self, evaluator: Any, plan: Any, backend: str, notes: Sequence[str], spec: Any, on_pole: str = "warn"):
+        self._evaluator = evaluator
+        self._plan = plan
+        self._spec = spec
+        self.args: tuple[str, ...] = tuple(s.name for s in plan.args)
+        self.outputs: tuple[str, ...] = plan.names
+        self.backend = backend
+        self.precision = plan.precision if backend not in ("mpmath",) else f"{plan.digits} digits"
+        self.notes = tuple(notes)
+        if on_pole not in ("warn", "raise"):
+            raise InputError(f"on_pole must be 'warn' or 'raise', got {on_pole!r}")
+        self.on_pole = on_pole
+        lines = [
+            f"Compiled {', '.join(self.outputs)} ({self.backend}, {self.precision}).",
+            "",
+            f"Arguments, in order: {', '.join(self.args) or '(none)'}.",
+        ]
+        if self.notes:
+            lines += ["", "Stable forms: " + "; ".join(self.notes) + "."]
+        self.__doc__ = "\n".join(lines)
+
+    @property
+    def source(self) -> str:
+        return self._evaluator.source
+
+    @property
+    def exprs(self) -> tuple[Any, ...]:
+        """The laws compiled, as given."""
+        return self._plan.exprs
+
+    @property
+    def stable_exprs(self) -> tuple[Any, ...]:
+        """The laws as the float code evaluates them (after the stable-form rewriting)."""
+        return self._plan.stable
+
+    def __repr__(self) -> str:
+        return f"<NumericFunction {', '.join(self.outputs)}({', '.join(self.args)}): {self.backend} {self.precision}>"
+
+    def __reduce__(self) -> Any:
+        # pickled by what it was compiled from, and rebuilt (once per process) on load
+        return (_rebuild, (self._spec,))
+
+    def __call__(self, *values: Any, out: Sequence[np.ndarray] | np.ndarray | None = None) -> Any:
+        if len(values) != len(self.args):
+            raise InputError(f"this function takes {len(self.args)} arguments ({', '.join(self.args)}), got {len(values)}")
+        if isinstance(out, np.ndarray):
+            out = [out]
+        shape, results = self._evaluator.evaluate(values, out)
+        if self.backend in ("numpy", "numba") and getattr(self._evaluator, "flagged", True):
+            self._check_poles(values, shape, results)
+        if out is not None:
+            shaped = [o for o in out]
+        else:
+            shaped = [r.reshape(shape) for r in results]
+            if shape == ():
+                shaped = [r[()] for r in shaped]
+        return shaped[0] if len(shaped) == 1 else tuple(shaped)
+
+    def _check_poles(self, values: Sequence[Any], shape: tuple[int, ...], results: Sequence[np.ndarray]) -> None:
+        bad = [np.flatnonzero(~np.isfinite(r)) for r in results]
+        if not any(b.size for b in bad):
+            return
+        arrays = [np.broadcast_to(np.asarray(v, dtype=float) if np.asarray(v).dtype != object else np.asarray(v, dtype=float), shape).reshape(-1) for v in values]
+        finite_in = np.logical_and.reduce([np.isfinite(a) for a in arrays]) if arrays else np.ones(math.prod(shape), bool)
+        for name, b in zip(self.outputs, bad):
+            b = b[finite_in[b]] if b.size else b
+            if not b.size:
+                continue
+            i = int(b[0])
+            at = ", ".join(f"{n}={float(a[i]):.17g}" for n, a in zip(self.args, arrays))
+            msg = (
+                f"{name} is infinite or undefined at {b.size} of {finite_in.size} points (first at {at}): "
+                "a pole of the law (a vanishing denominator), not a rounding error"
+            )
+            if self.on_pole == "raise":
+                raise PoleError(msg + "; choose inputs away from it")
+            warnings.warn(msg + "; those points hold inf or nan", PoleWarning, stacklevel=3)
+
+
+def _rebuild(spec: Any) -> NumericFunction:
+    key = spec.key()
+    if key not in _REBUILT:
+        _REBUILT[key] = spec.build()
+    return _REBUILT[key]

@@ -1,0 +1,146 @@
+"""Run-time helpers of compiled laws: exact integer ratios and reduced phases.
+
+They are written with plain arithmetic so that one source serves NumPy arrays and, once
+jitted, Numba's scalar loops.
+
+    >>> import numpy as np
+    >>> exact_ratio(np.array([1, 1, 0]), np.array([3, 0, 0]))
+    array([0.33333333,        inf,        nan])
+    >>> # the float nearest 2 pi is 2.449e-16 short of 2 pi; 10^6 turns of it, exactly:
+    >>> print(f"{float(reduced_phase(1, 1, 2 * np.pi, 10**6, 1.0)):.4g}")
+    -2.449e-10
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import mpmath
+import numpy as np
+
+__all__ = ["exact_ratio", "reduced_phase", "TWO_PI_PARTS", "NAMESPACE"]
+
+_SPLIT = 134217729.0  # 2^27 + 1, Dekker's splitter for float64
+
+
+def _two_pi_parts() -> tuple[float, float, float, float]:
+    with mpmath.workdps(60):
+        two_pi = 2 * mpmath.pi
+        c1 = float(mpmath.nint(two_pi * 2**23)) / 2**23  # 26 significant bits: k * c1 exact for k < 2^27
+        c2 = float(mpmath.nint((two_pi - c1) * 2**49)) / 2**49
+        c3 = float(two_pi - c1 - c2)
+        return c1, c2, c3, float(1 / two_pi)
+
+
+#: 2 pi = C1 + C2 + C3 (Cody-Waite parts) and 1 / (2 pi).
+TWO_PI_PARTS = _two_pi_parts()
+_C1, _C2, _C3, _INV_2PI = TWO_PI_PARTS
+
+
+def _two_prod(a: Any, b: Any) -> tuple[Any, Any]:
+    p = a * b
+    c = _SPLIT * a
+    ah = c - (c - a)
+    al = a - ah
+    c = _SPLIT * b
+    bh = c - (c - b)
+    bl = b - bh
+    return p, ((ah * bh - p) + ah * bl + al * bh) + al * bl
+
+
+def _reduced_phase_core(p: Any, q: Any, x1: Any, x2: Any, x3: Any) -> Any:
+    h, lo = _two_prod(x1, x2)
+    h2, e2 = _two_prod(h, x3)
+    lo = lo * x3 + e2
+    h = h2
+    h2, e2 = _two_prod(h, p)
+    lo = lo * p + e2
+    h = h2
+    qh = h / q
+    ph, pl = _two_prod(qh, q)
+    ql = (((h - ph) - pl) + lo) / q
+    h = qh + ql
+    lo = ql - (h - qh)
+    k = np.floor(h * _INV_2PI + 0.5)
+    return (((h - k * _C1) - k * _C2) - k * _C3) + lo
+
+
+def reduced_phase(p: int, q: int, x1: Any, x2: Any, x3: Any) -> Any:
+    """``p/q x1 x2 x3`` modulo 2 pi, in [-pi, pi], from double-double arithmetic.
+
+    The error is about 2^-52 pi for any number of turns below 2^27 (the plain product
+    loses |p/q x1 x2 x3| 2^-53 radians).
+    """
+    f = np.float64
+    return _reduced_phase_core(f(p), f(q), np.asarray(x1, f), np.asarray(x2, f), np.asarray(x3, f))
+
+
+def _python_ratio(a: Any, b: Any) -> float:
+    try:
+        return a / b  # exact integers: Python's true division is correctly rounded
+    except ZeroDivisionError:
+        return math.copysign(math.inf, a) if a else math.nan
+
+
+_ratio_ufunc = np.frompyfunc(_python_ratio, 2, 1)
+
+
+def exact_ratio(num: Any, den: Any) -> Any:
+    """``num / den`` of exact integers (int64 or Python integers) as float64; inf or nan
+    at a zero denominator."""
+    num, den = np.asarray(num), np.asarray(den)
+    if num.dtype == object or den.dtype == object:
+        return np.asarray(_ratio_ufunc(num, den), dtype=np.float64)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.true_divide(num, den)
+
+
+def exact_ratio_f32(num: Any, den: Any) -> Any:
+    """:func:`exact_ratio` rounded to float32."""
+    return np.asarray(exact_ratio(num, den), dtype=np.float32)
+
+
+def reduced_phase_f32(p: int, q: int, x1: Any, x2: Any, x3: Any) -> Any:
+    """:func:`reduced_phase` rounded to float32."""
+    return np.asarray(reduced_phase(p, q, x1, x2, x3), dtype=np.float32)
+
+
+#: Names the generated NumPy code calls, by precision.
+NAMESPACE = {
+    "float64": {"_symkin_exact_ratio": exact_ratio, "_symkin_reduced_phase": reduced_phase},
+    "float32": {"_symkin_exact_ratio": exact_ratio_f32, "_symkin_reduced_phase": reduced_phase_f32},
+}
+
+
+def numba_namespace(precision: str) -> dict[str, Any]:
+    """The same helpers, jitted for Numba scalar loops."""
+    import numba
+
+    two_prod = numba.njit(inline="always")(_two_prod)
+    dtype = np.float32 if precision == "float32" else np.float64
+
+    @numba.njit(inline="always")
+    def phase(p, q, x1, x2, x3):  # pragma: no cover - compiled
+        h, lo = two_prod(np.float64(x1), np.float64(x2))
+        h2, e2 = two_prod(h, np.float64(x3))
+        lo = lo * np.float64(x3) + e2
+        h = h2
+        h2, e2 = two_prod(h, np.float64(p))
+        lo = lo * np.float64(p) + e2
+        h = h2
+        qh = h / q
+        ph, pl = two_prod(qh, np.float64(q))
+        ql = (((h - ph) - pl) + lo) / q
+        h = qh + ql
+        lo = ql - (h - qh)
+        k = np.floor(h * _INV_2PI + 0.5)
+        return dtype((((h - k * _C1) - k * _C2) - k * _C3) + lo)
+
+    @numba.njit(inline="always")
+    def ratio(num, den, bound_num, bound_den):  # pragma: no cover - compiled
+        if bound_num > 4.6e18 or bound_den > 4.6e18:  # int64 could overflow: nan, redone with Python integers
+            return dtype(np.nan)
+        return dtype(num / den)
+
+    return {"_symkin_exact_ratio": ratio, "_symkin_reduced_phase": phase}

@@ -1,0 +1,448 @@
+"""Stable forms: rewrite a law so that its float evaluation keeps its digits.
+
+Every rule returns an expression *equal* to its input (tests check this on random
+points); only the order of operations changes.  The rules, each general and
+pattern-based on SymPy expressions:
+
+* :func:`relative_form` -- a law linear and homogeneous in some inputs whose
+  coefficients sum to a constant C (every speed law: all links turn together when all
+  known speeds are equal) is written ``C x_ref + sum_k c_k (x_k - x_ref)``, each
+  ``c_k`` factored.  The removable singularity of a differential at equal input speeds
+  then cancels exactly, and differences of nearly equal radii are taken directly.
+* :func:`exact_integer_parts` -- a rational subexpression of integer-valued symbols
+  (tooth numbers) that contains a sum is brought to one fraction ``N/D`` of integer
+  polynomials, :class:`ExactRatio`, evaluated in exact integer arithmetic before the
+  one division (``1 - z2 z4/(z1 z3)`` becomes ``(z1 z3 - z2 z4)/(z1 z3)``).
+* :func:`unwrap_angles` -- ``atan(k tan u)`` (principal branch: jumps by pi at each
+  odd multiple of pi/2) becomes the continuous ``u + atan2((k-1) sin 2u, (k+1) + (1-k) cos 2u)``
+  when ``k > 0`` can be decided.
+* :func:`cosine_sums` -- ``c (1 + e^2 - 2 e cos x)`` becomes ``c ((1 - e)^2 + 4 e sin^2(x/2))``,
+  and ``a + b cos x`` with ``a``, ``b`` of opposite (equal) signs becomes
+  ``(a + b) - 2 b sin^2(x/2)`` (``(a - b) + 2 b cos^2(x/2)``): sums of like-signed terms.
+* :func:`reduce_phases` (on request) -- ``sin``/``cos``/``tan`` of ``c * x * y * t + b``
+  evaluate the product in double-double arithmetic and reduce it modulo 2 pi before
+  the call (:class:`ReducedPhase`), so ``omega t`` of 10^6 turns keeps its digits.
+
+Signs are decided from SymPy's assumptions, helped by ``ranges`` ({symbol: (lo, hi)}):
+an eccentricity declared in (0, 1) makes ``(1 + e)/(1 - e)`` positive.
+
+    >>> import sympy as sp
+    >>> z1, z2, z3, z4 = sp.symbols("z1:5", integer=True, positive=True)
+    >>> stable_form(1 - z2*z4/(z1*z3))
+    ExactRatio(z1*z3 - z2*z4, z1*z3)
+    >>> e = sp.Symbol("e", positive=True); x = sp.Symbol("x", real=True)
+    >>> stable_form(1 + e**2 - 2*e*cos(x))
+    4*e*sin(x/2)**2 + (1 - e)**2
+"""
+
+from __future__ import annotations
+
+from typing import Any, Iterable, Mapping
+
+import sympy as sp
+from sympy import atan, atan2, cos, sin, tan
+
+__all__ = [
+    "Group",
+    "ExactRatio",
+    "ReducedPhase",
+    "stable_form",
+    "relative_form",
+    "exact_integer_parts",
+    "unwrap_angles",
+    "cosine_sums",
+    "factor_differences",
+    "reduce_phases",
+    "plain_form",
+]
+
+_MAX_OPS = 600  # rules that expand or factor skip larger expressions (cost grows fast)
+
+
+# --------------------------------------------------------------------------- nodes
+class Group(sp.Function):
+    """Its argument, evaluated as one unit (printed in parentheses, never merged into
+    an enclosing sum): keeps ``(1 - e)`` from being summed as ``1 - e + ...`` term by term."""
+
+    nargs = 1
+
+    @classmethod
+    def eval(cls, arg: sp.Expr) -> sp.Expr | None:
+        return arg if arg.is_Atom else None
+
+    def doit(self, **hints: Any) -> sp.Expr:
+        return self.args[0]
+
+    def _eval_evalf(self, prec: int) -> sp.Expr:
+        return self.args[0]._eval_evalf(prec)
+
+    def _eval_derivative(self, s: sp.Symbol) -> sp.Expr:
+        return sp.diff(self.args[0], s)
+
+    def _eval_is_real(self) -> bool | None:
+        return self.args[0].is_real
+
+    def _latex(self, printer: Any) -> str:
+        return printer._print(self.args[0])
+
+
+class ExactRatio(sp.Function):
+    """``N/D`` with ``N`` and ``D`` integer polynomials of integer-valued symbols.
+
+    Float backends evaluate ``N`` and ``D`` in exact integer arithmetic (int64, or
+    Python integers when int64 could overflow) and divide once; the quotient is then
+    within about one unit in the last place of the exact rational.
+    """
+
+    nargs = 2
+    is_real = True
+
+    @classmethod
+    def eval(cls, num: sp.Expr, den: sp.Expr) -> sp.Expr | None:
+        if num.is_Number and den.is_Number:
+            return num / den
+        return None
+
+    def doit(self, **hints: Any) -> sp.Expr:
+        return self.args[0] / self.args[1]
+
+    def _eval_evalf(self, prec: int) -> sp.Expr:
+        return (self.args[0] / self.args[1])._eval_evalf(prec)
+
+    def _eval_derivative(self, s: sp.Symbol) -> sp.Expr:
+        return sp.diff(self.doit(), s)
+
+    def _latex(self, printer: Any) -> str:
+        return printer._print(self.doit())
+
+
+class ReducedPhase(sp.Function):
+    """``p/q * x1 * x2 * x3`` reduced to [-pi, pi) in double-double arithmetic.
+
+    Arguments: the integers ``p``, ``q`` and up to three factors.  Equal to the product
+    modulo 2 pi; its error is about 2^-52 pi whatever the number of turns, where the
+    plain product loses |x1 x2 x3| 2^-53 radians.
+    """
+
+    is_real = True
+
+    def doit(self, **hints: Any) -> sp.Expr:
+        p, q, *xs = self.args
+        return sp.Rational(p, q) * sp.Mul(*xs)
+
+    def _eval_evalf(self, prec: int) -> sp.Expr:
+        return self.doit()._eval_evalf(prec)
+
+    def _eval_derivative(self, s: sp.Symbol) -> sp.Expr:
+        return sp.diff(self.doit(), s)
+
+    def _latex(self, printer: Any) -> str:
+        return printer._print(self.doit())
+
+
+def plain_form(expr: sp.Expr) -> sp.Expr:
+    """``expr`` with every :class:`ExactRatio` and :class:`ReducedPhase` written out.
+
+    >>> z = sp.Symbol("z", integer=True)
+    >>> plain_form(ExactRatio(z - 1, z))
+    (z - 1)/z
+    """
+    return expr.replace(lambda e: isinstance(e, (Group, ExactRatio, ReducedPhase)), lambda e: e.doit())
+
+
+# --------------------------------------------------------------------------- signs
+def _sign(expr: sp.Expr, ranges: Mapping[sp.Symbol, tuple[Any, Any]] | None) -> int | None:
+    """+1, -1, or None when the sign of ``expr`` cannot be decided."""
+    for candidate in (expr, _in_ranges(expr, ranges)):
+        if candidate is None:
+            continue
+        if candidate.is_positive:
+            return 1
+        if candidate.is_negative:
+            return -1
+        if candidate.free_symbols:
+            try:
+                f = sp.factor(sp.cancel(candidate))
+            except Exception:  # pragma: no cover - sympy failures on odd inputs
+                continue
+            if f.is_positive:
+                return 1
+            if f.is_negative:
+                return -1
+    return None
+
+
+def _in_ranges(expr: sp.Expr, ranges: Mapping[sp.Symbol, tuple[Any, Any]] | None) -> sp.Expr | None:
+    if not ranges:
+        return None
+    subs = {}
+    for s, (lo, hi) in ranges.items():
+        if s in expr.free_symbols:
+            p = sp.Dummy("p", positive=True)
+            lo, hi = sp.sympify(lo), sp.sympify(hi)
+            subs[s] = (lo + hi * p) / (1 + p) if hi.is_finite else lo + p
+    return expr.xreplace(subs) if subs else None
+
+
+# --------------------------------------------------------------------------- rule 1
+def relative_form(expr: sp.Expr) -> sp.Expr:
+    """Write a law linear and homogeneous in some of its symbols, whose coefficients sum
+    to a constant C, as ``C x_ref + sum_k c_k (x_k - x_ref)``.
+
+    >>> w1, w4, r1, r2, r3 = sp.symbols("omega_1 omega_4 r_1 r_2 r_3", positive=True)
+    >>> relative_form((w1*r1*r3 - w4*r2*(r1 - r2 + r3)) / ((r1 - r2)*(r3 - r2)))
+    omega_4 - r_1*r_3*(omega_1 - omega_4)/((r_1 - r_2)*(r_2 - r_3))
+    """
+    if expr.is_Atom or sp.count_ops(expr) > _MAX_OPS or expr.has(ExactRatio, ReducedPhase):
+        return expr
+    num, den = sp.fraction(sp.together(expr))
+    syms = sorted(expr.free_symbols, key=lambda s: s.name)
+    linear = []
+    for s in syms:
+        if s.is_integer or s in den.free_symbols:
+            continue
+        try:
+            if sp.degree(num, s) == 1:
+                linear.append(s)
+        except (sp.PolynomialError, sp.GeneratorsNeeded):
+            continue
+    if len(linear) < 2:
+        return expr
+    try:
+        poly = sp.Poly(sp.expand(num), *linear)
+    except sp.PolynomialError:
+        return expr
+    if not poly.is_homogeneous or poly.total_degree() != 1:
+        return expr
+    coeffs = {}
+    for s in linear:
+        mono = tuple(1 if t == s else 0 for t in linear)
+        coeffs[s] = sp.cancel(poly.coeff_monomial(mono) / den)
+    total = sp.cancel(sp.Add(*coeffs.values()))
+    if not total.is_number:
+        return expr
+    ref = max(reversed(linear), key=lambda s: sp.count_ops(coeffs[s]))
+    rest = [sp.factor(coeffs[s]) * (s - ref) for s in linear if s != ref and coeffs[s] != 0]
+    return total * ref + sp.Add(*rest)
+
+
+# --------------------------------------------------------------------------- rule 2
+def _integer_rational(e: sp.Expr) -> bool:
+    """A rational function with rational coefficients of integer-valued symbols only."""
+    if not e.free_symbols or not all(s.is_integer for s in e.free_symbols):
+        return False
+    for node in sp.preorder_traversal(e):
+        if node.is_Symbol or node.is_Rational:
+            continue
+        if node.is_Add or node.is_Mul:
+            continue
+        if node.is_Pow and node.exp.is_Integer:
+            continue
+        return False
+    return True
+
+
+def exact_integer_parts(expr: sp.Expr) -> sp.Expr:
+    """Bring every rational part in integer symbols that contains a sum to ``ExactRatio(N, D)``.
+
+    Terms of a sum are first grouped by their non-integer factor, so
+    ``w - w z2 z4/(z1 z3)`` becomes ``w ExactRatio(z1 z3 - z2 z4, z1 z3)``.
+
+    >>> z1, z2 = sp.symbols("z1 z2", integer=True, positive=True); w = sp.Symbol("w")
+    >>> exact_integer_parts(w - w*z2/z1)
+    w*ExactRatio(z1 - z2, z1)
+    """
+    if expr.is_Atom or isinstance(expr, (ExactRatio, ReducedPhase)):
+        return expr
+    if _integer_rational(expr):
+        if not expr.has(sp.Add):
+            return expr
+        num, den = sp.fraction(sp.cancel(sp.together(expr)))
+        gens = sorted(expr.free_symbols, key=lambda s: s.name)
+        _, pnum = sp.Poly(num, *gens).clear_denoms()
+        cden, pden = sp.Poly(den, *gens).clear_denoms()
+        cnum = sp.Poly(num, *gens).clear_denoms()[0]
+        num_e, den_e = pnum.as_expr() * cden, pden.as_expr() * cnum
+        if den_e.is_Number and den_e < 0 or den_e.could_extract_minus_sign():
+            num_e, den_e = -num_e, -den_e
+        return ExactRatio(sp.expand(num_e), sp.expand(den_e))
+    if expr.is_Add:
+        groups: dict[sp.Expr, list[sp.Expr]] = {}
+        for term in expr.args:
+            ints, rest = [], []
+            for f in sp.Mul.make_args(term):
+                (ints if (f.is_Rational or _integer_rational(f)) else rest).append(f)
+            groups.setdefault(sp.Mul(*rest), []).append(sp.Mul(*ints))
+        if len(groups) < len(expr.args):
+            return sp.Add(
+                *(exact_integer_parts(sp.Add(*ints)) * exact_integer_parts(rest) for rest, ints in groups.items())
+            )
+    if expr.is_Mul:
+        ints = [f for f in expr.args if f.is_Rational or _integer_rational(f)]
+        if len(ints) > 1 and any(f.has(sp.Add) for f in ints):
+            rest = [exact_integer_parts(f) for f in expr.args if f not in ints]
+            return exact_integer_parts(sp.Mul(*ints)) * sp.Mul(*rest)
+    return expr.func(*(exact_integer_parts(a) for a in expr.args))
+
+
+# --------------------------------------------------------------------------- rule 3
+def unwrap_angles(expr: sp.Expr, ranges: Mapping[sp.Symbol, tuple[Any, Any]] | None = None) -> sp.Expr:
+    """Replace ``atan(k tan u)`` (jumps by pi where tan u does) by its continuous branch.
+
+    The continuous branch is ``u + atan2((k - 1) sin 2u, (k + 1) + (1 - k) cos 2u)``;
+    it equals the principal value on (-pi/2, pi/2) and needs ``k > 0``.  A fraction
+    ``k = P/Q`` with ``Q > 0`` is cleared from both atan2 arguments.
+
+    >>> u = sp.Symbol("u", real=True); e = sp.Symbol("e", positive=True)
+    >>> cosine_sums(unwrap_angles(sp.atan((1 + e)/(1 - e)*sp.tan(u)), {e: (0, 1)}), {e: (0, 1)})
+    u + atan2(2*e*sin(2*u), 4*e*sin(u)**2 + Group(-2*(e - 1)))
+    """
+
+    def rewrite(node: sp.Expr) -> sp.Expr:
+        if not isinstance(node, atan):
+            return node
+        arg = node.args[0]
+        tans = [f for f in sp.Mul.make_args(arg) if isinstance(f, tan)]
+        if len(tans) != 1:
+            return node
+        u = tans[0].args[0]
+        k = sp.cancel(arg / tans[0])
+        if k.has(u) or _sign(k, ranges) != 1:
+            return node
+        p, q = sp.fraction(sp.together(k))
+        if _sign(q, ranges) != 1:
+            p, q = -p, -q
+            if _sign(q, ranges) != 1:
+                return node
+        y = sp.expand(p - q) * sin(2 * u)
+        x = sp.expand(p + q) + sp.expand(q - p) * cos(2 * u)
+        return u + atan2(y, x)
+
+    return expr.replace(lambda n: isinstance(n, atan), rewrite)
+
+
+# --------------------------------------------------------------------------- rule 4
+def cosine_sums(expr: sp.Expr, ranges: Mapping[sp.Symbol, tuple[Any, Any]] | None = None) -> sp.Expr:
+    """Rewrite sums ``a + b cos x`` that cancel at cos x = +-1 as sums of like-signed terms.
+
+    >>> e = sp.Symbol("e", positive=True); x = sp.Symbol("x", real=True)
+    >>> cosine_sums(1 - e*cos(x), {e: (0, 1)})
+    2*e*sin(x/2)**2 + Group(1 - e)
+    """
+
+    def rewrite(node: sp.Expr) -> sp.Expr:
+        if not node.is_Add:
+            return node
+        cosines = [f for t in node.args for f in sp.Mul.make_args(t) if isinstance(f, cos)]
+        for c in dict.fromkeys(cosines):
+            k = node.coeff(c)
+            rest = sp.expand(node - k * c)
+            if k == 0 or rest.has(c) or k.has(c) or rest == 0:
+                continue
+            x = c.args[0]
+            # c0 (1 + e^2 -+ 2 e cos x) for a symbol e
+            for e in sorted(k.free_symbols, key=lambda s: s.name):
+                for sgn in (-1, 1):
+                    c0 = sp.cancel(sgn * k / (2 * e))
+                    if c0.has(e) or sp.expand(rest - c0 * (1 + e**2)) != 0:
+                        continue
+                    if _sign(e, ranges) != 1:
+                        continue
+                    tail = 4 * e * (sin(x / 2) ** 2 if sgn == -1 else cos(x / 2) ** 2)
+                    return c0 * ((1 - e) ** 2 + tail)
+            sr, sk = _sign(rest, ranges), _sign(k, ranges)
+            if sr is None or sk is None:
+                continue
+            if sr != sk:  # cancels at cos x = 1
+                return Group(sp.factor(rest + k)) - 2 * k * sin(x / 2) ** 2
+            return Group(sp.factor(rest - k)) + 2 * k * cos(x / 2) ** 2  # cancels at cos x = -1
+        return node
+
+    return expr.replace(lambda n: n.is_Add and n.has(cos), rewrite)
+
+
+# --------------------------------------------------------------------------- rule 5
+def factor_differences(expr: sp.Expr) -> sp.Expr:
+    """Factor small polynomial sums of real symbols that split, such as ``1 - e^2`` into
+    ``(1 - e)(1 + e)``: near e = 1 the difference ``1 - e`` is exact, ``1 - e^2`` is not.
+
+    >>> e = sp.Symbol("e", positive=True)
+    >>> factor_differences(1 - e**2)
+    -(e - 1)*(e + 1)
+    """
+
+    def small(node: sp.Expr) -> bool:
+        return (
+            node.is_Add
+            and not node.has(sp.Function)
+            and 0 < len(node.free_symbols) <= 3
+            and not all(s.is_integer for s in node.free_symbols)
+            and sp.count_ops(node) <= 30
+            and node.is_polynomial()
+            and sp.Poly(node).total_degree() >= 2
+        )
+
+    def rewrite(node: sp.Expr) -> sp.Expr:
+        f = sp.factor(node)
+        parts = [p for p in sp.Mul.make_args(f) if not p.is_Number]
+        return f if len(parts) >= 2 or (len(parts) == 1 and parts[0].is_Pow) else node
+
+    return expr.replace(small, rewrite)
+
+
+# --------------------------------------------------------------------------- rule 6
+def reduce_phases(expr: sp.Expr, times: Iterable[sp.Symbol]) -> sp.Expr:
+    """Reduce the phase of ``sin``, ``cos``, ``tan`` whose argument is ``c x y t + b``.
+
+    ``c`` is a rational constant, at most three symbol factors, ``t`` one of ``times``;
+    the product is evaluated in double-double arithmetic and reduced modulo 2 pi.
+
+    >>> t, w = sp.symbols("t omega", real=True)
+    >>> reduce_phases(sp.sin(w*t/2 + 1), [t])
+    sin(ReducedPhase(1, 2, omega, t) + 1)
+    """
+    times = set(times)
+
+    def rewrite(node: sp.Expr) -> sp.Expr:
+        arg = node.args[0]
+        if not (arg.free_symbols & times):
+            return node
+        new_terms = []
+        for term in sp.Add.make_args(arg):
+            if not (term.free_symbols & times):
+                new_terms.append(term)
+                continue
+            coeff, factors = term.as_coeff_mul()
+            if not coeff.is_Rational or len(factors) > 3 or not all(f.is_Symbol for f in factors):
+                return node
+            new_terms.append(ReducedPhase(coeff.p, coeff.q, *factors))
+        return node.func(sp.Add(*new_terms))
+
+    return expr.replace(lambda n: isinstance(n, (sin, cos, tan)), rewrite)
+
+
+# --------------------------------------------------------------------------- all
+def stable_form(
+    expr: sp.Expr,
+    *,
+    ranges: Mapping[sp.Symbol, tuple[Any, Any]] | None = None,
+    reduce_phase: Iterable[sp.Symbol] = (),
+) -> sp.Expr:
+    """Apply every rule: relative form, unwrapped angles, cosine sums, factored
+    differences, exact integer parts, and (when ``reduce_phase`` names time symbols) reduced phases.
+
+    >>> w1, w4 = sp.symbols("omega_1 omega_4", real=True)
+    >>> z1, z2, z3, z4 = sp.symbols("z1:5", integer=True, positive=True)
+    >>> stable_form((w1*z1*z3 + w4*z2*z4)/(z1*z3 + z2*z4))
+    omega_4 + (omega_1 - omega_4)*ExactRatio(z1*z3, z1*z3 + z2*z4)
+    """
+    expr = sp.sympify(expr)
+    expr = relative_form(expr)
+    expr = unwrap_angles(expr, ranges)
+    expr = cosine_sums(expr, ranges)
+    expr = factor_differences(expr)
+    expr = exact_integer_parts(expr)
+    times = tuple(reduce_phase)
+    if times:
+        expr = reduce_phases(expr, times)
+    return expr

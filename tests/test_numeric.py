@@ -1,0 +1,376 @@
+"""The numeric layer: every backend against a 50-digit reference, the stable forms at
+the extremes where naive formulas lose their digits, scenes, chunks and Dask."""
+
+from __future__ import annotations
+
+import pickle
+import warnings
+from fractions import Fraction
+
+import numpy as np
+import pytest
+import sympy as sp
+
+import symkin
+from symkin import schemes
+from symkin import symbols as S
+from symkin.numeric import stable as st
+from symkin.numeric.backends import numba_available
+
+HAS_NUMBA = numba_available()
+FLOAT_BACKENDS = ["numpy"] + (["numba"] if HAS_NUMBA else [])
+
+# ---------------------------------------------------------------- the laws (built here)
+Z = [S.teeth(i) for i in "1234"]
+R = [S.radius(i) for i in "1234"]
+W1, W4 = S.omega("1"), S.omega("4")
+E = sp.Symbol("e", positive=True)
+M = sp.Symbol("m", positive=True)
+W = sp.Symbol("omega", positive=True)
+L = sp.Symbol("l", positive=True)
+TH2, TH0 = sp.Symbol("theta_2", real=True), sp.Symbol("theta_H0", real=True)
+SLIDER_ARGS = [E, L, M, W, TH2, TH0, S.t]
+
+
+def ratio_law():
+    return schemes.two_row("AA", teeth=True).ratio("1", "H", fixed="4")
+
+
+def differential_law():
+    law = schemes.two_row("II").speeds({"1": W1, "4": W4}).law("H").rhs
+    return sp.factor(law.subs(R[3], R[0] - R[1] + R[2]))
+
+
+def planet_acceleration():
+    return schemes.two_row("AI").motion({"1": W1, "4": 0}).particle("23", (R[0], 0)).acceleration
+
+
+def slider_laws(continuous_reference=False):
+    """s, V_s, a_s of the elliptical-gear-driven Cardan slider (Luo & Li 2018, section 3,
+    drive law as given in the papers guide), by SymPy differentiation."""
+    t = S.t
+    u = M * W * t / 2
+    atan_part = sp.atan((1 + E) / (1 - E) * sp.tan(u))
+    if continuous_reference:  # the principal arctan corrected by its branch number
+        atan_part += sp.pi * sp.floor(u / sp.pi + sp.Rational(1, 2))
+    theta = TH0 + 2 / M * atan_part
+    omega_h = W * (1 - E**2) / (1 - 2 * E * sp.cos(M * W * t) + E**2)
+    th = sp.Function("theta_H")(t)
+    s = 2 * L * sp.cos(TH2 - th)
+    subs = [(sp.Derivative(th, (t, 2)), sp.diff(omega_h, t)), (sp.Derivative(th, t), omega_h), (th, theta)]
+    return [x.subs(subs) for x in (s, sp.diff(s, t), sp.diff(s, t, 2))]
+
+
+def rel_error(got, ref, floor=1e-3):
+    """Max error relative to each reference value, floored at ``floor`` times the law's
+    largest value (pointwise relative error is meaningless at the law's own zeros; a law
+    of time such as cos(omega t) is judged normwise, floor=1)."""
+    got = np.asarray(got, dtype=float)
+    ref = np.asarray(ref, dtype=float)
+    scale = np.maximum(np.abs(ref), floor * np.max(np.abs(ref)))
+    return float(np.max(np.abs(got - ref) / scale))
+
+
+def reference(laws, args, values, digits=50):
+    out = symkin.compile(laws, args, backend="mpmath", digits=digits)(*values)
+    out = out if isinstance(out, tuple) else (out,)
+    return [np.array(o, dtype=float) for o in out]
+
+
+rng = np.random.default_rng(20240601)
+N = 60
+
+
+def _cases():
+    ratio = ratio_law()
+    zs = [rng.integers(20, 200, N) for _ in range(4)]
+    diff = differential_law()
+    r1, r2 = rng.uniform(5, 10, N), rng.uniform(1, 4, N)
+    dvals = [rng.uniform(-10, 10, N), rng.uniform(-10, 10, N), r1, r2, rng.uniform(0.5, 4, N)]
+    acc = list(planet_acceleration())
+    acc_args = sorted(set().union(*(a.free_symbols for a in acc)) - {S.t}, key=str) + [S.t]
+    avals = [rng.uniform(0.5, 3, N) for _ in acc_args[:-1]] + [rng.uniform(0, 5, N)]
+    slider = slider_laws()
+    svals = [rng.uniform(0.05, 0.95, N), 0.02, rng.integers(1, 4, N).astype(float), 0.8 * np.pi, 0.3, 0.1, rng.uniform(0, 10, N)]
+    sref = slider_laws(continuous_reference=True)
+    return {
+        "ratio": ([ratio], Z, zs, [ratio.rhs], 1e-3),
+        "differential": ([diff], [W1, W4, R[0], R[1], R[2]], dvals, [diff], 1e-3),
+        "planet acceleration": (acc, acc_args, avals, acc, 1.0),
+        "slider": (slider, SLIDER_ARGS, svals, sref, 1.0),
+    }
+
+
+CASES = _cases()
+
+
+@pytest.mark.parametrize("case", list(CASES))
+@pytest.mark.parametrize("backend", FLOAT_BACKENDS)
+@pytest.mark.parametrize("cse", [True, False])
+def test_float64_backends_match_the_50_digit_reference(case, backend, cse):
+    laws, args, values, ref_laws, floor = CASES[case]
+    f = symkin.compile(laws, args, backend=backend, cse=cse, ranges={E: (0, 1)})
+    got = f(*values)
+    got = got if isinstance(got, tuple) else (got,)
+    for g, r in zip(got, reference(ref_laws, args, values)):
+        assert g.dtype == np.float64
+        assert rel_error(g, r, floor) <= 1e-14
+
+
+@pytest.mark.parametrize("case", list(CASES))
+def test_float32_and_mpmath_and_cse_agree_with_the_reference(case):
+    laws, args, values, ref_laws, floor = CASES[case]
+    ref = reference(ref_laws, args, values)
+    f32 = symkin.compile(laws, args, precision="float32", ranges={E: (0, 1)})
+    got = f32(*values)
+    got = got if isinstance(got, tuple) else (got,)
+    for g, r in zip(got, ref):
+        assert g.dtype == np.float32
+        assert rel_error(g, r, floor) <= 2e-5
+    few = [v[:5] if np.ndim(v) else v for v in values]
+    for cse in (True, False):
+        mp = symkin.compile(ref_laws, args, backend="mpmath", digits=30, cse=cse)(*few)
+        mp = mp if isinstance(mp, tuple) else (mp,)
+        for g, r in zip(mp, reference(ref_laws, args, few)):
+            assert rel_error(np.array(g, dtype=float), r) <= 1e-15
+
+
+def test_exact_backend_gives_rationals_equal_to_sympy():
+    law = ratio_law()
+    f = symkin.compile(law, backend="exact")
+    assert f.precision == "exact"
+    assert f(100, 99, 100, 101) == Fraction(1, 10000)
+    zs = [rng.integers(1, 10**6, 20) for _ in range(4)]
+    got = f(*zs)
+    for i in range(20):
+        expected = law.rhs.subs(dict(zip(Z, [int(z[i]) for z in zs])))
+        assert got[i] == Fraction(int(expected.p), int(expected.q))
+    diff = symkin.compile(differential_law(), [W1, W4, R[0], R[1], R[2]], backend="exact")
+    assert diff(1, 1, "3", Fraction(1, 2), "0.75") == 1  # omega_1 = omega_4: the carrier turns with them
+
+
+def test_exact_backend_refuses_floats_and_transcendental_laws():
+    with pytest.raises(symkin.InputError, match="exact"):
+        symkin.compile(ratio_law(), backend="exact")(1.5, 2, 3, 4)
+    with pytest.raises(symkin.UnsupportedError, match="rational laws only"):
+        symkin.compile(sp.sin(W), backend="exact")
+
+
+# ---------------------------------------------------------------- stable forms
+def test_every_rewrite_equals_its_input_at_random_points():
+    laws = [ratio_law().rhs, differential_law(), *slider_laws(), 1 - E * sp.cos(W), 1 + E**2 + 2 * E * sp.cos(W)]
+    for law in laws:
+        rewritten = st.stable_form(law, ranges={E: (0, 1)})
+        plain = st.plain_form(rewritten)
+        for _ in range(3):
+            point = {s: sp.Rational(int(rng.integers(1, 90)), 100) if not s.is_integer else int(rng.integers(20, 99)) for s in law.free_symbols}
+            if S.t in point:
+                point[S.t] = sp.Rational(int(rng.integers(1, 90)), 1000)  # inside the first branch
+            assert abs(sp.N(law.subs(point) - plain.subs(point), 40)) < 1e-30
+
+
+def test_ratio_from_tooth_numbers_is_exact_up_to_1e8_teeth():
+    law = ratio_law()  # 1 - z2 z4/(z1 z3): a difference of nearly equal products
+    n = 200
+    z1 = rng.integers(10**7, 10**8, n)
+    z3 = z1 + rng.integers(-2, 3, n)
+    k = rng.integers(0, 4, n)
+    z2, z4 = z1 - k, z3 + k  # z1 z3 - z2 z4 = k (z3 - z1 + k): a few units out of 10^16
+    exact = [Fraction(int(a * c - b * d), int(a * c)) for a, b, c, d in zip(z1, z2, z3, z4)]
+    ref = np.array([float(x) for x in exact])  # correctly rounded
+    naive = sp.lambdify(Z, law.rhs)(z1.astype(float), z2.astype(float), z3.astype(float), z4.astype(float))
+    assert np.nanmax(np.abs(naive - ref) / np.maximum(np.abs(ref), 1e-300)) > 1e-3  # the naive form loses them
+    for backend in FLOAT_BACKENDS:
+        got = symkin.compile(law, backend=backend)(z1, z2, z3, z4)
+        ok = ref != 0
+        assert np.max(np.abs(got[ok] - ref[ok]) / np.abs(ref[ok])) <= 2.3e-16  # within one rounding
+        assert np.all(got[~ok] == 0)
+
+
+def test_integer_parts_switch_to_python_integers_where_int64_would_overflow():
+    law = schemes.two_row("AA", teeth=True).ratio("H", "1", fixed="4")
+    z = [3 * 10**9, 3 * 10**9 - 1, 3 * 10**9, 3 * 10**9 + 1]  # z1 z3 = 9e18 > int64 range
+    exact = Fraction(z[0] * z[2], z[0] * z[2] - z[1] * z[3])
+    for backend in FLOAT_BACKENDS:
+        assert symkin.compile(law, backend=backend)(*z) == float(exact)
+
+
+def test_removable_singularity_of_the_ii_differential_cancels():
+    law = differential_law()
+    args = [W1, W4, R[0], R[1], R[2]]
+    r2 = 1.0 + rng.uniform(0, 1, 50)
+    r3 = r2 * (1 + rng.uniform(1e-15, 1e-13, 50))  # r3 -> r2
+    w1 = rng.uniform(1, 2, 50)
+    values = [w1, w1, 3.0, r2, r3]  # omega_1 = omega_4: omega_H = omega_1 exactly
+    raw = sp.lambdify(args, law)(*values)
+    assert np.max(np.abs(raw - w1) / w1) > 1e-4  # the raw form loses its digits
+    for backend in FLOAT_BACKENDS:
+        f = symkin.compile(law, args, backend=backend)
+        assert np.max(np.abs(f(*values) - w1) / w1) <= 1e-15
+        near = [w1, w1 * (1 + 1e-9), 3.0, r2, r3]  # close to the pole, but not at it
+        (r,) = reference([law], args, near)
+        assert rel_error(f(*near), r) <= 1e-14
+
+
+def test_a_true_pole_gives_inf_with_a_warning_or_a_clear_error():
+    law = differential_law()
+    args = [W1, W4, R[0], R[1], R[2]]
+    for backend in FLOAT_BACKENDS:
+        f = symkin.compile(law, args, backend=backend)
+        with pytest.warns(symkin.PoleWarning, match="1 of 3 points"):
+            out = f(np.array([1.0, 2.0, 1.0]), 1.5, 3.0, 1.0, np.array([2.0, 1.0, 2.5]))
+        assert np.isinf(out[1]) and np.all(np.isfinite(out[[0, 2]]))
+        with pytest.raises(symkin.PoleError, match="pole"):
+            symkin.compile(law, args, backend=backend, on_pole="raise")(2.0, 1.5, 3.0, 1.0, 1.0)
+    with pytest.raises(symkin.PoleError, match="pole"):
+        symkin.compile(law, args, backend="exact")(2, 1, 3, 1, 1)
+
+
+def test_elliptical_drive_at_e_0_999999_keeps_s_v_a_within_1e_13():
+    laws = slider_laws()
+    t = np.linspace(0, 6, 400)
+    values = [0.999999, 0.02, 1.0, 0.8 * np.pi, 0.3, 0.1, t]
+    ref = reference(slider_laws(continuous_reference=True), SLIDER_ARGS, values)
+    raw = sp.lambdify(SLIDER_ARGS, laws, cse=True)(*values)
+    assert max(rel_error(g, r) for g, r in zip(raw, ref)) > 1e-8  # the naive forms lose digits
+    for backend in FLOAT_BACKENDS:
+        got = symkin.compile(laws, SLIDER_ARGS, backend=backend, ranges={E: (0, 1)})(*values)
+        for g, r in zip(got, ref):
+            assert rel_error(g, r) <= 1e-13
+
+
+def test_elliptical_drive_angle_is_continuous_across_branch_points():
+    laws = slider_laws()
+    t = np.linspace(0, 12, 301)  # several branch points of the principal arctan for m = 2
+    values = [0.5, 0.02, 2.0, 0.8 * np.pi, 0.3, 0.1, t]
+    ref = reference(slider_laws(continuous_reference=True), SLIDER_ARGS, values)
+    raw = sp.lambdify(SLIDER_ARGS, laws[0])(*values)
+    assert rel_error(raw, ref[0]) > 0.5  # the principal branch is off by 2 pi/m after each branch point
+    got = symkin.compile(laws, SLIDER_ARGS, ranges={E: (0, 1)})(*values)
+    assert rel_error(got[0], ref[0], floor=1) <= 1e-14
+
+
+def test_reduced_phase_keeps_digits_at_a_million_turns():
+    law = sp.sin(M * W * S.t / 2)
+    t = np.linspace(0, 1e6, 101) * 2 * np.pi / 0.8 + rng.uniform(0, 1, 101)
+    values = [3.0, 0.8, t]
+    (ref,) = reference([law], [M, W, S.t], values)
+    plain = symkin.compile(law, [M, W, S.t])(*values)
+    reduced = symkin.compile(law, [M, W, S.t], reduce_phase=[S.t])
+    assert "reduced mod 2 pi" in reduced.__doc__
+    assert np.max(np.abs(plain - ref)) > 1e-11  # |phase| 2^-53 is lost
+    assert np.max(np.abs(reduced(*values) - ref)) <= 5e-16
+    if HAS_NUMBA:
+        numba_reduced = symkin.compile(law, [M, W, S.t], reduce_phase=[S.t], backend="numba")
+        assert np.max(np.abs(numba_reduced(*values) - ref)) <= 5e-16
+
+
+# ---------------------------------------------------------------- the function
+def test_function_states_order_precision_backend_and_pickles():
+    f = symkin.compile(symkin.Law(S.omega("H"), differential_law()), [W1, W4, R[0], R[1], R[2]], precision="float32")
+    assert repr(f) == "<NumericFunction omega_H(omega_1, omega_4, r_1, r_2, r_3): numpy float32>"
+    assert "Arguments, in order: omega_1, omega_4, r_1, r_2, r_3." in f.__doc__ and "float32" in f.__doc__
+    g = pickle.loads(pickle.dumps(f))
+    assert g.args == f.args and g(1.0, 2.0, 3.0, 1.0, 2.0) == f(1.0, 2.0, 3.0, 1.0, 2.0)
+
+
+def test_chunks_and_reused_output_buffers_give_the_same_numbers():
+    laws, args, values, _, _ = CASES["slider"]
+    whole = symkin.compile(laws, args, chunk=10**6, ranges={E: (0, 1)})(*values)
+    chunked_f = symkin.compile(laws, args, chunk=7, ranges={E: (0, 1)})
+    outs = [np.empty(N) for _ in laws]
+    chunked = chunked_f(*values, out=outs)
+    for a, b, o in zip(whole, chunked, outs):
+        assert np.array_equal(a, b) and b is o
+    with pytest.raises(symkin.InputError, match="out="):
+        chunked_f(*values, out=[np.empty(3)] * 3)
+
+
+def test_numba_missing_falls_back_to_numpy_with_one_notice(monkeypatch):
+    import symkin.numeric as numeric
+
+    monkeypatch.setattr(numeric, "numba_available", lambda: False)
+    with pytest.warns(symkin.PrecisionWarning, match="numba is not installed"):
+        f = symkin.compile(ratio_law(), backend="numba")
+    assert f.backend == "numpy" and f(100, 99, 100, 101) == pytest.approx(1e-4, rel=1e-15)
+
+
+def test_bad_requests_say_what_to_do():
+    with pytest.raises(symkin.InputError, match="unknown backend"):
+        symkin.compile(ratio_law(), backend="cuda")
+    with pytest.raises(symkin.InputError, match="float64 or float32"):
+        symkin.compile(ratio_law(), precision="float16")
+    with pytest.raises(symkin.InputError, match="tooth number"):
+        symkin.compile(ratio_law())(100.5, 99, 100, 101)
+    with pytest.raises(symkin.InputError, match="broadcast"):
+        symkin.compile(ratio_law())(np.arange(1, 3), np.arange(1, 4), 1, 1)
+
+
+# ---------------------------------------------------------------- scenes
+def test_a_ratio_only_scene_derives_no_particle_or_speed_laws(monkeypatch):
+    from symkin import particles
+
+    def refuse(*a, **k):
+        raise AssertionError("a ratio-only scene derived particle laws")
+
+    monkeypatch.setattr(particles.Motion, "build", classmethod(refuse))
+    mech = schemes.two_row("AA", teeth=True)
+    scene = symkin.Scene(mech, ratios=[("H", "1", "4")])
+    assert not any(str(k).startswith("('scene'") for k in mech._cache)  # nothing derived yet
+    out = scene.evaluate({"z_1": 100, "z_2": 99, "z_3": 100, "z_4": 101})
+    assert out["i_{H1}^{(4)}"] == 10000.0
+    assert [k for k in mech._cache if isinstance(k, tuple) and k[0] == "general_solution"] == [("general_solution", ("4", "H"))]
+
+
+def test_a_scene_compiles_once_and_caches_on_the_mechanism(monkeypatch):
+    import symkin.numeric as numeric
+
+    mech = schemes.two_row("AI")
+    calls = []
+    real = numeric.compile
+    monkeypatch.setattr(numeric, "compile", lambda *a, **k: calls.append(1) or real(*a, **k))
+    kw = dict(speeds=["H", "23"], particles=[("23", (S.radius("1"), 0), ("position", "acceleration"))], inputs={"1": W1, "4": 0})
+    a = symkin.Scene(mech, **kw)
+    values = {"omega_1": 2.0, "r_1": 1.0, "r_2": 2.0, "r_3": 1.0, "r_4": 4.0}
+    t = np.linspace(0, 3, 50)
+    first = a.evaluate(values, t=t)
+    second = symkin.Scene(mech, **kw).evaluate(values, t=t)
+    assert len(calls) == 1
+    # against the laws evaluated directly
+    p = mech.motion({"1": W1, "4": 0}).particle("23", (S.radius("1"), 0))
+    direct = sp.lambdify([S.t, *[sp.Symbol(k, positive=True) if k.startswith("r") else S.omega("1") for k in values]], list(p.acceleration))
+    wx = direct(t, *values.values())[0]
+    key = [k for k in first if k.startswith("wx")][0]
+    assert np.allclose(first[key], wx, rtol=1e-13, atol=1e-13) and np.array_equal(first[key], second[key])
+    assert first["omega_H"] == pytest.approx(2.0 / 9.0 * 1.0, rel=1e-14) or first["omega_H"] == pytest.approx(float(mech.speeds({"1": 2, "4": 0})["H"].subs({S.radius("1"): 1, S.radius("2"): 2, S.radius("3"): 1, S.radius("4"): 4})), rel=1e-14)
+
+
+def test_a_scene_reuses_its_output_buffers_when_asked():
+    scene = symkin.Scene(schemes.two_row("AA", teeth=True), ratios=[("1", "H", "4")])
+    z = {"z_1": np.full(1000, 100), "z_2": 99, "z_3": 100, "z_4": np.arange(1000) + 50}
+    a = scene.evaluate(z, reuse=True)["i_{1H}^{(4)}"]
+    b = scene.evaluate(z, reuse=True)["i_{1H}^{(4)}"]
+    assert a is b
+    with pytest.raises(symkin.InputError, match="give values for z_4"):
+        scene.evaluate({"z_1": 1, "z_2": 1, "z_3": 1})
+
+
+# ---------------------------------------------------------------- dask
+def test_dask_array_and_bag_on_a_local_cluster():
+    da = pytest.importorskip("dask.array")
+    db = pytest.importorskip("dask.bag")
+    distributed = pytest.importorskip("distributed")
+    from symkin.numeric import dask_map
+
+    law = differential_law()
+    args = [W1, W4, R[0], R[1], R[2]]
+    f = symkin.compile(law, args)
+    x = np.linspace(1, 2, 10_000)
+    expected = f(x, 0.5, 3.0, 1.0, 2.0)
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
+        with distributed.Client(cluster) as client:
+            lazy = dask_map(f, da.from_array(x, chunks=2_500), 0.5, 3.0, 1.0, 2.0)
+            assert np.array_equal(lazy.compute(), expected)
+            bag = db.from_sequence([(1.0, 0.5, 3.0, 1.0, 2.0), (2.0, 0.5, 3.0, 1.0, 2.0)], npartitions=2)
+            assert dask_map(f, bag).compute() == [float(expected[0]), float(expected[-1])]
+            assert len(client.scheduler_info()["workers"]) == 2
