@@ -56,3 +56,11 @@ def slider_laws() -> tuple[sp.Expr, sp.Expr, sp.Expr]:
 
 def slider_acceleration() -> sp.Expr:
     return slider_laws()[2]
+
+
+def slider_laws_continuous() -> tuple[sp.Expr, sp.Expr, sp.Expr]:
+    """The same laws with the principal arctan corrected by its branch number: the
+    continuous reference the benchmarks compare with (independent of symkin's rewriting)."""
+    u = M * W * S.t / 2
+    fix = lambda x: x.replace(sp.atan, lambda arg: sp.atan(arg) + sp.pi * sp.floor(u / sp.pi + sp.Rational(1, 2)))  # noqa: E731
+    return tuple(fix(x) for x in slider_laws())  # type: ignore[return-value]

@@ -39,8 +39,8 @@ from .stable import ExactRatio, Group, ReducedPhase, stable_form
 
 __all__ = ["compile", "NumericFunction", "BACKENDS", "Scene", "dask_map"]
 
-#: Points per chunk of the NumPy backend (temporaries of 64 KiB stay in cache and are reused).
-DEFAULT_CHUNK = 1 << 13
+#: Points per chunk of the NumPy backend (temporaries of 128 KiB stay in cache and are reused).
+DEFAULT_CHUNK = 1 << 14
 
 
 def _exprs(laws: Any) -> tuple[list[sp.Expr], list[str]]:
@@ -144,7 +144,8 @@ def compile(
     chunk : int
         Points per chunk of the NumPy backend.
     threads : int, optional
-        Threads of the numba backend (default: all).
+        Threads for large calls: numba default all (Numba's setting); numpy default 1
+        (chunks are shared among this many threads; NumPy releases the GIL).
     on_pole : {"warn", "raise"}
         At a pole, float backends return inf/nan with a PoleWarning, or raise PoleError.
 

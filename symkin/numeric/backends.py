@@ -20,6 +20,7 @@ exact     rational arithmetic (fractions.Fraction)    exact
 from __future__ import annotations
 
 import math
+import os
 import threading
 import warnings
 from dataclasses import dataclass, field
@@ -37,6 +38,17 @@ from .stable import ExactRatio, plain_form
 __all__ = ["Plan", "BACKENDS", "NumpyBackend", "NumbaBackend", "MpmathBackend", "ExactBackend", "numba_available"]
 
 _INT64_SAFE = 2**62
+_THREADS_FROM = 1 << 15  # fewer points are evaluated on the calling thread
+_POOLS: dict[int, Any] = {}
+
+
+def _pool(threads: int) -> Any:
+    """A process-wide pool of ``threads`` threads (NumPy ufuncs release the GIL)."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    if threads not in _POOLS:
+        _POOLS[threads] = ThreadPoolExecutor(max_workers=threads, thread_name_prefix="symkin")
+    return _POOLS[threads]
 
 
 @dataclass(frozen=True)
@@ -126,6 +138,14 @@ class NumpyBackend:
         )
         self.source = _lambdify_source(self.func)
         self.polys = [a for e in plan.stable for node in sp.preorder_traversal(e) if isinstance(node, ExactRatio) for a in node.args]
+        index = {sym: k for k, sym in enumerate(self.integer_syms)}
+        self.bound_terms = []  # per polynomial: (|coefficient|, ((integer argument, power), ...)) per term
+        for poly in self.polys:
+            terms = []
+            for term in sp.Add.make_args(sp.expand(poly)):
+                c, factors = term.as_coeff_mul()
+                terms.append((abs(int(c)), tuple((index[f.as_base_exp()[0]], int(f.as_base_exp()[1])) for f in factors)))
+            self.bound_terms.append(terms)
         outside = set()
         for e in plan.stable:
             outside |= e.replace(lambda n: isinstance(n, ExactRatio), lambda n: sp.Integer(1)).free_symbols
@@ -166,19 +186,17 @@ class NumpyBackend:
 
     def needs_python_integers(self, ints: Sequence[np.ndarray]) -> bool:
         """True when an integer polynomial could overflow int64 for these inputs."""
-        if not self.polys or not ints:
+        if not self.bound_terms or not ints:
             return False
         if any(i.dtype == object for i in ints):
             return True
-        big = {s: max(abs(int(i.max())), abs(int(i.min()))) if i.size else 0 for s, i in zip(self.integer_syms, ints)}
-        for poly in self.polys:
+        big = [max(abs(int(i.max())), abs(int(i.min()))) if i.size else 0 for i in ints]
+        for terms in self.bound_terms:
             bound = 0
-            for term in sp.Add.make_args(sp.expand(poly)):
-                c, factors = term.as_coeff_mul()
-                mag = abs(int(c))
-                for f in factors:
-                    b, e = f.as_base_exp()
-                    mag *= big.get(b, 0) ** int(e)
+            for coeff, powers in terms:
+                mag = coeff
+                for k, e in powers:
+                    mag *= big[k] ** e
                 bound += mag
             if bound >= _INT64_SAFE:
                 return True
@@ -191,19 +209,31 @@ class NumpyBackend:
 
     def evaluate(self, values: Sequence[Any], outs: Sequence[np.ndarray] | None = None) -> tuple[tuple[int, ...], list[np.ndarray]]:
         shape, floats, ints = self.prepare(values)
-        if self.needs_python_integers(ints):
-            ints = [i.astype(object) for i in ints]
         n = math.prod(shape)
         results = _allocate(outs, len(self.plan.stable), n, self.plan.dtype)
         chunk = max(1, self.plan.chunk)
-        flagged = False
-        for start in range(0, n, chunk):
-            sl = slice(start, min(n, start + chunk))
-            part = self.run([f[sl] if f.ndim else f for f in floats], [i[sl] if i.ndim else i for i in ints])
-            for o, r in zip(results, part):
-                o[sl] = r
-                flagged = flagged or not np.isfinite(o[sl]).all()
-        self.flagged = flagged
+        starts = list(range(0, n, chunk))
+
+        def work(block: Sequence[int]) -> bool:
+            flagged = False
+            for start in block:
+                sl = slice(start, min(n, start + chunk))
+                int_part = [i[sl] if i.ndim else i for i in ints]
+                if self.needs_python_integers(int_part):  # checked per chunk, while it is in cache
+                    int_part = [np.asarray(i).astype(object) for i in int_part]
+                part = self.run([f[sl] if f.ndim else f for f in floats], int_part)
+                for o, r in zip(results, part):
+                    o[sl] = r
+                    flagged = flagged or not np.isfinite(o[sl]).all()
+            return flagged
+
+        threads = min(self.plan.threads or 1, len(starts))
+        if threads > 1 and n >= _THREADS_FROM:
+            per = -(-len(starts) // threads)  # contiguous blocks of chunks, one per thread
+            blocks = [starts[k * per:(k + 1) * per] for k in range(threads)]
+            self.flagged = any(_pool(threads).map(work, blocks))
+        else:
+            self.flagged = work(starts)
         return shape, results
 
     def evaluate_points(self, values: Sequence[Any], index: np.ndarray) -> list[np.ndarray]:
@@ -252,6 +282,14 @@ _NUMBA_LOCK = threading.Lock()
 _PARALLEL_FROM = 1 << 15
 
 
+def _passive_openmp() -> None:
+    """Ask OpenMP threads to sleep rather than spin while they wait, unless the user
+    chose otherwise.  With GNU OpenMP's default (spin, then sleep) a parallel loop on a
+    busy 2-core machine took 16-32 ms per call instead of 0.03 ms (benchmarks/run.py).
+    Must run before Numba first loads its OpenMP pool; only OMP_WAIT_POLICY is touched."""
+    os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
+
+
 class NumbaBackend(NumpyBackend):
     """One fused loop per call, compiled by Numba (``parallel=True`` over the available
     threads for large calls); integer parts in int64, checked in the loop for overflow,
@@ -260,6 +298,7 @@ class NumbaBackend(NumpyBackend):
     key = "numba"
 
     def __init__(self, plan: Plan):
+        _passive_openmp()
         super().__init__(plan)  # the NumPy code re-evaluates flagged points exactly
         self.kernels: dict[tuple[tuple[bool, ...], bool], Any] = {}
         self.kernel_sources: dict[tuple[bool, ...], str] = {}
@@ -292,20 +331,21 @@ class NumbaBackend(NumpyBackend):
         plan = self.plan
         arrays = [np.asarray(v) for v in values]
         conv = [
-            _as_integers(a, s.name) if s in self.twins else _as_floats(a, s.name, plan.dtype) for a, s in zip(arrays, plan.args)
-        ]
+            (a if a.dtype.kind == "i" else _as_integers(a, s.name)) if s in self.twins else _as_floats(a, s.name, plan.dtype)
+            for a, s in zip(arrays, plan.args)
+        ]  # narrow signed integers pass as they are: Numba computes integer products in int64
         if any(c.dtype == object for c in conv):
             return super().evaluate(values, outs)
         shape, flat = broadcast_flat(conv, [s.name for s in plan.args])
         n = math.prod(shape)
         results = _allocate(outs, len(plan.stable), n, plan.dtype)
         scalar = tuple(f.ndim == 0 for f in flat)
-        parallel = n >= _PARALLEL_FROM
+        import numba
+
+        parallel = n >= _PARALLEL_FROM and (plan.threads or numba.get_num_threads()) > 1
         kernel = self._kernel(scalar, parallel)
         inputs = [f[()] if f.ndim == 0 else f for f in flat]
-        if plan.threads and parallel:
-            import numba
-
+        if plan.threads and parallel and plan.threads != numba.get_num_threads():
             before = numba.get_num_threads()
             numba.set_num_threads(min(plan.threads, numba.config.NUMBA_NUM_THREADS))
             try:

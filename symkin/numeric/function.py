@@ -124,7 +124,8 @@ class NumericFunction:
             at = ", ".join(f"{n}={float(a[i]):.17g}" for n, a in zip(self.args, arrays))
             msg = (
                 f"{name} is infinite or undefined at {b.size} of {finite_in.size} points (first at {at}): "
-                "a pole of the law (a vanishing denominator), not a rounding error"
+                f"a denominator vanishes there in {self.precision} (a pole of the law, or inputs closer to one "
+                f"than {self.precision} resolves)"
             )
             if self.on_pole == "raise":
                 raise PoleError(msg + "; choose inputs away from it")
