@@ -35,7 +35,7 @@ from ..errors import InputError
 from ..laws import Law
 from .backends import BACKENDS, Plan, numba_available, warn_no_numba
 from .function import NumericFunction
-from .stable import ExactRatio, Group, ReducedPhase, stable_form
+from .stable import RULE_NOTES, stable_form
 
 __all__ = ["compile", "NumericFunction", "BACKENDS", "Scene", "dask_map"]
 
@@ -62,28 +62,6 @@ def _exprs(laws: Any) -> tuple[list[sp.Expr], list[str]]:
         else:
             raise InputError(f"can only compile laws or SymPy expressions, got {item!r}")
     return exprs, names
-
-
-def _notes(before: Sequence[sp.Expr], after: Sequence[sp.Expr], times: Sequence[sp.Symbol]) -> list[str]:
-    notes = []
-    for a, b in zip(before, after):
-        if a == b:
-            continue
-        if b.has(ExactRatio):
-            notes.append("integer parts evaluated exactly before one division")
-        if b.has(sp.atan2) and a.has(sp.atan) and not a.has(sp.atan2):
-            notes.append("atan(k tan u) unwrapped to its continuous branch")
-        if b.has(Group) or (b.has(sp.sin) and not a.has(sp.sin)):
-            notes.append("cosine sums written as sums of like-signed terms")
-        if b.has(ReducedPhase):
-            notes.append(
-                f"phases in {', '.join(map(str, times))} reduced mod 2 pi in double-double (error ~2^-52 pi at any "
-                "number of turns; the plain product loses |phase| 2^-53 rad)"
-            )
-        na, nb = sp.fraction(sp.together(a))[1], b
-        if not b.has(ExactRatio) and sp.count_ops(b) and nb != a and not notes:
-            notes.append("linear law written relative to one input (removable singularity cancelled)")
-    return list(dict.fromkeys(notes))
 
 
 @dataclass(frozen=True)
@@ -193,8 +171,9 @@ def compile(
     if not isinstance(chunk, int) or chunk < 1:
         raise InputError(f"chunk must be a positive number of points, got {chunk!r}")
     float_backend = cls.key in ("numpy", "numba")
+    applied: list[str] = []
     if float_backend and stable:
-        rewritten = [stable_form(e, ranges=ranges, reduce_phase=reduce_phase) for e in exprs]
+        rewritten = [stable_form(e, ranges=ranges, reduce_phase=reduce_phase, applied=applied) for e in exprs]
     else:
         rewritten = list(exprs)
     plan = Plan(
@@ -203,7 +182,7 @@ def compile(
         digits if backend == "mpmath" else None, cse, chunk, threads,
     )
     evaluator = cls(plan)
-    notes = _notes(exprs, rewritten, tuple(reduce_phase)) if float_backend else []
+    notes = [RULE_NOTES[name] for name in dict.fromkeys(applied)]
     return NumericFunction(evaluator, plan, cls.key, notes, spec, on_pole=on_pole)
 
 
