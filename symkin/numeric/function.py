@@ -88,7 +88,8 @@ class NumericFunction:
         return self._plan.stable
 
     def __repr__(self) -> str:
-        return f"<NumericFunction {', '.join(self.outputs)}({', '.join(self.args)}): {self.backend} {self.precision}>"
+        how = self.backend if self.precision == self.backend else f"{self.backend} {self.precision}"
+        return f"<NumericFunction {', '.join(self.outputs)}({', '.join(self.args)}): {how}>"
 
     def __reduce__(self) -> Any:
         # pickled by what it was compiled from, and rebuilt (once per process) on load
