@@ -162,6 +162,7 @@ def methods_for(case: dict) -> dict:
     out = {
         "hand-written NumPy": case["hand"],
         "sympy.lambdify": sp.lambdify(args, expr, modules="numpy"),
+        "sympy.lambdify, cse=True": sp.lambdify(args, expr, modules="numpy", cse=True),
         "symkin numpy float64": symkin.compile(expr, args, ranges=ranges),
         "symkin numpy float64, no cse": symkin.compile(expr, args, ranges=ranges, cse=False),
         "symkin numpy float64, 2 threads": symkin.compile(expr, args, ranges=ranges, threads=2),
@@ -172,6 +173,12 @@ def methods_for(case: dict) -> dict:
         out["symkin numba float64, 1 thread"] = symkin.compile(expr, args, backend="numba", threads=1, ranges=ranges)
         out["symkin numba float64, 2 threads"] = symkin.compile(expr, args, backend="numba", threads=2, ranges=ranges)
         out["symkin numba float32, 2 threads"] = symkin.compile(expr, args, backend="numba", precision="float32", threads=2, ranges=ranges)
+    if S.t in args:  # laws in time: the phase m omega t rounded is most of the float64 error
+        out["symkin numpy float64, reduce_phase=[t]"] = symkin.compile(expr, args, ranges=ranges, reduce_phase=[S.t])
+        if HAS_NUMBA:
+            out["symkin numba float64, 2 threads, reduce_phase=[t]"] = symkin.compile(
+                expr, args, backend="numba", threads=2, ranges=ranges, reduce_phase=[S.t]
+            )
     best = out.get("symkin numba float64, 2 threads", out["symkin numpy float64"])
     out["(same, into a reused out= buffer)"] = _with_out(best)
     out["symkin mpmath 30 digits"] = symkin.compile(expr, args, backend="mpmath", digits=30)

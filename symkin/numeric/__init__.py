@@ -58,7 +58,8 @@ def _exprs(laws: Any) -> tuple[list[sp.Expr], list[str]]:
                 names.append(f"[{k}]")
         elif isinstance(item, sp.Basic) and isinstance(item, sp.Expr):
             exprs.append(item)
-            names.append(str(item))
+            text = str(item)
+            names.append(text if len(text) <= 40 else f"law {len(names)}")
         else:
             raise InputError(f"can only compile laws or SymPy expressions, got {item!r}")
     return exprs, names
@@ -182,7 +183,7 @@ def compile(
         digits if backend == "mpmath" else None, cse, chunk, threads,
     )
     evaluator = cls(plan)
-    notes = [RULE_NOTES[name] for name in dict.fromkeys(applied)]
+    notes = [note for name, note in RULE_NOTES.items() if name in applied]
     return NumericFunction(evaluator, plan, cls.key, notes, spec, on_pole=on_pole)
 
 

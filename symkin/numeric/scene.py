@@ -55,8 +55,11 @@ class Scene:
         symbols omega_k of an admissible choice of links.
     t : array, optional
         Time grid used when the laws depend on t and no ``t`` is given to :meth:`evaluate`.
-    backend, precision, digits, ranges, reduce_phase, chunk, threads
+    backend, precision, digits, ranges, chunk, threads
         Passed to :func:`symkin.compile`.
+    reduce_phase : bool
+        Reduce phases in t in double-double arithmetic (default): the rounding of
+        omega t is otherwise most of the float64 error of a law in time.
     """
 
     mechanism: Mechanism
@@ -69,7 +72,7 @@ class Scene:
     precision: str = "float64"
     digits: int = 50
     ranges: Mapping[sp.Symbol, tuple[Any, Any]] | None = None
-    reduce_phase: bool = False
+    reduce_phase: bool = True
     chunk: int | None = None
     threads: int | None = None
     _buffers: dict = field(default_factory=dict, init=False, repr=False)

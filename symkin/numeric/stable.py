@@ -274,7 +274,7 @@ def exact_integer_parts(expr: sp.Expr) -> sp.Expr:
             for f in sp.Mul.make_args(term):
                 (ints if (f.is_Rational or _integer_rational(f)) else rest).append(f)
             groups.setdefault(sp.Mul(*rest), []).append(sp.Mul(*ints))
-        if len(groups) < len(expr.args):
+        if len(groups) < len(expr.args) and any(len(v) > 1 and any(i.free_symbols for i in v) for v in groups.values()):
             return sp.Add(
                 *(exact_integer_parts(sp.Add(*ints)) * exact_integer_parts(rest) for rest, ints in groups.items())
             )
@@ -283,7 +283,10 @@ def exact_integer_parts(expr: sp.Expr) -> sp.Expr:
         if len(ints) > 1 and any(f.has(sp.Add) for f in ints):
             rest = [exact_integer_parts(f) for f in expr.args if f not in ints]
             return exact_integer_parts(sp.Mul(*ints)) * sp.Mul(*rest)
-    return expr.func(*(exact_integer_parts(a) for a in expr.args))
+    args = [exact_integer_parts(a) for a in expr.args]
+    if all(new is old for new, old in zip(args, expr.args)):
+        return expr  # unchanged: do not rebuild (rebuilding re-evaluates, e.g. inside Group)
+    return expr.func(*args)
 
 
 # --------------------------------------------------------------------------- rule 3
