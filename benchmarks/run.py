@@ -46,7 +46,10 @@ HAS_NUMBA = numba_available()
 
 # --------------------------------------------------------------------------- timing
 def median_time(fn, repeats: int) -> float:
+    t0 = time.perf_counter()
     fn()  # warm (compilation, caches)
+    if time.perf_counter() - t0 < 0.3:
+        repeats = max(repeats, 7)  # cheap calls: more repeats, a steadier median on a shared machine
     times = []
     for _ in range(repeats):
         t0 = time.perf_counter()
@@ -182,6 +185,8 @@ def methods_for(case: dict) -> dict:
             )
     best = out.get("symkin numba float64, 2 threads", out["symkin numpy float64"])
     out["(same, into a reused out= buffer)"] = _with_out(best)
+    if case.get("float_values") and HAS_NUMBA:  # tooth numbers fit int32: half the bytes to read
+        out["(same, int32 tooth numbers)"] = best  # run_case passes int32 arrays
     out["symkin mpmath 30 digits"] = symkin.compile(expr, args, backend="mpmath", digits=30)
     if case["rational"]:
         out["symkin exact (Fraction)"] = symkin.compile(expr, args, backend="exact")
@@ -204,12 +209,6 @@ def _with_out(f):
 SLOW = ("symkin mpmath 30 digits", "symkin exact (Fraction)", "sympy subs/evalf per point")
 
 
-def inputs_for(name: str, case: dict, values):
-    if name == "symkin exact (Fraction)":
-        return [v if np.ndim(v) else v for v in values] if case.get("float_values") else [np.asarray(v).astype(int) if False else v for v in values]
-    return values
-
-
 def evalf_points(expr, args, values, n):
     out = []
     for i in range(n):
@@ -228,6 +227,8 @@ def run_case(title: str, case: dict, sizes: list[int], ref_n: int = 1000) -> lis
     ref = np.array(symkin.compile(ref_expr, case["args"], backend="mpmath", digits=50)(*ref_vals), dtype=float)
     methods = methods_for(case)
     exact_ok = case["rational"]
+    case["bandwidth"] = copy_bandwidth()  # next to this law's timings: the machine is shared
+    print(title, case["bandwidth"], flush=True)
     for name, fn in methods.items():
         for n in sizes:
             if name in SLOW and n > 10**3:
@@ -241,6 +242,8 @@ def run_case(title: str, case: dict, sizes: list[int], ref_n: int = 1000) -> lis
                     from fractions import Fraction
 
                     vals = [np.array([Fraction(float(x)) for x in v], dtype=object) if np.ndim(v) else Fraction(float(v)) for v in vals]
+            if name == "(same, int32 tooth numbers)":
+                vals = [np.asarray(v).astype(np.int32) for v in vals]
             t = median_time(lambda: fn(*vals), repeats_for(n) if name not in SLOW else 1)
             got = fn(*prefix(vals, ref_n)) if n >= ref_n else None
             err = rel_error(np.asarray(got, dtype=float), ref, case.get("normwise", False)) if got is not None else None
@@ -457,6 +460,9 @@ def write_markdown(res: dict, path: Path) -> None:
     bw = res["bandwidth"]
     for k, v in bw.items():
         lines.append(f"- {k.replace('_GBps', '')}: {v:.1f} GB/s (bytes read + written)")
+    lines += ["", "Measured again before each law (the machine is shared):", ""]
+    for r in res.get("bandwidth_per_law", []):
+        lines.append(f"- before {r['law']}: best two-thread copy {r['copy_best_2threads_GBps']:.1f} GB/s")
     lines += ["", "## Throughput (points/s) and error", ""]
     for law in dict.fromkeys(r["law"] for r in rows):
         lines += [f"### {law}", "", "| method | " + " | ".join(f"10^{int(np.log10(n))}" for n in sizes) + " | max rel. error |", "|---|" + "---:|" * (len(sizes) + 1)]
@@ -514,6 +520,7 @@ def main() -> None:
     for title, case in cases.items():
         rows += run_case(title, case, sizes)
     res["throughput"] = rows
+    res["bandwidth_per_law"] = [dict(law=t, **c["bandwidth"]) for t, c in cases.items()]
     n = max(sizes)
 
     def rate(law, method):
@@ -529,9 +536,9 @@ def main() -> None:
         if reused:
             line += f"; into a reused out= buffer {reused / lam:.1f}x"
         if cases[title]["bytes"] and law != "elliptical":
-            copy = res["bandwidth"]["copy_best_2threads_GBps"]
+            copy = cases[title]["bandwidth"]["copy_best_2threads_GBps"]
             gbps = b * cases[title]["bytes"] / 1e9
-            line += f"; it moves {gbps:.1f} GB/s = {gbps / copy:.0%} of the two-thread copy bandwidth"
+            line += f"; it moves {gbps:.1f} GB/s = {gbps / copy:.0%} of the two-thread copy bandwidth measured just before ({copy:.1f} GB/s)"
             if reused:
                 line += f" ({reused * cases[title]['bytes'] / 1e9 / copy:.0%} into a reused buffer)"
         ratios.append(line)

@@ -309,6 +309,16 @@ def test_threads_and_integer_widths_give_the_same_numbers():
         assert np.array_equal(symkin.compile(law, backend="numba", threads=1)(*z), one)
 
 
+@pytest.mark.skipif(not HAS_NUMBA, reason="needs numba")
+def test_a_law_numba_cannot_compile_is_evaluated_with_numpy_and_says_so():
+    x = sp.Symbol("x", real=True)
+    law = sp.Piecewise((x, x < 1), (x**2, True))
+    f = symkin.compile(law, backend="numba")
+    with pytest.warns(symkin.PrecisionWarning, match="numba could not compile"):
+        out = f(np.array([0.5, 2.0]))
+    assert np.array_equal(out, [0.5, 4.0])
+
+
 def test_numba_missing_falls_back_to_numpy_with_one_notice(monkeypatch):
     import symkin.numeric as numeric
 

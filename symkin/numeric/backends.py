@@ -301,6 +301,7 @@ class NumbaBackend(NumpyBackend):
         _passive_openmp()
         super().__init__(plan)  # the NumPy code re-evaluates flagged points exactly
         self.kernels: dict[tuple[tuple[bool, ...], bool], Any] = {}
+        self.broken = False
         self.kernel_sources: dict[tuple[bool, ...], str] = {}
         self.namespace = runtime.numba_namespace(plan.precision)
 
@@ -343,17 +344,27 @@ class NumbaBackend(NumpyBackend):
         import numba
 
         parallel = n >= _PARALLEL_FROM and (plan.threads or numba.get_num_threads()) > 1
-        kernel = self._kernel(scalar, parallel)
+        if self.broken:
+            return super().evaluate(values, outs)
         inputs = [f[()] if f.ndim == 0 else f for f in flat]
-        if plan.threads and parallel and plan.threads != numba.get_num_threads():
-            before = numba.get_num_threads()
-            numba.set_num_threads(min(plan.threads, numba.config.NUMBA_NUM_THREADS))
-            try:
-                bad = kernel(*inputs, *results, n)
-            finally:
-                numba.set_num_threads(before)
-        else:
+        before = numba.get_num_threads()
+        switch = bool(plan.threads and parallel and plan.threads != before)
+        try:
+            kernel = self._kernel(scalar, parallel)
+            if switch:
+                numba.set_num_threads(min(plan.threads, numba.config.NUMBA_NUM_THREADS))
             bad = kernel(*inputs, *results, n)
+        except numba.core.errors.NumbaError as err:  # a construct Numba cannot compile: NumPy instead
+            self.broken = True
+            warnings.warn(
+                f"numba could not compile {', '.join(plan.names)} ({type(err).__name__}); evaluating it with NumPy instead",
+                PrecisionWarning,
+                stacklevel=4,
+            )
+            return super().evaluate(values, outs)
+        finally:
+            if switch:
+                numba.set_num_threads(before)
         if bad and self.twins:
             index = np.flatnonzero(np.logical_or.reduce([~np.isfinite(r) for r in results]))
             fixed = self.evaluate_points(values, index)
