@@ -1,10 +1,12 @@
 """The four laws the numeric benchmarks measure, each behind one function.
 
-``slider_acceleration`` builds the elliptical-drive slider law from the drive law of the
-Luo & Li (2018) section 3 as given in the papers guide (theta_H(t) with the principal
-arctan, omega_H(t) = omega (1 - e^2)/(1 - 2 e cos(m omega t) + e^2)) substituted into
-s = 2 l cos(theta_2 - theta_H) and differentiated by SymPy.  When the engine's
-elliptical drive lands, switch this one function to the engine's derived law.
+``slider_laws`` builds the elliptical-drive slider laws from the drive law of Luo & Li
+(2018) section 3 as given in the papers guide (theta_H(t) with the principal arctan,
+omega_H(t) = omega (1 - e^2)/(1 - 2 e cos(m omega t) + e^2)) substituted into
+s = 2 l cos(theta_2 - theta_H) and differentiated by SymPy: the naive route whose float
+forms lose digits (the extremes table), and, with the branch corrected, the independent
+50-digit reference.  ``slider_acceleration`` is the engine's own derived law
+(symkin.cardan with symkin.drives.EllipticalGears), the one the throughput table times.
 """
 
 from __future__ import annotations
@@ -55,7 +57,14 @@ def slider_laws() -> tuple[sp.Expr, sp.Expr, sp.Expr]:
 
 
 def slider_acceleration() -> sp.Expr:
-    return slider_laws()[2]
+    """a_s as the engine derives it: symkin.cardan.CardanSlider under symkin.drives.EllipticalGears
+    (the benchmarks' reference is built independently, from the papers guide, by
+    :func:`slider_laws_continuous`)."""
+    from symkin.cardan import CardanSlider
+    from symkin.drives import EllipticalGears
+
+    slider = CardanSlider.build(L, drive=EllipticalGears(W, E, M), guide_angle=THETA2, carrier_angle=THETA0)
+    return slider.acceleration
 
 
 def slider_laws_continuous() -> tuple[sp.Expr, sp.Expr, sp.Expr]:

@@ -262,6 +262,20 @@ def test_elliptical_drive_angle_is_continuous_across_branch_points():
     assert rel_error(got[0], ref[0], floor=1) <= 1e-14
 
 
+def test_the_engines_elliptical_slider_compiles_to_the_reference_at_the_extremes():
+    cardan = pytest.importorskip("symkin.cardan")
+    from symkin.drives import EllipticalGears
+
+    slider = cardan.CardanSlider.build(L, drive=EllipticalGears(W, E, M), guide_angle=TH2, carrier_angle=TH0)
+    f = symkin.compile([slider.displacement, slider.velocity, slider.acceleration], SLIDER_ARGS, ranges={E: (0, 1)})
+    t = np.linspace(0, 6, 200)
+    for e, m in ((0.999999, 1.0), (0.5, 2.0), (0.3, 3.0)):
+        values = [e, 0.02, m, 0.8 * np.pi, 0.3, 0.1, t]
+        ref = reference(slider_laws(continuous_reference=True), SLIDER_ARGS, values)  # the papers-guide route
+        for g, r in zip(f(*values), ref):
+            assert rel_error(g, r, floor=1) <= 1e-13
+
+
 def test_reduced_phase_keeps_digits_at_a_million_turns():
     law = sp.sin(M * W * S.t / 2)
     t = np.linspace(0, 1e6, 101) * 2 * np.pi / 0.8 + rng.uniform(0, 1, 101)

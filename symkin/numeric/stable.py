@@ -58,6 +58,8 @@ __all__ = [
 ]
 
 _MAX_OPS = 600  # rules that expand or factor skip larger expressions (cost grows fast)
+_MAX_NODE_OPS = 60  # the cosine-sum rule looks at sums up to this size
+_MAX_SIGN_OPS = 40  # signs are decided by factoring expressions up to this size
 
 
 # --------------------------------------------------------------------------- nodes
@@ -161,7 +163,7 @@ def _sign(expr: sp.Expr, ranges: Mapping[sp.Symbol, tuple[Any, Any]] | None) -> 
             return 1
         if candidate.is_negative:
             return -1
-        if candidate.free_symbols:
+        if candidate.free_symbols and sp.count_ops(candidate) <= _MAX_SIGN_OPS:
             try:
                 f = sp.factor(sp.cancel(candidate))
             except Exception:  # pragma: no cover - sympy failures on odd inputs
@@ -335,7 +337,7 @@ def cosine_sums(expr: sp.Expr, ranges: Mapping[sp.Symbol, tuple[Any, Any]] | Non
     """
 
     def rewrite(node: sp.Expr) -> sp.Expr:
-        if not node.is_Add:
+        if not node.is_Add or sp.count_ops(node) > _MAX_NODE_OPS:
             return node
         cosines = [f for t in node.args for f in sp.Mul.make_args(t) if isinstance(f, cos)]
         for c in dict.fromkeys(cosines):
