@@ -74,8 +74,12 @@ class _Spec:
     args: tuple[sp.Symbol, ...]
     options: tuple[tuple[str, Any], ...]
 
-    def key(self) -> Any:
-        return (tuple(sp.srepr(e) for e in self.exprs), self.names, tuple(sp.srepr(a) for a in self.args), repr(self.options))
+    def key(self) -> str:
+        """A digest of everything compiled: equal keys compile to the same function."""
+        import hashlib
+
+        text = repr((tuple(sp.srepr(e) for e in self.exprs), self.names, tuple(sp.srepr(a) for a in self.args), self.options))
+        return hashlib.sha256(text.encode()).hexdigest()
 
     def build(self) -> NumericFunction:
         laws = [Law(sp.Symbol(n), e) for n, e in zip(self.names, self.exprs)]

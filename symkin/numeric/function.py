@@ -56,6 +56,7 @@ class NumericFunction:
         self._evaluator = evaluator
         self._plan = plan
         self._spec = spec
+        self._token: str | None = None
         self.args: tuple[str, ...] = tuple(s.name for s in plan.args)
         self.outputs: tuple[str, ...] = plan.names
         self.backend = backend
@@ -92,8 +93,13 @@ class NumericFunction:
         return f"<NumericFunction {', '.join(self.outputs)}({', '.join(self.args)}): {how}>"
 
     def __reduce__(self) -> Any:
-        # pickled by what it was compiled from, and rebuilt (once per process) on load
-        return (_rebuild, (self._spec,))
+        # pickled as a digest and what it was compiled from; a process that has rebuilt it
+        # once finds it by the digest and never unpickles the SymPy expressions again
+        import pickle
+
+        if self._token is None:
+            self._token = self._spec.key()
+        return (_rebuild, (self._token, pickle.dumps(self._spec)))
 
     def __call__(self, *values: Any, out: Sequence[np.ndarray] | np.ndarray | None = None) -> Any:
         if len(values) != len(self.args):
@@ -133,8 +139,11 @@ class NumericFunction:
             warnings.warn(msg + "; those points hold inf or nan", PoleWarning, stacklevel=3)
 
 
-def _rebuild(spec: Any) -> NumericFunction:
-    key = spec.key()
-    if key not in _REBUILT:
-        _REBUILT[key] = spec.build()
-    return _REBUILT[key]
+def _rebuild(token: str, payload: bytes) -> NumericFunction:
+    if token not in _REBUILT:
+        import pickle
+
+        function = pickle.loads(payload).build()
+        function._token = token
+        _REBUILT[token] = function
+    return _REBUILT[token]
