@@ -23,7 +23,7 @@ import math
 import os
 import threading
 import warnings
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any, Callable, Sequence
 
@@ -64,7 +64,6 @@ class Plan:
     cse: bool
     chunk: int
     threads: int | None
-    integer_args: tuple[bool, ...] = field(default=())
 
     @property
     def dtype(self) -> Any:

@@ -121,7 +121,7 @@ class NumericFunction:
         bad = [np.flatnonzero(~np.isfinite(r)) for r in results]
         if not any(b.size for b in bad):
             return
-        arrays = [np.broadcast_to(np.asarray(v, dtype=float) if np.asarray(v).dtype != object else np.asarray(v, dtype=float), shape).reshape(-1) for v in values]
+        arrays = [np.broadcast_to(np.asarray(v, dtype=float), shape).reshape(-1) for v in values]
         finite_in = np.logical_and.reduce([np.isfinite(a) for a in arrays]) if arrays else np.ones(math.prod(shape), bool)
         for name, b in zip(self.outputs, bad):
             b = b[finite_in[b]] if b.size else b
