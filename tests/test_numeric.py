@@ -366,7 +366,9 @@ def test_a_ratio_only_scene_derives_no_particle_or_speed_laws(monkeypatch):
     assert not any(str(k).startswith("('scene'") for k in mech._cache)  # nothing derived yet
     out = scene.evaluate({"z_1": 100, "z_2": 99, "z_3": 100, "z_4": 101})
     assert out["i_{H1}^{(4)}"] == 10000.0
-    assert [k for k in mech._cache if isinstance(k, tuple) and k[0] == "general_solution"] == [("general_solution", ("4", "H"))]
+    # only the one set of known links the ratio needs (H driving, 4 fixed) was solved for
+    solved = {k[1] for k in mech._cache if isinstance(k, tuple) and len(k) == 2 and isinstance(k[1], tuple)}
+    assert solved == {("4", "H")}
 
 
 def test_a_scene_compiles_once_and_caches_on_the_mechanism(monkeypatch):
