@@ -35,6 +35,8 @@ __all__ = ["Scene", "draw_frame", "frame_figure", "animate", "WRITERS", "ffmpeg_
 
 #: File suffix -> matplotlib writer name.
 WRITERS = {".gif": "pillow", ".mp4": "ffmpeg"}
+#: Largest frame rate and resolution :func:`animate` accepts.
+MAX_FPS, MAX_DPI = 1000, 1000
 
 _COLOURS = ("#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#8c564b", "#17becf", "#7f7f7f", "#bcbd22")
 _PATH_COLOURS = ("#ff7f0e", "#000000", "#e377c2", "#2ca02c", "#d62728")
@@ -287,9 +289,9 @@ def animate(
     suffix = out.suffix.lower()
     if suffix not in WRITERS:
         raise InputError(f"cannot write {out.name}: give a file ending in {' or '.join(WRITERS)}")
-    for name, value, low in (("fps", fps, 1), ("dpi", dpi, 10)):
-        if not isinstance(value, int) or isinstance(value, bool) or value < low:
-            raise InputError(f"{name} must be an integer of at least {low}, got {value!r}")
+    for name, value, low, high in (("fps", fps, 1, MAX_FPS), ("dpi", dpi, 10, MAX_DPI)):
+        if not isinstance(value, int) or isinstance(value, bool) or not low <= value <= high:
+            raise InputError(f"{name} must be an integer from {low} to {high}, got {value!r}")
     if suffix == ".mp4" and not ffmpeg_available():
         raise ToolError(
             "ffmpeg was not found, so an MP4 cannot be written; write a GIF instead (a file ending in .gif) "

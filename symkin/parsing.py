@@ -52,9 +52,12 @@ CONSTANTS: Mapping[str, sp.Expr] = {"pi": sp.pi, "E": sp.E}
 MAX_LENGTH = 2000
 MAX_DEPTH = 60
 MAX_EXPONENT = 1000
-MAX_DIGITS = 400
+#: Exact numbers are accepted between 10^-MAX_DIGITS and 10^MAX_DIGITS in size (or 0), so
+#: every number a user gives also has a finite, non-zero float (floats end near 1.8e308).
+MAX_DIGITS = 300
+_HUGE = sp.Integer(10) ** MAX_DIGITS
 
-_NUMBER = re.compile(r"^[+-]?(\d+(_?\d+)*)?(\.\d*)?([eE][+-]?\d+)?$|^[+-]?\d+\s*/\s*\d+$")
+_NUMBER = re.compile(r"^[+-]?(\d+(_?\d+)*)?(\.\d*)?([eE][+-]?\d+)?$|^[+-]?\d+\s*/\s*\d+$", re.ASCII)
 
 
 def _check_text(text: object, what: str) -> str:
@@ -84,15 +87,31 @@ def parse_number(text: str, *, what: str = "value") -> sp.Rational:
     if not _NUMBER.match(s) or s in {".", "+", "-"}:
         raise InputError(f"{what} must be a number such as 12, 0.8, 1e-3 or 3/4, got {text!r}")
     mantissa, _, exponent = s.lower().partition("e")
-    if exponent and abs(int(exponent)) > MAX_DIGITS:
-        raise InputError(f"{what} has exponent {exponent}; at most 10^{MAX_DIGITS} in size is accepted")
+    if exponent and abs(int(exponent)) > 2 * MAX_DIGITS:
+        raise InputError(f"{what} has exponent {exponent}; numbers from 1e-{MAX_DIGITS} to 1e{MAX_DIGITS} in size are accepted")
     if len(re.sub(r"\D", "", mantissa)) > MAX_DIGITS:
         raise InputError(f"{what} has more than {MAX_DIGITS} digits")
     try:
         value = Fraction(s.replace(" ", ""))
     except (ValueError, ZeroDivisionError) as err:
         raise InputError(f"{what} must be a finite number, got {text!r} ({err})") from None
-    return sp.Rational(value.numerator, value.denominator)
+    return _bounded(sp.Rational(value.numerator, value.denominator), what)
+
+
+def _bounded(value: sp.Expr, what: str) -> sp.Expr:
+    """``value`` unless it is an exact number too large or too small (but not 0) to use."""
+    if value.is_Rational and value != 0:
+        size = abs(value)
+        if size > _HUGE or size * _HUGE < 1:
+            raise InputError(
+                f"{what} holds a number of about 10^{_exponent(size)}; numbers from 1e-{MAX_DIGITS} to "
+                f"1e{MAX_DIGITS} in size are accepted"
+            )
+    return value
+
+
+def _exponent(size: sp.Rational) -> int:
+    return round((int(size.p).bit_length() - int(size.q).bit_length()) * math.log10(2))
 
 
 def parse_integer(text: str, *, what: str = "value") -> sp.Integer:
@@ -133,17 +152,19 @@ def parse_expression(
     for n in names:
         allowed[n] = S.t if n == "t" else sp.Symbol(n, real=True)
     allowed.update(symbols or {})
+    source = s.replace("^", "**")
     try:
-        tree = ast.parse(s.replace("^", "**"), mode="eval")
-    except SyntaxError:
+        tree = ast.parse(source, mode="eval")
+    except (SyntaxError, ValueError):
         raise InputError(f"{what} {text!r} is not a valid expression") from None
-    return _Builder(allowed, what).build(tree.body, 0)
+    return _Builder(allowed, what, source).build(tree.body, 0)
 
 
 class _Builder:
-    def __init__(self, allowed: Mapping[str, sp.Expr], what: str):
+    def __init__(self, allowed: Mapping[str, sp.Expr], what: str, source: str):
         self.allowed = allowed
         self.what = what
+        self.source = source
 
     def fail(self, message: str) -> InputError:
         names = ", ".join(sorted(self.allowed, key=str.lower))
@@ -158,14 +179,11 @@ class _Builder:
             v = node.value
             if isinstance(v, bool) or not isinstance(v, (int, float)):
                 raise self.fail(f"{v!r} is not a number")
-            if isinstance(v, float):
-                if not math.isfinite(v):
-                    raise InputError(f"{self.what} contains a non-finite number")
-                exact = Fraction(repr(v))  # the decimal the user typed, exactly
-                return sp.Rational(exact.numerator, exact.denominator)
-            if abs(v) > 10**MAX_DIGITS:
-                raise InputError(f"{self.what} contains a number with more than {MAX_DIGITS} digits")
-            return sp.Integer(v)
+            # the literal as typed, exactly (a float would round long decimals and 1e-400)
+            literal = ast.get_source_segment(self.source, node) or ""
+            if not _NUMBER.match(literal) or "/" in literal:
+                raise InputError(f"{self.what}: write numbers with decimal digits 0-9, got {literal!r}")
+            return parse_number(literal, what=self.what)
         if isinstance(node, ast.Name):
             if node.id in self.allowed:
                 return self.allowed[node.id]
@@ -174,26 +192,7 @@ class _Builder:
             operand = self.build(node.operand, depth + 1)
             return operand if isinstance(node.op, ast.UAdd) else -operand
         if isinstance(node, ast.BinOp):
-            left = self.build(node.left, depth + 1)
-            right = self.build(node.right, depth + 1)
-            op = type(node.op)
-            if op is ast.Add:
-                return left + right
-            if op is ast.Sub:
-                return left - right
-            if op is ast.Mult:
-                return left * right
-            if op is ast.Div:
-                if right == 0:
-                    raise InputError(f"{self.what} divides by zero")
-                return left / right
-            if op is ast.Pow:
-                if right.is_number and (not right.is_finite or abs(right) > MAX_EXPONENT):
-                    raise InputError(f"{self.what} has an exponent larger than {MAX_EXPONENT}")
-                if left == 0 and right.is_number and right.is_negative:
-                    raise InputError(f"{self.what} divides by zero")
-                return left**right
-            raise self.fail(f"the operator {type(node.op).__name__} is not allowed")
+            return _bounded(self.binop(node, depth), self.what)
         if isinstance(node, ast.Call):
             if not isinstance(node.func, ast.Name) or node.func.id not in FUNCTIONS:
                 raise self.fail(f"calling {_show(node.func)} is not allowed")
@@ -205,6 +204,28 @@ class _Builder:
             except TypeError:
                 raise InputError(f"{self.what}: wrong number of arguments to {node.func.id}") from None
         raise self.fail(f"{_show(node)} ({type(node).__name__.lower()}) is not allowed")
+
+    def binop(self, node: ast.BinOp, depth: int) -> sp.Expr:
+        left = self.build(node.left, depth + 1)
+        right = self.build(node.right, depth + 1)
+        op = type(node.op)
+        if op is ast.Add:
+            return left + right
+        if op is ast.Sub:
+            return left - right
+        if op is ast.Mult:
+            return left * right
+        if op is ast.Div:
+            if right == 0:
+                raise InputError(f"{self.what} divides by zero")
+            return left / right
+        if op is ast.Pow:
+            if right.is_number and (not right.is_finite or abs(right) > MAX_EXPONENT):
+                raise InputError(f"{self.what} has an exponent larger than {MAX_EXPONENT}")
+            if left == 0 and right.is_number and right.is_negative:
+                raise InputError(f"{self.what} divides by zero")
+            return left**right
+        raise self.fail(f"the operator {type(node.op).__name__} is not allowed")
 
 
 def _show(node: ast.AST) -> str:

@@ -51,6 +51,9 @@ __all__ = [
 ]
 
 Z_SUN, Z_PLANET, Z_RING = S.teeth("1"), S.teeth("2"), S.teeth("4")
+#: The largest ring :func:`enumerate_stages` takes: it visits every candidate sun (about 2.5 s at this size).
+MAX_RING = 100_000
+
 #: The tip-height coefficient h_a* and the satellite count k, as symbols.
 HA, K = sp.Symbol("h_a^*", positive=True), sp.Symbol("k", positive=True, integer=True)
 
@@ -426,6 +429,8 @@ def enumerate_stages(ring: int, satellites: int, *, zmin: int = 1, zmax: int | N
     symkin.errors.InputError: no single-row AI stage fits a ring of 40 teeth with 15 <= z <= 100: coaxiality z_ring = z_sun + 2 z_planet leaves no sun and planet of at least 15 teeth each; use a ring of at least 45 teeth or lower zmin
     """
     ring = _integer(ring, "the ring's tooth number")
+    if ring > MAX_RING:
+        raise InputError(f"the ring has {ring} teeth; the enumeration visits every sun, so at most {MAX_RING} are accepted")
     k = _integer(satellites, "the number of satellites")
     zmin = _integer(zmin, "zmin")
     zmax = ring if zmax is None else _integer(zmax, "zmax")

@@ -14,6 +14,7 @@ import argparse
 import importlib
 import os
 import sys
+import warnings
 from typing import NoReturn, Sequence
 
 from ..errors import SymkinError
@@ -48,15 +49,40 @@ def build_parser() -> ArgumentParser:
     return parser
 
 
+def one_line(message: object, word: int = 80) -> str:
+    r"""``message`` on one line, each overlong word (an echoed value) shortened.
+
+    >>> one_line("no link 'aaaaaaaaaaaa'\n  choose 1", word=8)
+    "no link 'aaa...(14 characters) choose 1"
+    """
+    words = str(message).split()
+    return " ".join(w if len(w) <= word else f"{w[: word * 3 // 4]}...({len(w)} characters)" for w in words)
+
+
 def main(argv: Sequence[str] | None = None) -> int:
-    """Run the command line; returns the exit status."""
+    """Run the command line; returns the exit status.
+
+    A failure prints one line on stderr; a Python warning raised on the way (for example
+    a NumPy overflow) becomes a one-line note after a success and is dropped after a
+    failure, whose message says what went wrong.
+    """
     parser = build_parser()
     args = parser.parse_args(argv)
     prog = f"symkin {args.command}"
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("default")
+        code = _run(args, prog)
+    if code in (EXIT_OK, EXIT_DIFFERS):
+        for w in dict.fromkeys(f"{w.category.__name__}: {w.message}" for w in caught):
+            print(f"{prog}: note: {one_line(w)}", file=sys.stderr)
+    return code
+
+
+def _run(args: argparse.Namespace, prog: str) -> int:
     try:
         return int(args.run(args) or EXIT_OK)
     except SymkinError as err:
-        print(f"{prog}: error: {err}", file=sys.stderr)
+        print(f"{prog}: error: {one_line(err)}", file=sys.stderr)
         return EXIT_USAGE
     except KeyboardInterrupt:
         print(f"{prog}: interrupted; nothing was written", file=sys.stderr)
@@ -66,8 +92,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     except Exception as err:  # a bug: say so in one line, keep the traceback for debugging
         if os.environ.get("SYMKIN_DEBUG"):
             raise
-        print(f"{prog}: internal error: {type(err).__name__}: {err} (set SYMKIN_DEBUG=1 for details; please report)",
-              file=sys.stderr)
+        print(f"{prog}: internal error: {type(err).__name__}: {one_line(err)} (set SYMKIN_DEBUG=1 for details; "
+              "please report)", file=sys.stderr)
         return EXIT_INTERNAL
 
 

@@ -16,11 +16,13 @@ import sympy as sp
 
 from ..errors import InputError
 from ..model import LinkKind
-from ..parsing import parse_expression, parse_number
+from ..parsing import parse_expression, parse_integer, parse_number
 from .common import add_json_flag, collect_warnings, emit, link_value
 from .gears import SCHEME_HELP, _mechanism, _notes
 
 __all__ = ["register"]
+
+MAX_FRAMES = 5000
 
 
 def _common(p: Any, out_help: str) -> None:
@@ -66,9 +68,9 @@ def register(sub: Any) -> None:
         "when complete.",
     )
     _common(a, "animation file, .gif or .mp4")
-    a.add_argument("--fps", type=int, default=20, help="frames per second (default 20)")
-    a.add_argument("--frames", type=int, default=None, help="number of frames (default: 4 s of animation per turn)")
-    a.add_argument("--dpi", type=int, default=80, help="resolution (default 80)")
+    a.add_argument("--fps", default="20", help="frames per second (default 20)")
+    a.add_argument("--frames", default=None, help=f"number of frames, 2 to {MAX_FRAMES} (default: 4 s of animation per turn)")
+    a.add_argument("--dpi", default="80", help="resolution (default 80)")
     a.set_defaults(run=run_animate)
 
 
@@ -121,8 +123,7 @@ def _setup(args: Any) -> tuple[Any, Any, list, float, list[str], list[str]]:
             raise InputError(f"--t-end must be positive, got {args.t_end}")
         t_end = float(t_end)
     else:
-        turns = float(parse_number(args.turns, what="--turns")) if args.turns is not None else 1.0
-        t_end = turn_time(motion, turns)
+        t_end = turn_time(motion, _turns(args))
     labels = [f"link {mech.link(l).name} at ({_fmt(a)}, {_fmt(b)}) from its axis" for l, (a, b) in points]
     return mech, motion, points, t_end, labels, notes
 
@@ -132,6 +133,22 @@ def _scheme(name: str, teeth_text: str, module: sp.Rational) -> tuple[Any, list]
 
     mech, teeth = _mechanism(name, teeth_text)
     return schemes.scheme(name, teeth=tuple(teeth), module=module), teeth
+
+
+def _whole(text: str, what: str, low: int, high: int) -> int:
+    value = parse_integer(text, what=what)
+    if not low <= value <= high:
+        raise InputError(f"{what} must be between {low} and {high}, got {value}")
+    return int(value)
+
+
+def _turns(args: Any) -> float:
+    if args.turns is None:
+        return 1.0
+    turns = parse_number(args.turns, what="--turns")
+    if turns <= 0:
+        raise InputError(f"--turns must be positive, got {args.turns}")
+    return float(turns)
 
 
 def _fmt(v: sp.Expr) -> str:
@@ -217,20 +234,20 @@ def run_curves(args: Any) -> int:
 
 
 def run_animate(args: Any) -> int:
-    from ..animation import WRITERS, Scene, animate
+    from ..animation import MAX_DPI, MAX_FPS, WRITERS, Scene, animate
 
     out = Path(args.out)
     if out.suffix.lower() not in WRITERS:
         raise InputError(f"--out {args.out}: give a file ending in {' or '.join(WRITERS)}")
+    fps = _whole(args.fps, "--fps", 1, MAX_FPS)
+    dpi = _whole(args.dpi, "--dpi", 10, MAX_DPI)
+    frames = _whole(args.frames, "--frames", 2, MAX_FRAMES) if args.frames is not None else None
     mech, motion, points, t_end, labels, notes = _setup(args)
-    frames = args.frames
     if frames is None:
-        turns = float(parse_number(args.turns, what="--turns")) if args.turns is not None else 1.0
-        frames = max(2, min(2000, int(round(4 * args.fps * (turns if args.t_end is None else 1.0)))))
-    if frames < 2 or frames > 5000:
-        raise InputError(f"--frames must be between 2 and 5000, got {frames}")
+        turns = _turns(args) if args.t_end is None else 1.0
+        frames = max(2, min(2000, int(round(4 * fps * turns))))
     scene = Scene.build(motion, points, t_end=t_end, frames=frames, labels=labels,
                         title=f"{args.scheme}, z = {args.teeth}")
-    animate(scene, out, fps=args.fps, dpi=args.dpi)
-    _report(args, "animation", out, mech, points, t_end, notes, {"frames": frames, "fps": args.fps})
+    animate(scene, out, fps=fps, dpi=dpi)
+    _report(args, "animation", out, mech, points, t_end, notes, {"frames": frames, "fps": fps})
     return 0
