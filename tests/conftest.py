@@ -31,3 +31,14 @@ def pdflatex():
             pytest.fail(message + "; CI must have it (.ci/run installs it)")
         pytest.skip(message)
     return exe
+
+
+# Hypothesis: the default profile keeps the suite fast; `pytest --hypothesis-profile=long` tries
+# ten times as many examples (property tests set no max_examples of their own, so the profile rules).
+from hypothesis import HealthCheck, settings  # noqa: E402
+
+settings.register_profile("default", max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+settings.register_profile("long", max_examples=400, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+settings.register_profile("debug", max_examples=40, deadline=None, phases=[p for p in __import__("hypothesis").Phase
+                                                                          if p.name != "shrink"])
+settings.load_profile("default")

@@ -162,7 +162,7 @@ def pitch_point_velocities(kind, radii, speeds, theta):
     return out
 
 
-@settings(max_examples=60, deadline=None)
+@settings(deadline=None)
 @given(
     kind=st.sampled_from(["AI", "AA", "II"]),
     z=st.tuples(*[st.integers(12, 300)] * 3),
