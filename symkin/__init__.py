@@ -23,6 +23,7 @@ from .errors import (
     InputError,
     ModelError,
     OverdeterminedError,
+    SimplificationBudgetWarning,
     SingularConfigurationError,
     SymkinError,
     SymkinWarning,
@@ -79,4 +80,5 @@ __all__ = [
     "PoleError",
     "PoleWarning",
     "PrecisionWarning",
+    "SimplificationBudgetWarning",
 ]

@@ -40,6 +40,7 @@ import sympy as sp
 
 from . import schemes
 from . import symbols as S
+from .budget import simplify_within
 from .drives import ConstantSpeed, Drive, EllipticalGears, as_drive
 from .errors import InputError, ModelError, UnsupportedError
 from .laws import Law
@@ -244,16 +245,21 @@ def _angle(value: Any, what: str) -> sp.Expr:
     return expr
 
 
-def _decide(expr: sp.Expr) -> bool | None:
+def _decide(expr: sp.Expr, what: str = "a condition") -> bool | None:
     """True/False when ``expr`` is decidably zero / non-zero, else None."""
-    zero = sp.simplify(expr).is_zero
+    zero = simplify_within(expr, what=what).is_zero
     return None if zero is None else bool(zero)
 
 
-def _is_multiple(expr: sp.Expr, period: sp.Expr) -> bool | None:
-    q = sp.nsimplify(sp.simplify(expr / period))
+def _is_multiple(expr: sp.Expr, period: sp.Expr, what: str = "a condition") -> bool | None:
+    q = simplify_within(expr / period, simplifier=lambda e: sp.nsimplify(sp.simplify(e)), what=what)
     if q.is_number:
-        return bool(q.is_integer)
+        integer = q.is_integer
+        if integer is None:  # not simplified in time: 50 digits decide unless q is within 1e-30 of a whole number
+            value = q.evalf(50)
+            if value.is_real and abs(value - round(value)) > sp.Rational(1, 10**30):
+                return False
+        return None if integer is None else bool(integer)
     return None
 
 
@@ -428,10 +434,11 @@ class CardanSlider:
         """Each derived line condition for this mechanism: True, False, or None (undecidable)."""
         c = line_conditions()
         return {
-            "ratio": _decide(self.ring_ratio - c.ratio.rhs / S.radius("1")),
-            "lengths": _decide(self.pin_radius - self.arm),
+            "ratio": _decide(self.ring_ratio - c.ratio.rhs / S.radius("1"), "the 1:2 ratio condition"),
+            "lengths": _decide(self.pin_radius - self.arm, "the pin-on-pitch-circle condition"),
             "installation": _is_multiple(
-                self.pin_angle - c.installation.rhs.subs({theta_2: self.guide_angle, theta_H0: self.carrier_angle0}), 2 * sp.pi
+                self.pin_angle - c.installation.rhs.subs({theta_2: self.guide_angle, theta_H0: self.carrier_angle0}), 2 * sp.pi,
+                "the installation-angle condition",
             ),
         }
 
@@ -439,7 +446,8 @@ class CardanSlider:
     def required_pin_angle(self) -> sp.Expr:
         """The installation angle theta_1(0) that keeps the pin on this guide (mod 2 pi)."""
         rule = line_conditions().installation
-        return sp.simplify(rule.rhs.subs({theta_2: self.guide_angle, theta_H0: self.carrier_angle0}))
+        return simplify_within(rule.rhs.subs({theta_2: self.guide_angle, theta_H0: self.carrier_angle0}),
+                               what="the required pin angle")
 
     def path(self) -> Path:
         """The curve the pin traces, and whether the slider can follow it.
@@ -459,7 +467,7 @@ class CardanSlider:
                 "a hypotrochoid (an ellipse or a line off the guide when the ratio is 2)",
             )
         if met["ratio"]:
-            direction = sp.simplify(self.carrier_angle0 + self.pin_angle / 2)
+            direction = simplify_within(self.carrier_angle0 + self.pin_angle / 2, what="the ellipse's direction")
             if not met["lengths"]:
                 major, minor = lh + l1, sp.Abs(lh - l1)
                 return Path(

@@ -29,6 +29,7 @@ __all__ = [
     "PoleError",
     "PoleWarning",
     "PrecisionWarning",
+    "SimplificationBudgetWarning",
 ]
 
 
@@ -99,3 +100,7 @@ class PoleWarning(SymkinWarning):
 
 class PrecisionWarning(SymkinWarning):
     """A numeric request was served at a different speed or precision than asked (a fallback), or loses digits."""
+
+
+class SimplificationBudgetWarning(SymkinWarning):
+    """A simplification ran out of its time or size budget; the law is kept as derived (exact, untidy)."""

@@ -33,6 +33,7 @@ from typing import Any, Iterable, Mapping, Sequence
 import sympy as sp
 
 from . import symbols as S
+from .budget import simplify_within
 from .errors import CoaxialityWarning, ModelError
 
 __all__ = ["FRAME", "LinkKind", "Gear", "Link", "Mesh", "Mechanism", "as_length", "as_teeth"]
@@ -496,7 +497,7 @@ class Mechanism:
         """
         defects = []
         for planet, ref, d in self._centre_distance_pairs():
-            diff = sp.simplify(ref - d)
+            diff = simplify_within(ref - d, what=f"the coaxiality condition of planet {planet}")
             if not (diff.free_symbols - self._module_symbols) and diff != 0:
                 defects.append((planet, ref, d))
         return tuple(defects)

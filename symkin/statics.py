@@ -32,6 +32,7 @@ from typing import Any
 import numpy as np
 import sympy as sp
 
+from .budget import simplify_within
 from .errors import ModelError, UnsupportedError
 from .model import LinkKind, Mechanism, Mesh
 
@@ -215,7 +216,7 @@ def mesh_hand_relation(mech: Mechanism, mesh: Mesh | tuple[str, str]) -> int:
     # e_theta = z x (P - axis); P - axis is along y, so e_theta_x = -(P_y - axis_y)
     ea = -(geo.pitch_y - 0)
     eb = -(geo.pitch_y - geo.centre_distance)
-    sign = sp.sign(sp.simplify(ea * eb))
+    sign = sp.sign(simplify_within(ea * eb, what=f"the pitch-point geometry of mesh {mesh.a}-{mesh.b}"))
     if sign not in (1, -1):
         raise ModelError(f"cannot decide the helix hands of mesh {mesh.a}-{mesh.b} for these radii")
     return int(sign)

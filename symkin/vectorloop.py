@@ -36,6 +36,7 @@ from typing import Any, Mapping
 
 import sympy as sp
 
+from .budget import simplify_within
 from .errors import InputError, SingularConfigurationError, UnsupportedError
 
 __all__ = ["LinkVector", "VectorLoop", "LoopSolution", "harmonics", "solve_linear"]
@@ -266,7 +267,7 @@ class VectorLoop:
         if wa == "length" and wb == "length":
             a, b = va.angle, vb.angle
             det = sp.sin(a - b)
-            if det == 0 or sp.simplify(det) == 0:
+            if det == 0 or simplify_within(det, what="the determinant of the loop") == 0:
                 raise SingularConfigurationError(
                     f"the unknown lengths {ua} and {ub} lie along parallel directions, so the loop cannot fix them; "
                     "choose an angle as one of the unknowns",

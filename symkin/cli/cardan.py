@@ -9,6 +9,7 @@ import numpy as np
 import sympy as sp
 
 from .. import symbols as S
+from ..budget import simplify_within
 from ..cardan import CardanSlider
 from ..drives import AngleLaw, ConstantSpeed, EllipticalGears
 from ..errors import InputError
@@ -145,7 +146,8 @@ def run_cardan(args: Any) -> int:
             "length": str(length),
             "teeth": [int(z1), int(z3)],
             "pin_radius": str(slider.pin_radius),
-            "pin_on_pitch_circle": bool(sp.simplify(slider.pin_radius - slider.mechanism.gear("1").radius) == 0),
+            "pin_on_pitch_circle": bool(simplify_within(slider.pin_radius - slider.mechanism.gear("1").radius,
+                                                        what="the pin radius") == 0),
             "pin_angle": str(slider.pin_angle),
             "guide_angle": str(guide),
             "carrier_angle": str(carrier),

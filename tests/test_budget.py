@@ -1,0 +1,89 @@
+"""Bounded simplification: a size and a time budget, with the unsimplified law kept and a warning."""
+
+import signal
+import threading
+import time
+import warnings
+
+import pytest
+import sympy as sp
+
+from symkin import SimplificationBudgetWarning
+from symkin.budget import simplify_within
+from symkin.cli import main
+
+#: A number whose simplification takes about a minute with SymPy 1.14 (trigsimp of the expanded power).
+SLOW = (sp.sin(1) + sp.cos(1) + sp.tan(1) + sp.sqrt(3)) ** 30 / (2 * sp.pi)
+
+
+def test_a_slow_simplification_is_stopped_and_the_expression_kept():
+    start = time.perf_counter()
+    with pytest.warns(SimplificationBudgetWarning, match="longer than 0.5 s"):
+        out = simplify_within(SLOW, seconds=0.5, what="the slow number")
+    assert out is SLOW
+    assert time.perf_counter() - start < 3
+
+
+def test_the_same_expression_really_is_slow():
+    """Twice the budget is not enough either: the cut-off above is not for show."""
+    with pytest.warns(SimplificationBudgetWarning):
+        simplify_within(SLOW, seconds=1.0)
+
+
+def test_a_quick_simplification_is_done_and_silent():
+    x = sp.Symbol("x")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert simplify_within(sp.sin(x) ** 2 + sp.cos(x) ** 2, seconds=5) == 1
+        assert simplify_within(sp.Integer(4) / 6, simplifier=sp.nsimplify) == sp.Rational(2, 3)
+
+
+def test_the_size_budget_refuses_without_trying():
+    x = sp.Symbol("x")
+    big = sp.Add(*(sp.sin(k * x) ** k for k in range(1, 400)))
+    start = time.perf_counter()
+    with pytest.warns(SimplificationBudgetWarning, match="operations"):
+        assert simplify_within(big, max_ops=500) is big
+    assert time.perf_counter() - start < 1
+
+
+def test_an_outer_timer_survives_and_still_fires():
+    fired = []
+
+    def outer(signum, frame):
+        fired.append(time.perf_counter())
+
+    previous = signal.signal(signal.SIGALRM, outer)
+    try:
+        start = time.perf_counter()
+        signal.setitimer(signal.ITIMER_REAL, 1.0)
+        assert simplify_within(sp.sqrt(8), seconds=5) == 2 * sp.sqrt(2)
+        assert signal.getitimer(signal.ITIMER_REAL)[0] > 0.5  # re-armed with what was left
+        while not fired and time.perf_counter() - start < 5:
+            time.sleep(0.01)
+        assert fired and fired[0] - start == pytest.approx(1.0, abs=0.3)
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, previous)
+
+
+def test_off_the_main_thread_only_the_size_budget_applies():
+    out = []
+    worker = threading.Thread(target=lambda: out.append(simplify_within(sp.sqrt(8), seconds=0.01)))
+    worker.start()
+    worker.join(30)
+    assert out == [2 * sp.sqrt(2)]
+
+
+def test_the_cardan_command_with_a_slow_angle_finishes_with_a_note(capsys):
+    # unbudgeted, deciding the installation condition for this pin angle took 69 s
+    start = time.perf_counter()
+    code = main(["cardan", "--length", "1", "--omega", "1", "--samples", "2", "--pin-angle",
+                 "(sin(1)+cos(1)+tan(1)+sqrt(3))**30", "--json"])
+    out, err = capsys.readouterr()
+    assert code == 0 and time.perf_counter() - start < 20
+    assert "SimplificationBudgetWarning" in err and "kept as derived" in err
+    # the pin must sit at angle 0 (mod 2 pi) for the slider to follow; this angle (about 1.2e20 rad) is
+    # 0.41 turns away from a whole number of turns, so the pin draws a line off the guide
+    assert sp.N(SLOW, 60) % 1 == pytest.approx(0.4096, abs=1e-3)
+    assert '"kind": "line off the guide"' in out
