@@ -17,7 +17,6 @@ ffmpeg); the file is written under a temporary name and renamed when complete.
 from __future__ import annotations
 
 import os
-import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Mapping, Sequence
@@ -28,6 +27,7 @@ from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
 from . import symbols as S
+from .atomic import replacing
 from .errors import InputError, ToolError
 from .model import FRAME, LinkKind
 
@@ -297,11 +297,6 @@ def animate(
             "ffmpeg was not found, so an MP4 cannot be written; write a GIF instead (a file ending in .gif) "
             "or install ffmpeg (Debian/Ubuntu: sudo apt-get install ffmpeg)"
         )
-    folder = out.resolve().parent
-    if not folder.is_dir():
-        raise InputError(f"cannot write {out}: the folder {folder} does not exist")
-    if out.exists() and out.is_dir():
-        raise InputError(f"cannot write {out}: it is a folder; give a file name ending in {suffix}")
     fig = Figure(figsize=(size, size))
     ax = fig.add_subplot()
     _setup(ax, scene)
@@ -312,19 +307,9 @@ def animate(
     anim = animation.FuncAnimation(fig, artists.update, frames=len(scene.t), blit=False)
     writer = animation.writers[WRITERS[suffix]](fps=fps)
     try:
-        fd, tmp_name = tempfile.mkstemp(prefix=f".{out.stem}.partial-", suffix=suffix, dir=folder)
-    except OSError as err:
-        raise InputError(f"cannot write to {folder}: {err.strerror}; choose a writable folder") from None
-    os.close(fd)
-    tmp = Path(tmp_name)
-    umask = os.umask(0)
-    os.umask(umask)
-    os.chmod(tmp, 0o666 & ~umask)  # mkstemp makes the file private; the result is an ordinary file
-    try:
-        anim.save(str(tmp), writer=writer, dpi=dpi)
-        os.replace(tmp, out)
+        with replacing(out) as (tmp,):
+            anim.save(str(tmp), writer=writer, dpi=dpi)
     except BaseException:
-        tmp.unlink(missing_ok=True)
         anim._draw_was_started = True  # no "deleted without rendering" warning on top of the error
         raise
     return out

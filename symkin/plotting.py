@@ -199,10 +199,15 @@ def turn_time(motion: Any, turns: float = 1.0, link: str | None = None, values: 
 
 
 def save(fig: Figure, path: Path, formats: Sequence[str] = ("png", "pdf")) -> list[Path]:
-    """Save ``fig`` as ``path`` with each suffix in ``formats``; returns the files written."""
-    out = []
-    for fmt in formats:
-        target = Path(path).with_suffix("." + fmt)
-        fig.savefig(target, dpi=150, bbox_inches="tight")
-        out.append(target)
-    return out
+    """Save ``fig`` as ``path`` with each suffix in ``formats``; returns the files written.
+
+    The files appear together when all are written (:func:`symkin.atomic.replacing`): a
+    failure leaves any earlier ones as they were.
+    """
+    from .atomic import replacing
+
+    targets = [Path(path).with_suffix("." + fmt) for fmt in formats]
+    with replacing(*targets) as temps:
+        for tmp in temps:
+            fig.savefig(tmp, dpi=150, bbox_inches="tight")
+    return targets

@@ -21,6 +21,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Callable, Iterable, TextIO
 
+from .atomic import write_atomically
 from .errors import InputError
 from .report import Check
 
@@ -209,43 +210,6 @@ def _is_report(folder: Path) -> bool:
     except (OSError, ValueError):
         return False
     return isinstance(data, dict) and "symkin_version" in data
-
-
-def write_atomically(out: Path, build: Callable[[Path], None]) -> None:
-    """Call ``build(tmp)`` on a fresh folder, then put it at ``out`` in one step.
-
-    If ``build`` raises (or the run is interrupted), the temporary folder is removed
-    and ``out`` is left exactly as it was.
-    """
-    out = Path(out)
-    target = out.resolve()
-    if target.exists() and not target.is_dir():
-        raise InputError(f"{out} exists and is not a folder; choose another --out")
-    parent = target.parent
-    if not parent.is_dir():
-        raise InputError(f"cannot write {out}: its parent folder {parent} does not exist")
-    try:
-        tmp = Path(tempfile.mkdtemp(prefix=f".{target.name}.partial-", dir=parent))
-    except OSError as err:
-        raise InputError(f"cannot write to {parent}: {err.strerror}; choose a writable --out") from None
-    backup = None
-    try:
-        build(tmp)
-        if target.exists():
-            backup = parent / f".{target.name}.old-{os.getpid()}"
-            os.rename(target, backup)
-        try:
-            os.rename(tmp, target)
-        except OSError:
-            if backup is not None:
-                os.rename(backup, target)
-                backup = None
-            raise
-    except BaseException:
-        shutil.rmtree(tmp, ignore_errors=True)
-        raise
-    if backup is not None:
-        shutil.rmtree(backup, ignore_errors=True)
 
 
 def _short(text: str, width: int) -> str:

@@ -8,7 +8,6 @@ shown: an epicycloid or hypocycloid (the Cardan line for a planet in a ring twic
 
 from __future__ import annotations
 
-import os
 from pathlib import Path
 from typing import Any
 
@@ -168,22 +167,9 @@ def _figure_path(args: Any) -> Path:
 
 def _save(fig: Any, out: Path) -> None:
     """Save under a temporary name beside ``out``, then rename (never a half-written file)."""
-    import tempfile
+    from ..plotting import save
 
-    try:
-        fd, tmp = tempfile.mkstemp(prefix=f".{out.stem}.partial-", suffix=out.suffix, dir=out.resolve().parent)
-    except OSError as err:
-        raise InputError(f"cannot write to {out.resolve().parent}: {err.strerror}; choose a writable folder") from None
-    os.close(fd)
-    try:
-        fig.savefig(tmp, dpi=150, bbox_inches="tight")
-        umask = os.umask(0)
-        os.umask(umask)
-        os.chmod(tmp, 0o666 & ~umask)
-        os.replace(tmp, out)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
+    save(fig, out, formats=(out.suffix.lstrip("."),))
 
 
 def _report(args: Any, kind: str, out: Path, mech: Any, points: list, t_end: float, notes: list[str], extra: dict | None = None) -> None:

@@ -1,0 +1,84 @@
+"""Every command that writes a file writes it whole or not at all: a failing or interrupted
+run keeps the previous file and leaves no temporary file (the report folder: test_report_folder.py)."""
+
+from pathlib import Path
+
+import pytest
+from matplotlib import animation
+from matplotlib.figure import Figure
+
+from symkin.cli import main
+from symkin.plotting import save
+
+AI1 = ["AI1", "--teeth", "20,30,80", "--omega", "4=0", "--omega", "H=1"]
+#: command line, files it writes (relative to the working folder), the writer to break
+WRITERS = {
+    "trajectory": (["trajectory", *AI1, "--out", "t.png"], ["t.png"], (Figure, "savefig")),
+    "curves": (["curves", *AI1, "--out", "c.pdf"], ["c.pdf"], (Figure, "savefig")),
+    "animate": (["animate", *AI1, "--frames", "3", "--dpi", "20", "--out", "a.gif"], ["a.gif"], (animation.Animation, "save")),
+    "split --plot": (["split", "--total", "100", "--stages", "2", "--umin", "2", "--umax", "12", "--model", "1 + u/10",
+                      "--plot", "s.png"], ["s.png", "s.pdf"], (Figure, "savefig")),
+}
+MAGIC = {".png": b"\x89PNG", ".pdf": b"%PDF", ".gif": b"GIF8"}
+
+
+def leftovers(folder: Path) -> list[str]:
+    return [p.name for p in folder.iterdir() if ".partial-" in p.name]
+
+
+@pytest.mark.parametrize("name", list(WRITERS))
+@pytest.mark.parametrize("failure, code", [(KeyboardInterrupt, 130), (RuntimeError("disk on fire"), 3)],
+                         ids=["interrupted", "failing"])
+def test_a_broken_write_keeps_the_previous_file(name, failure, code, tmp_path, monkeypatch, capsys):
+    argv, files, (owner, method) = WRITERS[name]
+    monkeypatch.chdir(tmp_path)
+    for f in files:
+        (tmp_path / f).write_bytes(b"previous")
+    seen = []
+
+    def broken(self, path, *args, **kwargs):
+        path = Path(path)
+        seen.append(path)
+        path.write_bytes(b"half a fi")  # a partial file, then the failure
+        raise failure
+
+    monkeypatch.setattr(owner, method, broken)
+    assert main(argv) == code
+    err = capsys.readouterr().err
+    assert len(err.strip().splitlines()) == 1
+    assert seen and all(p.name not in files and p.resolve().parent == tmp_path for p in seen)  # a temporary name
+    assert all((tmp_path / f).read_bytes() == b"previous" for f in files)
+    assert leftovers(tmp_path) == []
+
+
+@pytest.mark.parametrize("name", list(WRITERS))
+def test_a_complete_write_replaces_the_previous_file(name, tmp_path, monkeypatch, capsys):
+    argv, files, _ = WRITERS[name]
+    monkeypatch.chdir(tmp_path)
+    for f in files:
+        (tmp_path / f).write_bytes(b"previous")
+    assert main(argv) == 0, capsys.readouterr().err
+    for f in files:
+        assert (tmp_path / f).read_bytes().startswith(MAGIC[Path(f).suffix])
+    assert leftovers(tmp_path) == []
+
+
+def test_save_writes_png_and_pdf_together_or_neither(tmp_path, monkeypatch):
+    fig = Figure()
+    fig.add_subplot().plot([0, 1], [1, 0])
+    (tmp_path / "f.png").write_bytes(b"previous")
+    real = Figure.savefig
+
+    def pdf_fails(self, path, *args, **kwargs):
+        if str(path).endswith(".pdf"):
+            raise OSError("no space left")
+        return real(self, path, *args, **kwargs)
+
+    monkeypatch.setattr(Figure, "savefig", pdf_fails)
+    with pytest.raises(OSError):
+        save(fig, tmp_path / "f")
+    assert (tmp_path / "f.png").read_bytes() == b"previous"  # the PNG written first was not put in place
+    assert not (tmp_path / "f.pdf").exists() and leftovers(tmp_path) == []
+    monkeypatch.setattr(Figure, "savefig", real)
+    assert save(fig, tmp_path / "f") == [tmp_path / "f.png", tmp_path / "f.pdf"]
+    assert (tmp_path / "f.png").read_bytes().startswith(MAGIC[".png"])
