@@ -26,6 +26,7 @@ two-row planetary train with a stepped planet whose rims 2 and 3 are helical.
 from __future__ import annotations
 
 import math
+import numbers
 from dataclasses import dataclass
 from fractions import Fraction
 from functools import cached_property, lru_cache
@@ -75,7 +76,28 @@ def hand_name(hand: int) -> str:
 
 
 def _is_sym(*values: Any) -> bool:
-    return any(isinstance(v, sp.Basic) for v in values)
+    """Symbolic work when any value is a SymPy object; every value must be a finite real number or a
+    SymPy expression (a string would be parsed as Python by SymPy's functions)."""
+    symbolic = any(isinstance(v, sp.Basic) for v in values)
+    for v in values:
+        if symbolic:
+            expr = _expr(v, "helical gear geometry")
+            bad = expr.is_number and (expr.is_finite is False or expr.is_extended_real is False)
+        else:
+            try:
+                bad = isinstance(v, bool) or not isinstance(v, numbers.Real) or not math.isfinite(float(v))
+            except OverflowError:
+                bad = True
+        if bad:
+            raise ModelError(f"helical gear geometry takes finite real numbers or SymPy expressions, got {v!r}")
+    return symbolic
+
+
+def _expr(value: Any, what: str) -> sp.Expr:
+    """A SymPy expression from a number or expression, never by parsing a string."""
+    from .model import _sympify
+
+    return _sympify(value, what)
 
 
 def transverse_pressure_angle(alpha_n: Any, beta: Any) -> Any:
@@ -85,8 +107,8 @@ def transverse_pressure_angle(alpha_n: Any, beta: Any) -> Any:
     alpha_n
     """
     if _is_sym(alpha_n, beta):
-        if sp.sympify(beta) == 0:
-            return sp.sympify(alpha_n)
+        if _expr(beta, "the helix angle") == 0:
+            return _expr(alpha_n, "the normal pressure angle")
         return sp.atan(sp.tan(alpha_n) / sp.cos(beta))
     return math.atan(math.tan(alpha_n) / math.cos(beta))
 
@@ -98,7 +120,7 @@ def pitch_radius(teeth: Any, normal_module: Any, beta: Any) -> Any:
     20.0
     """
     if _is_sym(teeth, normal_module, beta):
-        return sp.sympify(normal_module) * teeth / (2 * sp.cos(beta))
+        return _expr(normal_module, "the normal module") * teeth / (2 * sp.cos(beta))
     return float(normal_module) * teeth / (2 * math.cos(beta))
 
 
@@ -110,7 +132,7 @@ def working_pitch_radius(teeth: Any, normal_module: Any, beta: Any, alpha_t: Any
     20*cos(alpha_t)/cos(alpha_tw)
     """
     if _is_sym(teeth, normal_module, beta, alpha_t, alpha_tw):
-        r = sp.sympify(normal_module) * teeth / (2 * sp.cos(beta))
+        r = _expr(normal_module, "the normal module") * teeth / (2 * sp.cos(beta))
         return r * sp.cos(alpha_t) / sp.cos(alpha_tw)
     return pitch_radius(teeth, normal_module, beta) * math.cos(alpha_t) / math.cos(alpha_tw)
 
@@ -137,7 +159,7 @@ def lead(teeth: Any, normal_module: Any, beta: Any) -> Any:
     True
     """
     if _is_sym(teeth, normal_module, beta):
-        return sp.pi * sp.sympify(normal_module) * teeth / sp.sin(beta)
+        return sp.pi * _expr(normal_module, "the normal module") * teeth / sp.sin(beta)
     return math.pi * float(normal_module) * teeth / math.sin(beta)
 
 
@@ -224,7 +246,7 @@ def helical_gear(
             a_n = sp.Symbol("alpha_n", positive=True) if alpha_n is None else alpha_n
             alpha_t = transverse_pressure_angle(a_n, beta)
         radius = working_pitch_radius(teeth, normal_module, beta, alpha_t, alpha_tw)
-    return Gear(name, sp.sympify(radius), teeth=teeth, internal=internal)
+    return Gear(name, radius, teeth=teeth, internal=internal)
 
 
 def _positive_int(value: Any, what: str) -> int:

@@ -95,7 +95,7 @@ _S = sp.Symbol("s", positive=True)  # sin(pi/k) while deriving (positive for k >
 
 
 def _scheme(scheme: Any) -> str:
-    if scheme not in SCHEME_MESHES:
+    if not isinstance(scheme, str) or scheme not in SCHEME_MESHES:
         raise InputError(f"unknown scheme {scheme!r}; choose one of {', '.join(SCHEMES)}")
     return scheme
 
@@ -515,10 +515,15 @@ def existence_interval(scheme: str, satellites: int, delta: Any) -> tuple[sp.Exp
     True
     """
     scheme = _scheme(scheme)
-    d = sp.nsimplify(delta) if not isinstance(delta, sp.Basic) else delta
+    if isinstance(delta, (str, bytes, bool)):  # nsimplify would parse a string as Python
+        raise InputError(f"d_w2/d_w3 must be a positive number, got {delta!r}")
+    try:
+        d = sp.nsimplify(delta) if not isinstance(delta, sp.Basic) else delta
+    except (sp.SympifyError, TypeError, ValueError):
+        raise InputError(f"d_w2/d_w3 must be a positive number, got {delta!r}") from None
     if not (d.is_number and d.is_positive):
         raise InputError(f"d_w2/d_w3 must be a positive number, got {delta!r}")
-    k = int(satellites)
+    k = _whole(satellites, "the number of satellites")
     if k < 1:
         raise InputError(f"the number of satellites must be a positive whole number, got {satellites!r}")
     setup = _region_setup(scheme)

@@ -482,8 +482,10 @@ def ratio(mech: Mechanism, driver: str, driven: str, fixed: str | Sequence[str] 
         fixed_names = ()
     elif isinstance(fixed, str):
         fixed_names = (fixed,)
-    else:
+    elif hasattr(fixed, "__iter__"):
         fixed_names = tuple(fixed)
+    else:
+        raise InputError(f"fixed names a link or a sequence of links, got {fixed!r}")
     a, b = _resolve(mech, driver), _resolve(mech, driven)
     cs = tuple(_resolve(mech, c) for c in fixed_names)
     if a == b:

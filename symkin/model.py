@@ -313,6 +313,10 @@ class Mechanism:
     _cache: dict = field(default_factory=dict, init=False, repr=False, compare=False, hash=False)
 
     def __post_init__(self) -> None:
+        for what in ("links", "meshes"):
+            value = getattr(self, what)
+            if isinstance(value, (str, bytes)) or not hasattr(value, "__iter__"):
+                raise ModelError(f"{what} must be a sequence, got {value!r}")
         links = tuple(self.links)
         if not any(isinstance(L, Link) and L.kind is LinkKind.FRAME for L in links):
             links = (Link.frame(),) + links

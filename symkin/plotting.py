@@ -14,6 +14,7 @@ straight line.
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 from typing import Any, Iterable, Mapping, Sequence
 
@@ -25,6 +26,9 @@ from matplotlib.patches import Circle
 from . import symbols as S
 from .errors import InputError
 from .model import LinkKind, Mechanism
+
+#: The most samples :func:`sample` takes (ten million points: hundreds of MB of arrays).
+MAX_SAMPLES = 10_000_000
 
 __all__ = [
     "draw_pitch_circles",
@@ -108,10 +112,9 @@ def sample(
     >>> round(float(data["speed"][0]), 12)
     2.828427124746
     """
-    if not (np.isfinite(t_end) and t_end > 0):
-        raise InputError(f"the time span must be positive and finite, got {t_end}")
-    if not isinstance(samples, int) or samples < 2:
-        raise InputError(f"samples must be an integer of at least 2, got {samples!r}")
+    t_end = _positive_float(t_end, "the time span")
+    if not isinstance(samples, int) or isinstance(samples, bool) or not 2 <= samples <= MAX_SAMPLES:
+        raise InputError(f"samples must be an integer from 2 to {MAX_SAMPLES}, got {samples!r}")
     subs = dict(values or {})
     exprs = [c.subs(subs) for vec in (particle.position, particle.velocity, particle.acceleration) for c in vec]
     free = set().union(*(e.free_symbols for e in exprs)) - {S.t}
@@ -172,8 +175,7 @@ def turn_time(motion: Any, turns: float = 1.0, link: str | None = None, values: 
     >>> round(turn_time(motion, 1), 6)
     3.141593
     """
-    if not (isinstance(turns, (int, float)) and np.isfinite(turns) and turns > 0):
-        raise InputError(f"the number of turns must be positive, got {turns!r}")
+    turns = _positive_float(turns, "the number of turns")
     subs = dict(values or {})
     mech = motion.mechanism
 
@@ -196,6 +198,19 @@ def turn_time(motion: Any, turns: float = 1.0, link: str | None = None, values: 
     if w == 0:
         raise InputError(f"link {link} does not turn; count turns of a moving link or give the time span")
     return float(2 * np.pi * turns / w)
+
+
+def _positive_float(value: Any, what: str) -> float:
+    """A positive finite float from a number (exact numbers too), else InputError."""
+    if isinstance(value, (bool, str)) or not isinstance(value, (int, float, np.number, sp.Expr)):
+        raise InputError(f"{what} must be a positive number, got {value!r}")
+    try:
+        number = float(value)
+    except (TypeError, ValueError, OverflowError):
+        raise InputError(f"{what} must be a positive finite number, got {value!r}") from None
+    if not (math.isfinite(number) and number > 0):
+        raise InputError(f"{what} must be positive and finite, got {value!r}")
+    return number
 
 
 def save(fig: Figure, path: Path, formats: Sequence[str] = ("png", "pdf")) -> list[Path]:

@@ -117,7 +117,7 @@ def _tokens(printer: SymkinLatexPrinter, expr: sp.Expr, width: float) -> list[st
     N too wide for one line is written (1/D)(N).  Pieces narrower than ``width`` are
     printed whole.
     """
-    expr = sp.sympify(expr)
+    expr = sp.sympify(expr, strict=True)
     whole = printer._print(expr)
     if estimated_width(whole) <= width:
         return [whole]
@@ -194,7 +194,7 @@ def latex_lines(expr: Any, width: float, *, symbol_names: Mapping[Any, str] | No
     + c\\Bigr)
     """
     printer = _printer(symbol_names, settings)
-    tokens = _tokens(printer, sp.sympify(expr), width)
+    tokens = _tokens(printer, _strict(expr), width)
     lines: list[str] = []
     current = ""
     for tok in tokens:

@@ -50,6 +50,9 @@ __all__ = [
     "best_designs",
 ]
 
+#: The most stages a split problem takes (the symbolic derivation grows fast with the train).
+MAX_STAGES = 20
+
 _BOUND_TOL = 1e-7  # in ln u: a stage this close to a bound is on it
 _TABLE_SIZE = 200_000  # largest table of completion products the discrete search keeps per depth
 
@@ -118,8 +121,8 @@ class SplitProblem:
         ...
         symkin.errors.InputError: the total ratio 100 is outside what 2 stages with these bounds allow (144 to 400); change the total, the bounds or the number of stages
         """
-        if isinstance(stages, bool) or not isinstance(stages, (int, sp.Integer)) or int(stages) < 1:
-            raise InputError(f"the number of stages must be a positive whole number, got {stages!r}")
+        if isinstance(stages, bool) or not isinstance(stages, (int, sp.Integer)) or not 1 <= int(stages) <= MAX_STAGES:
+            raise InputError(f"the number of stages must be a positive whole number, at most {MAX_STAGES}, got {stages!r}")
         n = int(stages)
         U = _rational(total, "the total ratio")
         if U <= 0:

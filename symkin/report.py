@@ -46,8 +46,17 @@ class Comparison:
     detail: str = ""
 
 
+def _expr(value: Any) -> Any:
+    """A SymPy object from a value; text is parsed with the allow-list, never by Python."""
+    if isinstance(value, str):
+        from .parsing import parse_expression
+
+        return parse_expression(value, what="a compared value")
+    return sp.sympify(value, strict=True)
+
+
 def _difference(derived: Any, published: Any, under: Mapping[Any, Any] | None) -> sp.Expr:
-    d, p = sp.sympify(derived), sp.sympify(published)
+    d, p = _expr(derived), _expr(published)
     if under:
         d, p = d.subs(under), p.subs(under)
     diff = sp.cancel(sp.together(d - p))
@@ -73,7 +82,7 @@ def compare_symbolic(derived: Any, published: Any, *, under: Mapping[Any, Any] |
 
 def compare_exact(derived: Any, published: Any) -> Comparison:
     """Match when two exact numbers are equal."""
-    d, p = sp.nsimplify(sp.sympify(derived)), sp.nsimplify(sp.sympify(published))
+    d, p = sp.nsimplify(_expr(derived)), sp.nsimplify(_expr(published))
     if sp.simplify(d - p) == 0:
         return Comparison(Verdict.MATCH, f"exactly {d}")
     return Comparison(Verdict.DIFFERS, f"derived {d} = {sp.N(d, 12)}, published {p}")
@@ -84,7 +93,7 @@ def compare_rounded(derived: Any, published: str) -> Comparison:
 
     Exact equality is reported as a plain match.
     """
-    d = sp.sympify(derived)
+    d = _expr(derived)
     p = Decimal(published)
     if sp.Rational(str(p)) == d:
         return Comparison(Verdict.MATCH, f"exactly {d}")

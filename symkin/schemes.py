@@ -107,6 +107,8 @@ def common_ring_train(
     if teeth is not None:
         if ring is None:
             raise ModelError("give the ring's tooth number with ring=...")
+        if isinstance(teeth, (str, bytes)) or not hasattr(teeth, "__iter__"):
+            raise ModelError(f"teeth must be a sequence of (sun, planet) pairs, one per stage, got {teeth!r}")
         pairs = list(teeth)
         n = len(pairs)
     else:

@@ -236,9 +236,12 @@ def _sign(constant: Fraction, slope: Fraction, k: int) -> int:
     if k in exact_sin or slope == 0:
         value = constant + slope * exact_sin.get(k, Fraction(0))
         return (value > 0) - (value < 0)
-    approx = float(constant) + float(slope) * math.sin(math.pi / k)
-    if abs(approx) > 1e-9 * (abs(float(constant)) + abs(float(slope))):
-        return 1 if approx > 0 else -1
+    try:
+        approx = float(constant) + float(slope) * math.sin(math.pi / k)
+        if abs(approx) > 1e-9 * (abs(float(constant)) + abs(float(slope))):
+            return 1 if approx > 0 else -1
+    except OverflowError:  # beyond floats: decide with exact arithmetic below
+        pass
     precise = (sp.Rational(constant.numerator, constant.denominator)
                + sp.Rational(slope.numerator, slope.denominator) * sp.sin(sp.pi / k)).evalf(60)
     return 1 if precise > 0 else -1
