@@ -519,8 +519,10 @@ def existence_interval(scheme: str, satellites: int, delta: Any) -> tuple[sp.Exp
         raise InputError(f"d_w2/d_w3 must be a positive number, got {delta!r}")
     try:
         d = sp.nsimplify(delta) if not isinstance(delta, sp.Basic) else delta
-    except (sp.SympifyError, TypeError, ValueError):
+    except (sp.SympifyError, TypeError, ValueError, AttributeError):
         raise InputError(f"d_w2/d_w3 must be a positive number, got {delta!r}") from None
+    if not isinstance(d, sp.Expr):
+        raise InputError(f"d_w2/d_w3 must be a positive number, got {delta!r}")
     if not (d.is_number and d.is_positive):
         raise InputError(f"d_w2/d_w3 must be a positive number, got {delta!r}")
     k = _whole(satellites, "the number of satellites")
