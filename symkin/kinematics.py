@@ -495,6 +495,8 @@ def ratio(mech: Mechanism, driver: str, driven: str, fixed: str | Sequence[str] 
     known = {c: 0 for c in cs if c != FRAME}
     if a == FRAME:
         raise InputError("the frame (link 0) cannot drive; name a moving link as driver")
+    if b == FRAME:
+        raise InputError("the frame (link 0) does not turn, so it cannot be driven; name a moving link as driven")
     known[a] = S.omega(a)
     speeds = solve_speeds(mech, known)
     coefficient = speeds.coefficient(b, a)  # omega_b / omega_a: a cancelled rational function
