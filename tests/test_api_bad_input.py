@@ -94,9 +94,9 @@ def test_every_entry_point_works_with_its_valid_arguments():
         func(**valid)
 
 
-#: symkin/numeric.py is being rebuilt elsewhere: today compile() lets TypeError/SyntaxError/KeyError through
-#: for non-symbol args and non-finite constants (strict: the test fails once the rebuild fixes it; drop the mark then).
-NUMERIC = pytest.mark.xfail(strict=True, reason="symkin.compile: wrong args/constants raise TypeError, SyntaxError, KeyError")
+#: symkin.numeric (owned by the numeric work): compile() lets TypeError (args not a sequence) and KeyError
+#: (a law that is the constant zoo) through (strict: the test fails once that is fixed; drop the mark then).
+NUMERIC = pytest.mark.xfail(strict=True, reason="symkin.compile: args=non-sequence raises TypeError, a zoo law KeyError")
 
 
 @pytest.mark.parametrize("name", [pytest.param(n, marks=NUMERIC) if n == "compile" else n for n in ENTRY_POINTS])
