@@ -94,12 +94,7 @@ def test_every_entry_point_works_with_its_valid_arguments():
         func(**valid)
 
 
-#: symkin.numeric (owned by the numeric work): compile() lets TypeError (args not a sequence) and KeyError
-#: (a law that is the constant zoo) through (strict: the test fails once that is fixed; drop the mark then).
-NUMERIC = pytest.mark.xfail(strict=True, reason="symkin.compile: args=non-sequence raises TypeError, a zoo law KeyError")
-
-
-@pytest.mark.parametrize("name", [pytest.param(n, marks=NUMERIC) if n == "compile" else n for n in ENTRY_POINTS])
+@pytest.mark.parametrize("name", list(ENTRY_POINTS))
 def test_bad_arguments_give_a_result_or_a_symkin_error(name, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     problems, tried = [], 0

@@ -24,6 +24,8 @@ cancelled, angles unwrapped, cosine sums well conditioned.
 
 from __future__ import annotations
 
+from collections.abc import Iterable
+
 import math
 import warnings
 from dataclasses import dataclass
@@ -62,6 +64,9 @@ def _exprs(laws: Any) -> tuple[list[sp.Expr], list[str]]:
             names.append(text if len(text) <= 40 else f"law {len(names)}")
         else:
             raise InputError(f"can only compile laws or SymPy expressions, got {item!r}")
+    for e, n in zip(exprs, names):
+        if e.has(sp.zoo, sp.nan, sp.oo, -sp.oo):
+            raise InputError(f"{n} is infinite or undefined ({e}); there is nothing finite to compile")
     return exprs, names
 
 
@@ -153,6 +158,8 @@ def compile(
     free = set().union(*(e.free_symbols for e in exprs))
     if args is None:
         args = sorted(free, key=lambda s: s.name)
+    if isinstance(args, (str, bytes)) or not isinstance(args, Iterable):
+        raise InputError(f"args is a sequence of SymPy symbols (the argument order), got {args!r}")
     args = tuple(args)
     for a in args:
         if not isinstance(a, sp.Symbol):

@@ -198,6 +198,8 @@ def relative_form(expr: sp.Expr) -> sp.Expr:
     """
     if expr.is_Atom or sp.count_ops(expr) > _MAX_OPS or expr.has(ExactRatio, ReducedPhase):
         return expr
+    if not _rational_function(expr):  # sin, sqrt, ... : not a law this rule is for (and degree() may expand them)
+        return expr
     num, den = sp.fraction(sp.together(expr))
     syms = sorted(expr.free_symbols, key=lambda s: s.name)
     linear = []
@@ -227,6 +229,14 @@ def relative_form(expr: sp.Expr) -> sp.Expr:
     ref = max(reversed(linear), key=lambda s: sp.count_ops(coeffs[s]))
     rest = [sp.factor(coeffs[s]) * (s - ref) for s in linear if s != ref and coeffs[s] != 0]
     return total * ref + sp.Add(*rest)
+
+
+def _rational_function(expr: sp.Expr) -> bool:
+    """Built from symbols and numbers by + * / and integer powers only."""
+    for node in sp.preorder_traversal(expr):
+        if isinstance(node, sp.Function) or (node.is_Pow and not node.exp.is_Integer):
+            return False
+    return True
 
 
 # --------------------------------------------------------------------------- rule 2
