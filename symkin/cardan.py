@@ -45,6 +45,7 @@ from .drives import ConstantSpeed, Drive, EllipticalGears, as_drive
 from .errors import InputError, ModelError, UnsupportedError
 from .laws import Law
 from .model import Mechanism, as_length, as_teeth
+from .parsing import as_expr
 from .vectorloop import LinkVector, VectorLoop, harmonics, solve_linear
 
 __all__ = [
@@ -228,21 +229,6 @@ class StrokeTimes:
         return self.forward / self.back
 
 
-def _angle(value: Any, what: str) -> sp.Expr:
-    """An angle: a number or expression, or safe text such as ``"pi/6"``."""
-    if isinstance(value, str):
-        from .parsing import parse_expression
-
-        return parse_expression(value, what=what)
-    if isinstance(value, bool):
-        raise InputError(f"{what} must be a number or an expression, got {value!r}")
-    try:
-        expr = sp.sympify(value, strict=True)
-    except (sp.SympifyError, TypeError):
-        raise InputError(f"{what} must be a number or an expression, got {value!r}") from None
-    if not isinstance(expr, sp.Expr) or (expr.is_number and (not expr.is_finite or expr.is_extended_real is False)):
-        raise InputError(f"{what} must be a finite real angle, got {value!r}")
-    return expr
 
 
 def _decide(expr: sp.Expr, what: str = "a condition") -> bool | None:
@@ -334,15 +320,15 @@ class CardanSlider:
             if (z3 - z1).is_positive is False:
                 raise ModelError(f"the ring (z3 = {z3}) must have more teeth than the planet (z1 = {z1})")
         mech = schemes.cardan(
-            radii=(arm * z1 / (z3 - z1), arm * z3 / (z3 - z1)), carrier_angle=_angle(carrier_angle, "carrier angle theta_H(0)")
+            radii=(arm * z1 / (z3 - z1), arm * z3 / (z3 - z1)), carrier_angle=as_expr(carrier_angle, what="carrier angle theta_H(0)")
         )
         radius = mech.gear("1").radius if pin_radius is None else as_length(pin_radius, "pin radius l_1")
-        guide = _angle(guide_angle, "guide angle theta_2")
+        guide = as_expr(guide_angle, what="guide angle theta_2")
         if pin_angle is None:
             rule = line_conditions().installation
             pin_angle = rule.rhs.subs({theta_2: guide, theta_H0: mech.link("1").position_angle})
         drive = as_drive(S.omega("H") if drive is None else drive, "carrier drive")
-        return cls(mech, drive, radius, _angle(pin_angle, "pin angle theta_1(0)"), guide)
+        return cls(mech, drive, radius, as_expr(pin_angle, what="pin angle theta_1(0)"), guide)
 
     # ---- geometry
     @property

@@ -20,6 +20,7 @@ from typing import Any
 import sympy as sp
 
 from . import symbols as S
+from .parsing import as_expr
 from .errors import InputError, UnsupportedError
 
 __all__ = ["Drive", "ConstantSpeed", "AngleLaw", "SpeedLaw", "EllipticalGears", "as_drive"]
@@ -49,22 +50,10 @@ class Drive(ABC):
         raise UnsupportedError(f"{type(self).__name__} has no closed-form inverse; find the time numerically")
 
 
-def _expr(value: Any, what: str) -> sp.Expr:
-    if isinstance(value, str):
-        from .parsing import parse_expression
 
-        return parse_expression(value, names=("t",), what=what)
-    if isinstance(value, bool):
-        raise InputError(f"{what} must be a number or an expression, got {value!r}")
-    try:
-        expr = sp.sympify(value, strict=True)
-    except (sp.SympifyError, TypeError):
-        raise InputError(f"{what} must be a number or an expression, got {value!r}") from None
-    if not isinstance(expr, sp.Expr):
-        raise InputError(f"{what} must be a scalar expression, got {value!r}")
-    if expr.is_number and (expr.has(sp.nan, sp.zoo, sp.oo, -sp.oo) or expr.is_extended_real is False):
-        raise InputError(f"{what} must be finite and real, got {value!r}")
-    return expr
+
+def _as_expr(value: Any, what: str) -> sp.Expr:
+    return as_expr(value, what=what, names=("t",))
 
 
 @dataclass(frozen=True)
@@ -74,7 +63,7 @@ class ConstantSpeed(Drive):
     omega: sp.Expr
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "omega", _expr(self.omega, "constant speed"))
+        object.__setattr__(self, "omega", _as_expr(self.omega, "constant speed"))
         if S.t in self.omega.free_symbols:
             raise InputError("a constant speed cannot depend on t; use SpeedLaw for a speed that varies")
 
@@ -89,7 +78,7 @@ class ConstantSpeed(Drive):
         """
         if self.omega == 0:
             raise InputError("a link standing still never turns; give a non-zero speed")
-        return _expr(angle, "angle") / self.omega
+        return _as_expr(angle, "angle") / self.omega
 
 
 @dataclass(frozen=True)
@@ -102,7 +91,7 @@ class AngleLaw(Drive):
     law: sp.Expr
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "law", _expr(self.law, "angle law"))
+        object.__setattr__(self, "law", _as_expr(self.law, "angle law"))
 
     def angle(self, t: sp.Symbol) -> sp.Expr:
         law = self.law.subs(S.t, t)
@@ -116,7 +105,7 @@ class SpeedLaw(Drive):
     law: sp.Expr
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "law", _expr(self.law, "speed law"))
+        object.__setattr__(self, "law", _as_expr(self.law, "speed law"))
 
     def angle(self, t: sp.Symbol) -> sp.Expr:
         tau = sp.Dummy("tau", real=True)
@@ -128,7 +117,7 @@ class SpeedLaw(Drive):
 
 
 def _positive(value: Any, what: str) -> sp.Expr:
-    expr = _expr(value, what)
+    expr = _as_expr(value, what)
     if expr.is_number and not expr.is_positive:
         raise InputError(f"{what} must be positive, got {value}")
     return expr
@@ -183,7 +172,7 @@ class EllipticalGears(Drive):
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "omega", _positive(self.omega, "driver speed of the elliptical gears"))
-        e = _expr(self.eccentricity, "eccentricity")
+        e = _as_expr(self.eccentricity, "eccentricity")
         if e.is_number and not (e >= 0 and e < 1):
             raise InputError(f"the eccentricity must lie in [0, 1), got {self.eccentricity}; 0 gives circular gears")
         object.__setattr__(self, "eccentricity", e)
@@ -233,7 +222,7 @@ class EllipticalGears(Drive):
         pi
         """
         e, m = self.eccentricity, self.order
-        psi = _expr(angle, "angle")
+        psi = _as_expr(angle, "angle")
         v = m * psi
         return (psi - 2 / m * sp.atan(sp.together(e * sp.sin(v) / (1 + e * sp.cos(v))))) / self.omega
 
@@ -246,5 +235,5 @@ def as_drive(value: Any, what: str = "drive") -> Drive:
     """
     if isinstance(value, Drive):
         return value
-    expr = _expr(value, what)
+    expr = _as_expr(value, what)
     return SpeedLaw(expr) if S.t in expr.free_symbols else ConstantSpeed(expr)

@@ -35,6 +35,7 @@ from typing import Any
 import sympy as sp
 
 from .errors import ModelError
+from .parsing import as_expr
 from .model import Gear, Mechanism
 
 __all__ = [
@@ -95,9 +96,7 @@ def _is_sym(*values: Any) -> bool:
 
 def _expr(value: Any, what: str) -> sp.Expr:
     """A SymPy expression from a number or expression, never by parsing a string."""
-    from .model import _sympify
-
-    return _sympify(value, what)
+    return as_expr(value, what=what, text=False, finite=False, error=ModelError)
 
 
 def transverse_pressure_angle(alpha_n: Any, beta: Any) -> Any:

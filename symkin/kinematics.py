@@ -31,6 +31,7 @@ from .errors import (
     UnderdeterminedError,
 )
 from .laws import Law
+from .parsing import as_expr
 from .model import FRAME, LinkKind, Mechanism, Mesh
 from .superposition import vec, velocity
 
@@ -170,22 +171,6 @@ def _resolve(mech: Mechanism, name: Any) -> str:
     return link.name
 
 
-def _value(value: Any, what: str) -> sp.Expr:
-    if isinstance(value, str):
-        from .parsing import parse_expression
-
-        return parse_expression(value, what=what)
-    if isinstance(value, bool):
-        raise InputError(f"{what} must be a number or an expression, got {value!r}")
-    try:
-        expr = sp.sympify(value, strict=True)
-    except (sp.SympifyError, TypeError):
-        raise InputError(f"{what} must be a number or an expression, got {value!r}") from None
-    if not isinstance(expr, sp.Expr):
-        raise InputError(f"{what} must be a scalar, got {value!r}")
-    if expr.is_number and (expr.has(sp.nan, sp.zoo, sp.oo, -sp.oo) or expr.is_extended_real is False):
-        raise InputError(f"{what} must be a finite real number, got {value!r}")
-    return expr
 
 
 def _fmt_links(names: Sequence[str]) -> str:
@@ -367,7 +352,7 @@ def solve_speeds(mech: Mechanism, known: Mapping[str, Any]) -> Speeds:
             raise InputError("the frame (link 0) does not move; give the speeds of moving links")
         if link in resolved:
             raise InputError(f"the speed of link {link} is given twice (as {name!r} too); give it once")
-        resolved[link] = _value(value, f"speed of link {link}")
+        resolved[link] = as_expr(value, what=f"speed of link {link}", names=("t",))
     names = tuple(resolved)
     check_known_links(mech, names)
     order = tuple(sorted(names))

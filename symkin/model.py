@@ -35,6 +35,7 @@ import sympy as sp
 from . import symbols as S
 from .budget import simplify_within
 from .errors import CoaxialityWarning, ModelError
+from .parsing import as_expr
 
 __all__ = ["FRAME", "LinkKind", "Gear", "Link", "Mesh", "Mechanism", "as_length", "as_teeth"]
 
@@ -43,22 +44,6 @@ FRAME = "0"
 
 
 # --------------------------------------------------------------------------- checks
-def _sympify(value: Any, what: str) -> sp.Expr:
-    """sympify without ever parsing a string (sympify of a string evaluates Python)."""
-    if isinstance(value, str):
-        raise ModelError(
-            f"{what} must be a number or a SymPy expression, not the string {value!r}; "
-            "convert it with symkin.parsing.parse_expression first"
-        )
-    if isinstance(value, bool):
-        raise ModelError(f"{what} must be a number, not {value!r}")
-    try:
-        expr = sp.sympify(value, strict=True)
-    except (sp.SympifyError, TypeError) as err:
-        raise ModelError(f"{what} must be a number or a SymPy expression, not {value!r}") from err
-    if not isinstance(expr, sp.Expr):
-        raise ModelError(f"{what} must be a scalar expression, not {value!r}")
-    return expr
 
 
 def as_length(value: Any, what: str) -> sp.Expr:
@@ -71,7 +56,7 @@ def as_length(value: Any, what: str) -> sp.Expr:
     ...
     symkin.errors.ModelError: radius of gear 1 must be positive, got -1; give a positive pitch radius
     """
-    expr = _sympify(value, what)
+    expr = as_expr(value, what=what, text=False, finite=False, error=ModelError)
     if expr.is_number:
         if expr.has(sp.nan, sp.zoo, sp.oo, -sp.oo) or not expr.is_finite:
             raise ModelError(f"{what} must be a finite number, got {value!r}")
@@ -92,7 +77,7 @@ def as_teeth(value: Any, what: str) -> sp.Expr:
     ...
     symkin.errors.ModelError: teeth of gear 1 must be a whole number, got 20.5; tooth numbers are positive integers
     """
-    expr = _sympify(value, what)
+    expr = as_expr(value, what=what, text=False, finite=False, error=ModelError)
     if expr.is_number:
         if not expr.is_Integer:
             if expr.is_finite and expr.is_integer:  # e.g. Float 20.0: still refuse, it is not exact
@@ -226,7 +211,7 @@ class Link:
             if self.arm is not None:
                 object.__setattr__(self, "arm", as_length(self.arm, f"arm of planet {self.name}"))
             object.__setattr__(
-                self, "position_angle", _sympify(self.position_angle, f"position angle of planet {self.name}")
+                self, "position_angle", as_expr(self.position_angle, what=f"position angle of planet {self.name}", text=False, error=ModelError)
             )
         elif self.carrier is not None or self.arm is not None:
             raise ModelError(f"{self.kind.value} link {self.name} turns about the main axis: it takes no carrier or arm")

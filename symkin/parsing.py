@@ -20,14 +20,14 @@ import ast
 import math
 import re
 from fractions import Fraction
-from typing import Callable, Iterable, Mapping
+from typing import Any, Callable, Iterable, Mapping
 
 import sympy as sp
 
 from . import symbols as S
 from .errors import InputError
 
-__all__ = ["parse_number", "parse_integer", "parse_expression", "FUNCTIONS", "CONSTANTS"]
+__all__ = ["as_expr", "parse_number", "parse_integer", "parse_expression", "FUNCTIONS", "CONSTANTS"]
 
 #: Functions a user expression may call.
 FUNCTIONS: Mapping[str, Callable[..., sp.Expr]] = {
@@ -231,3 +231,58 @@ class _Builder:
 def _show(node: ast.AST) -> str:
     text = ast.unparse(node)
     return repr(text if len(text) <= 40 else text[:37] + "...")
+
+
+def as_expr(
+    value: Any,
+    *,
+    what: str,
+    names: Iterable[str] = (),
+    text: bool = True,
+    finite: bool = True,
+    error: type[Exception] = InputError,
+) -> sp.Expr:
+    """A SymPy scalar from a number, a SymPy expression, or text parsed by :func:`parse_expression`.
+
+    The one gate through which library functions take a user's value: a string is never
+    given to ``sympify`` (which evaluates Python).
+
+    Parameters
+    ----------
+    value : number, SymPy expression or str
+    what : str
+        What the value is, for error messages.
+    names : iterable of str
+        Names text may use (``"t"`` is :data:`symkin.symbols.t`).
+    text : bool
+        Accept text at all (False: SymPy objects and numbers only).
+    finite : bool
+        Refuse NaN, infinities and complex numbers.
+    error : exception class
+        Raised on a bad value (a :class:`~symkin.errors.SymkinError` subclass).
+
+    >>> as_expr("pi/6", what="angle")
+    pi/6
+    >>> as_expr(float("nan"), what="speed")
+    Traceback (most recent call last):
+    ...
+    symkin.errors.InputError: speed must be a finite real number, got nan
+    """
+    if isinstance(value, str):
+        if not text:
+            raise error(
+                f"{what} must be a number or a SymPy expression, not the string {value!r}; "
+                "parse text with symkin.parsing.parse_expression"
+            )
+        return parse_expression(value, names=names, what=what)
+    if isinstance(value, bool) or value is None:
+        raise error(f"{what} must be a number or an expression, got {value!r}")
+    try:
+        expr = sp.sympify(value, strict=True)
+    except (sp.SympifyError, TypeError, ValueError):
+        raise error(f"{what} must be a number or an expression, got {value!r}") from None
+    if not isinstance(expr, sp.Expr):
+        raise error(f"{what} must be a scalar expression, got {value!r}")
+    if finite and expr.is_number and (expr.has(sp.nan, sp.zoo, sp.oo, -sp.oo) or expr.is_extended_real is False):
+        raise error(f"{what} must be a finite real number, got {value!r}")
+    return expr

@@ -31,6 +31,7 @@ from . import symbols as S
 from .drives import Drive, as_drive
 from .errors import InputError
 from .kinematics import check_known_links, solve_speeds
+from .parsing import as_expr
 from .model import FRAME, LinkKind, Mechanism
 from .superposition import acceleration, position, rotation, vec, velocity
 
@@ -49,12 +50,7 @@ class FrameMotion:
 
     def __post_init__(self) -> None:
         for name in ("x", "y", "angle"):
-            value = getattr(self, name)
-            if isinstance(value, str):
-                from .parsing import parse_expression
-
-                value = parse_expression(value, names=("t",), what=f"frame {name}(t)")
-            object.__setattr__(self, name, sp.sympify(value, strict=True))
+            object.__setattr__(self, name, as_expr(getattr(self, name), what=f"frame {name}(t)", names=("t",)))
 
 
 @dataclass(frozen=True)
@@ -146,7 +142,7 @@ class Motion:
         link_name = self.mechanism.link(link).name
         if not hasattr(point, "__len__") or len(point) != 2:
             raise InputError(f"a particle is given by two coordinates (a, b), got {point!r}")
-        xy = vec(*(sp.sympify(c, strict=True) if not isinstance(c, str) else _parse(c) for c in point))
+        xy = vec(*(as_expr(c, what="particle coordinate") for c in point))
         if relative_to == "pole":
             xy = sp.ImmutableMatrix(self.pole(link_name)[1] + rotation(self.frame.angle.subs(S.t, 0)) * xy)
         elif relative_to != "frame":
@@ -157,10 +153,6 @@ class Motion:
         return self._cache[key]
 
 
-def _parse(text: str) -> sp.Expr:
-    from .parsing import parse_expression
-
-    return parse_expression(text, what="particle coordinate")
 
 
 @dataclass(frozen=True)

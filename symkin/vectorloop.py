@@ -38,20 +38,15 @@ import sympy as sp
 
 from .budget import simplify_within
 from .errors import InputError, SingularConfigurationError, UnsupportedError
+from .parsing import as_expr
 
 __all__ = ["LinkVector", "VectorLoop", "LoopSolution", "harmonics", "solve_linear"]
 
 
-def _expr(value: Any, what: str) -> sp.Expr:
-    if isinstance(value, (str, bool)):
-        raise InputError(f"{what} must be a number or a SymPy expression, got {value!r}")
-    try:
-        expr = sp.sympify(value, strict=True)
-    except (sp.SympifyError, TypeError):
-        raise InputError(f"{what} must be a number or a SymPy expression, got {value!r}") from None
-    if not isinstance(expr, sp.Expr):
-        raise InputError(f"{what} must be a scalar expression, got {value!r}")
-    return expr
+
+
+def _sym(value: Any, what: str) -> sp.Expr:
+    return as_expr(value, what=what, text=False, finite=False)
 
 
 @dataclass(frozen=True)
@@ -69,8 +64,8 @@ class LinkVector:
     name: str = ""
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "length", _expr(self.length, f"length of vector {self.name or '?'}"))
-        object.__setattr__(self, "angle", _expr(self.angle, f"angle of vector {self.name or '?'}"))
+        object.__setattr__(self, "length", _sym(self.length, f"length of vector {self.name or '?'}"))
+        object.__setattr__(self, "angle", _sym(self.angle, f"angle of vector {self.name or '?'}"))
 
     @property
     def x(self) -> sp.Expr:
@@ -159,7 +154,7 @@ class VectorLoop:
         >>> VectorLoop([LinkVector(a, th)]).components_along(th)
         (a, 0)
         """
-        angle = _expr(angle, "direction")
+        angle = _sym(angle, "direction")
         along = sp.Add(*(sign * v.length * sp.cos(v.angle - angle) for sign, v in self._signed()))
         across = sp.Add(*(sign * v.length * sp.sin(v.angle - angle) for sign, v in self._signed()))
         return along, across
@@ -337,7 +332,7 @@ def harmonics(expr: Any, var: sp.Symbol) -> dict[sp.Expr, sp.Expr]:
     >>> sorted(harmonics(2 * sp.cos(x) + sp.sin(a * x), x).items(), key=str)
     [(-1, 1), (-a, I/2), (1, 1), (a, -I/2)]
     """
-    expr = sp.expand(_expr(expr, "expression").rewrite(sp.exp))
+    expr = sp.expand(_sym(expr, "expression").rewrite(sp.exp))
     out: dict[sp.Expr, sp.Expr] = {}
     for term in sp.Add.make_args(expr):
         factors = sp.Mul.make_args(sp.powsimp(term))
