@@ -122,13 +122,13 @@ def checks() -> list[Check]:
         m = teeth[k]
         i14 = m.ratio("1", "4", fixed="H").rhs
         i1H = m.ratio("1", "H", fixed="4").rhs
-        out.append(_check(f"(2) {k}", f"{k}: i_1H^(4) = 1 - i_14^(H)", i1H, 1 - i14, compare_symbolic(i1H, 1 - i14)))
+        out.append(_check(f"(2) {k}", "i_1H^(4) = 1 - i_14^(H)", i1H, 1 - i14, compare_symbolic(i1H, 1 - i14)))
         w1_general = m.speeds({"H": wH, "4": w4})["1"]
         published_1 = wH * (1 - i14) + i14 * w4
         out.append(
             _check(
                 f"(1) {k}",
-                f"{k}: omega_1 = omega_H (1 - i_14^(H)) + i_14^(H) omega_4",
+                "omega_1 = omega_H (1 - i_14^(H)) + i_14^(H) omega_4",
                 w1_general,
                 published_1,
                 compare_symbolic(w1_general, published_1),
