@@ -30,6 +30,7 @@ from . import symbols as S
 from .atomic import replacing
 from .errors import InputError, ToolError
 from .model import FRAME, LinkKind
+from .parsing import as_values, substitute
 
 __all__ = ["Scene", "draw_frame", "frame_figure", "animate", "WRITERS", "ffmpeg_available"]
 
@@ -100,7 +101,7 @@ class Scene:
             raise InputError(f"frames must be an integer of at least 2, got {frames!r}")
         if not (isinstance(t_end, (int, float)) and np.isfinite(t_end) and t_end > 0):
             raise InputError(f"the time span must be positive and finite, got {t_end!r}")
-        subs = dict(values or {})
+        subs = as_values(values)
         mech = motion.mechanism
         t = np.linspace(0.0, float(t_end), frames)
         exprs: list[sp.Expr] = []
@@ -117,7 +118,7 @@ class Scene:
             links.append((link.name, link.kind.value, gears, link.carrier))
         for link, point in particles:
             exprs += list(motion.particle(link, point, relative_to=relative_to).position)
-        exprs = [sp.sympify(e).subs(subs) for e in exprs]
+        exprs = [substitute(sp.sympify(e), subs) for e in exprs]
         free = set().union(*(e.free_symbols for e in exprs)) - {S.t}
         if free:
             raise InputError(f"give values for {', '.join(sorted(map(str, free)))} to animate the mechanism")
@@ -152,7 +153,7 @@ class Scene:
 
 
 def _number(expr: Any, subs: Mapping[Any, Any], what: str) -> float:
-    value = sp.sympify(expr).subs(subs)
+    value = substitute(sp.sympify(expr), subs)
     if not value.is_number:
         raise InputError(f"give values for {', '.join(sorted(map(str, value.free_symbols)))} ({what}) to animate")
     return float(value)

@@ -45,7 +45,7 @@ from .drives import ConstantSpeed, Drive, EllipticalGears, as_drive
 from .errors import InputError, ModelError, UnsupportedError
 from .laws import Law
 from .model import Mechanism, as_length, as_teeth
-from .parsing import as_expr
+from .parsing import as_expr, as_values, substitute
 from .vectorloop import LinkVector, VectorLoop, harmonics, solve_linear
 
 __all__ = [
@@ -483,7 +483,7 @@ class CardanSlider:
     def _numeric(self, exprs: Sequence[sp.Expr], values: Mapping[Any, Any] | None) -> Any:
         from .numeric import compile as compile_numeric
 
-        exprs = [sp.sympify(e).subs(dict(values or {})) for e in exprs]
+        exprs = [substitute(sp.sympify(e), values) for e in exprs]
         free = set().union(*(e.free_symbols for e in exprs)) - {S.t}
         if free:
             raise InputError(f"give values for {', '.join(sorted(map(str, free)))} to evaluate the mechanism")
@@ -536,17 +536,17 @@ class CardanSlider:
         """
         if not self.path().on_guide:
             raise InputError("the pin does not move along the guide, so the slider has no strokes; see path()")
-        subs = dict(values or {})
-        start = float(sp.N(sp.Mod(self.guide_angle - self.carrier_angle0, 2 * sp.pi).subs(subs)))
+        subs = as_values(values)
+        start = float(sp.N(substitute(sp.Mod(self.guide_angle - self.carrier_angle0, 2 * sp.pi), subs)))
         times = [self._time_of_turn(start + k * math.pi, subs) for k in range(3)]
         return StrokeTimes(forward=times[2] - times[1], back=times[1] - times[0])
 
     def _time_of_turn(self, angle: float, subs: Mapping[Any, Any]) -> float:
         try:
-            return float(sp.N(self.drive.time_of_angle(sp.Float(angle, 30)).subs(subs), 20))
+            return float(sp.N(substitute(self.drive.time_of_angle(sp.Float(angle, 30)), subs), 20))
         except UnsupportedError:
             pass
-        f = sp.lambdify(S.t, self.motion.angle("H").subs(subs) - angle, "math")
+        f = sp.lambdify(S.t, substitute(self.motion.angle("H"), subs) - angle, "math")
         lo, hi, step = 0.0, 1e-3, 1e-3
         while f(hi) < 0:
             lo, hi, step = hi, hi + step, step * 2

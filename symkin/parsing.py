@@ -27,7 +27,7 @@ import sympy as sp
 from . import symbols as S
 from .errors import InputError
 
-__all__ = ["as_expr", "parse_number", "parse_integer", "parse_expression", "FUNCTIONS", "CONSTANTS"]
+__all__ = ["as_expr", "as_values", "substitute", "as_float", "parse_number", "parse_integer", "parse_expression", "FUNCTIONS", "CONSTANTS"]
 
 #: Functions a user expression may call.
 FUNCTIONS: Mapping[str, Callable[..., sp.Expr]] = {
@@ -286,3 +286,62 @@ def as_expr(
     if finite and expr.is_number and (expr.has(sp.nan, sp.zoo, sp.oo, -sp.oo) or expr.is_extended_real is False):
         raise error(f"{what} must be a finite real number, got {value!r}")
     return expr
+
+
+def as_values(values: Any, *, what: str = "values") -> dict[str, sp.Expr]:
+    """Numbers for symbols, keyed by name: from a mapping whose keys are SymPy symbols or names.
+
+    Keys are matched by name, so ``Symbol("r_1")`` finds the engine's positive ``r_1``;
+    every value passes :func:`as_expr` (text is parsed safely, never by sympify).
+
+    >>> import sympy as sp
+    >>> as_values({"r_1": "3/2", sp.Symbol("t"): 2})
+    {'r_1': 3/2, 't': 2}
+    """
+    if values is None:
+        return {}
+    if not isinstance(values, Mapping):
+        raise InputError(f"{what} are a mapping of symbol (or its name) to value, got {values!r}")
+    out: dict[str, sp.Expr] = {}
+    for key, value in values.items():
+        if isinstance(key, sp.Symbol):
+            name = key.name
+        elif isinstance(key, str) and key.strip():
+            name = key.strip()
+        else:
+            raise InputError(f"{what}: a key is a SymPy symbol or its name, got {key!r}")
+        out[name] = as_expr(value, what=f"the value of {name}", names=())
+    return out
+
+
+def substitute(expr: Any, values: Mapping[Any, Any] | None) -> Any:
+    """``expr`` (a SymPy expression or matrix) with the :func:`as_values` of ``values`` put in.
+
+    >>> import sympy as sp
+    >>> r = sp.Symbol("r_1", positive=True)
+    >>> substitute(2 * r, {"r_1": 5})
+    10
+    """
+    named = values if _is_named(values) else as_values(values)
+    if not named:
+        return expr
+    return expr.xreplace({s: named[s.name] for s in expr.free_symbols if getattr(s, "name", None) in named})
+
+
+def _is_named(values: Any) -> bool:
+    return isinstance(values, dict) and all(isinstance(k, str) and isinstance(v, sp.Expr) for k, v in values.items())
+
+
+def as_float(value: Any, *, what: str, positive: bool = False) -> float:
+    """A finite float from a number, a constant expression or safe text (``"2*pi"``).
+
+    >>> as_float("pi/2", what="time")
+    1.5707963267948966
+    """
+    expr = as_expr(value, what=what)
+    if not expr.is_number:
+        raise InputError(f"{what} must be a number, got {value!r}")
+    number = float(expr)
+    if positive and not number > 0:
+        raise InputError(f"{what} must be positive, got {value!r}")
+    return number

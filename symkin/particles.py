@@ -31,7 +31,7 @@ from . import symbols as S
 from .drives import Drive, as_drive
 from .errors import InputError
 from .kinematics import check_known_links, solve_speeds
-from .parsing import as_expr
+from .parsing import as_expr, as_float, substitute
 from .model import FRAME, LinkKind, Mechanism
 from .superposition import acceleration, position, rotation, vec, velocity
 
@@ -207,11 +207,13 @@ class Particle:
 
         ``values`` gives numbers for every symbol other than t (radii, speeds, ...).
         """
-        if not (np.isfinite(t_start) and np.isfinite(t_end)) or t_end <= t_start:
-            raise InputError(f"the time span must be increasing and finite, got {t_start} to {t_end}")
-        if not isinstance(samples, int) or samples < 2:
+        t_start = as_float(t_start, what="the start time")
+        t_end = as_float(t_end, what="the end time")
+        if t_end <= t_start:
+            raise InputError(f"the time span must be increasing, got {t_start} to {t_end}")
+        if not isinstance(samples, int) or isinstance(samples, bool) or samples < 2:
             raise InputError(f"samples must be an integer of at least 2, got {samples!r}")
-        xy = self.position.subs(dict(values or {}))
+        xy = substitute(self.position, values)
         free = xy.free_symbols - {S.t}
         if free:
             raise InputError(f"give values for {', '.join(sorted(map(str, free)))} to sample the trajectory")

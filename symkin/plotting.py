@@ -26,6 +26,7 @@ from matplotlib.patches import Circle
 from . import symbols as S
 from .errors import InputError
 from .model import LinkKind, Mechanism
+from .parsing import as_values, substitute
 
 #: The most samples :func:`sample` takes (ten million points: hundreds of MB of arrays).
 MAX_SAMPLES = 10_000_000
@@ -43,14 +44,15 @@ __all__ = [
 
 def draw_pitch_circles(ax: Any, mech: Mechanism, values: Mapping[Any, Any] | None = None) -> None:
     """Pitch circles of every gear at t = 0 (planets at their initial position), thin grey."""
+    named = as_values(values)
     for link in mech.links:
         centre = (0.0, 0.0)
         if link.kind is LinkKind.PLANET:
-            arm = float(sp.sympify(mech.arm(link.name)).subs(dict(values or {})))
-            ang = float(sp.sympify(link.position_angle).subs(dict(values or {})))
+            arm = float(substitute(sp.sympify(mech.arm(link.name)), named))
+            ang = float(substitute(sp.sympify(link.position_angle), named))
             centre = (arm * np.cos(ang), arm * np.sin(ang))
         for gear in link.gears:
-            r = float(gear.radius.subs(dict(values or {})))
+            r = float(substitute(gear.radius, named))
             ax.add_patch(Circle(centre, r, fill=False, lw=0.6, ls="--" if gear.internal else "-", color="0.6"))
             ax.annotate(gear.name, (centre[0] + r * 0.7071, centre[1] + r * 0.7071), color="0.45", fontsize=7)
 
@@ -115,8 +117,8 @@ def sample(
     t_end = _positive_float(t_end, "the time span")
     if not isinstance(samples, int) or isinstance(samples, bool) or not 2 <= samples <= MAX_SAMPLES:
         raise InputError(f"samples must be an integer from 2 to {MAX_SAMPLES}, got {samples!r}")
-    subs = dict(values or {})
-    exprs = [c.subs(subs) for vec in (particle.position, particle.velocity, particle.acceleration) for c in vec]
+    subs = as_values(values)
+    exprs = [substitute(c, subs) for vec in (particle.position, particle.velocity, particle.acceleration) for c in vec]
     free = set().union(*(e.free_symbols for e in exprs)) - {S.t}
     if free:
         raise InputError(f"give values for {', '.join(sorted(map(str, free)))} to sample the particle")
@@ -176,18 +178,18 @@ def turn_time(motion: Any, turns: float = 1.0, link: str | None = None, values: 
     3.141593
     """
     turns = _positive_float(turns, "the number of turns")
-    subs = dict(values or {})
+    subs = as_values(values)
     mech = motion.mechanism
 
     def speed(name: str) -> float:
-        w = sp.sympify(motion.omega(name)).subs(subs)
+        w = substitute(sp.sympify(motion.omega(name)), subs)
         if S.t in w.free_symbols or not w.is_number:
             raise InputError(f"link {name} has no constant numeric speed ({w}); give the time span instead of turns")
         return abs(float(w))
 
     if link is None:
         names = [n for n in mech.link_names]
-        moving = {n: speed(n) for n in names if not sp.sympify(motion.omega(n)).subs(subs).has(S.t)}
+        moving = {n: speed(n) for n in names if not substitute(sp.sympify(motion.omega(n)), subs).has(S.t)}
         if "H" in moving and moving["H"] > 0:
             link = "H"
         elif moving and max(moving.values()) > 0:

@@ -1,0 +1,44 @@
+"""Value mappings (values=...) never reach SymPy's string parser, and keys match by name."""
+
+import pytest
+import sympy as sp
+
+from symkin import InputError, schemes
+from symkin import symbols as S
+from symkin.parsing import as_values, substitute
+
+INJECTION = "__import__('os').system('touch PWNED') or 1"
+
+
+@pytest.fixture
+def particle():
+    return schemes.single_row_AI().motion({"4": 0, "H": 1}).particle("2", (S.radius("1"), 0))
+
+
+def test_trajectory_values_are_never_executed(particle, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(InputError, match="not allowed"):
+        particle.trajectory(1.0, values={"r_1": INJECTION, "r_2": 1, "r_4": 3})
+    assert not (tmp_path / "PWNED").exists()
+
+
+def test_keys_match_by_name_whatever_the_assumptions(particle):
+    plain = {sp.Symbol("r_1"): 1, "r_2": sp.Rational(1), sp.Symbol("r_4", real=True): "3"}
+    t, x, y = particle.trajectory(2.0, samples=3, values=plain)
+    exact = substitute(particle.position, {"r_1": 1, "r_2": 1, "r_4": 3})
+    assert x[-1] == pytest.approx(float(exact[0].subs(S.t, 2)))
+    assert y[-1] == pytest.approx(float(exact[1].subs(S.t, 2)))
+
+
+@pytest.mark.parametrize("bad", ["1", None, [1], {1: 2}])
+def test_bad_time_spans_and_mappings_are_symkin_errors(particle, bad):
+    with pytest.raises(InputError):
+        if isinstance(bad, dict) or isinstance(bad, list):
+            particle.trajectory(1.0, values=bad)
+        else:
+            particle.trajectory(bad, t_start=2.0, values={"r_1": 1, "r_2": 1, "r_4": 3})
+
+
+def test_as_values_refuses_strange_keys():
+    with pytest.raises(InputError, match="key"):
+        as_values({3.5: 1})
