@@ -18,11 +18,12 @@ from __future__ import annotations
 
 import enum
 from dataclasses import dataclass, field
-from decimal import Decimal
+from decimal import ROUND_HALF_UP, Decimal
 from typing import Any, Mapping
 
 import sympy as sp
 
+from .parsing import parse_number
 from .printing import latex
 
 __all__ = ["Verdict", "Comparison", "Check", "compare_symbolic", "compare_exact", "compare_rounded", "slip"]
@@ -80,29 +81,52 @@ def compare_symbolic(derived: Any, published: Any, *, under: Mapping[Any, Any] |
     return Comparison(Verdict.DIFFERS, f"derived - published = {diff}{cond}")
 
 
+def _exact(value: Any) -> sp.Expr:
+    """An exact SymPy value: a Python float is read as the decimal it prints, a SymPy
+    Float as its exact binary value; nothing is guessed (no nsimplify)."""
+    if isinstance(value, float):
+        return parse_number(repr(value), what="a compared value")
+    expr = _expr(value)
+    return expr.xreplace({f: sp.Rational(f) for f in expr.atoms(sp.Float)}) if isinstance(expr, sp.Basic) else expr
+
+
 def compare_exact(derived: Any, published: Any) -> Comparison:
-    """Match when two exact numbers are equal."""
-    d, p = sp.nsimplify(_expr(derived)), sp.nsimplify(_expr(published))
+    """Match when two exact numbers are equal; a float is taken as exactly what it is.
+
+    >>> compare_exact(0.5, "1/2").verdict.value
+    'match'
+    >>> compare_exact(0.3333333333333333, "1/3").verdict.value
+    'differs'
+    """
+    d, p = _exact(derived), _exact(published)
     if sp.simplify(d - p) == 0:
         return Comparison(Verdict.MATCH, f"exactly {d}")
     return Comparison(Verdict.DIFFERS, f"derived {d} = {sp.N(d, 12)}, published {p}")
 
 
 def compare_rounded(derived: Any, published: str) -> Comparison:
-    """Match when the published decimal is the derived value rounded to its printed digits.
+    """Match when the published decimal is the derived value rounded half up to its printed digits.
 
     Exact equality is reported as a plain match.
+
+    >>> compare_rounded(sp.Rational(5, 2), "3").verdict.value
+    'match (published value rounded)'
+    >>> compare_rounded(sp.Rational(5, 2), "2").verdict.value
+    'differs'
     """
-    d = _expr(derived)
+    d = _exact(derived)
     p = Decimal(published)
-    if sp.Rational(str(p)) == d:
+    if not (isinstance(d, sp.Expr) and d.is_number):
+        return Comparison(Verdict.DIFFERS, f"derived {d} is not a number, published {published}")
+    if _exact(published) == d:
         return Comparison(Verdict.MATCH, f"exactly {d}")
-    exponent = p.as_tuple().exponent
-    scale = sp.Integer(10) ** (-exponent)
-    rounded = sp.Rational(round(d * scale), scale) if exponent <= 0 else sp.Integer(round(d / 10**exponent)) * 10**exponent
-    if rounded == sp.Rational(str(p)):
+    digits = p.as_tuple().exponent
+    value = Decimal(str(sp.N(d, 60)))
+    rounded = value.quantize(Decimal(1).scaleb(digits), rounding=ROUND_HALF_UP)
+    if rounded == p:
+        places = f"{-digits} decimal{'s' * (digits != -1)}" if digits < 0 else "a whole number"
         return Comparison(
-            Verdict.ROUNDED, f"derived {d} = {sp.N(d, 10)}; rounded to the published {published} ({len(published)} characters)"
+            Verdict.ROUNDED, f"derived {d} = {sp.N(d, 10)}; rounded half up to {places} it is the published {published}"
         )
     return Comparison(Verdict.DIFFERS, f"derived {d} = {sp.N(d, 10)}, published {published}")
 
