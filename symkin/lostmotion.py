@@ -365,7 +365,8 @@ def _number(value: Any, what: str) -> sp.Expr:
 
 # --------------------------------------------------------------------------- tolerance stacks
 def probable_max_backlash(j_min: Any, T_H1: Any, T_H2: Any, f_a: Any) -> sp.Expr:
-    """Probable maximum backlash of a mesh (GOST 9178-81, appendix 4).
+    """Probable maximum backlash of a mesh (GOST 9178-81, appendix 4): a standard's formula,
+    given here as an input to the objective, not derived (the KhAI paper quotes it as (6)).
 
     The guaranteed backlash plus the probabilistic (root-sum-square) sum of the random
     parts: the tolerances T_H1, T_H2 on the shift of each gear's basic rack (weight 1/2
@@ -381,7 +382,8 @@ def probable_max_backlash(j_min: Any, T_H1: Any, T_H2: Any, f_a: Any) -> sp.Expr
 
 
 def max_lost_motion(E_HS1: Any, E_HS2: Any, T_H1: Any, T_H2: Any, f_a: Any, G_r1: Any = 0, G_r2: Any = 0) -> sp.Expr:
-    """Maximum lost motion J_t max of a cylindrical gear pair (GOST 21098-82).
+    """Maximum lost motion J_t max of a cylindrical gear pair (GOST 21098-82): a standard's
+    formula, given here as an input, not derived (the KhAI paper quotes it as (8)).
 
     0.7 (E_HS1 + E_HS2) plus the root-sum-square of the rack-shift tolerances, the
     centre-distance deviation and the radial clearances G_r1, G_r2 in the bearings.  The
