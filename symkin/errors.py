@@ -15,6 +15,7 @@ more specific one::
 from __future__ import annotations
 
 __all__ = [
+    "warn_user",
     "SymkinError",
     "ModelError",
     "InputError",
@@ -104,3 +105,14 @@ class PrecisionWarning(SymkinWarning):
 
 class SimplificationBudgetWarning(SymkinWarning):
     """A simplification ran out of its time or size budget; the law is kept as derived (exact, untidy)."""
+
+
+def warn_user(message: str, category: type[Warning]) -> None:
+    """Issue a warning attributed to the first caller outside the symkin package."""
+    import sys
+    import warnings
+
+    level, frame = 1, sys._getframe(1)
+    while frame is not None and str(frame.f_globals.get("__name__", "")).split(".")[0] == "symkin":
+        frame, level = frame.f_back, level + 1
+    warnings.warn(message, category, stacklevel=level + 1)  # the first frame outside symkin

@@ -213,15 +213,20 @@ def check_known_links(mech: Mechanism, known: Sequence[str]) -> KinematicSystem:
 
 
 def _dependency(system: KinematicSystem, known: Sequence[str]) -> str:
-    rows = system.rows(known)
-    left = rows.T.nullspace()
-    if not left:
+    """The relation that ties the known speeds, derived exactly: one known link's speed in
+    terms of the others (e.g. ``omega_4 = omega_1``)."""
+    basis: list[str] = []
+    for name in known:
+        if system.rank_of(basis + [name]) > len(basis):
+            basis.append(name)
+    dependent = next((n for n in known if n not in basis), None)
+    full = system.admissible_choice(prefer=basis)
+    if dependent is None or not set(basis) <= set(full):
         return "they are tied"
-    coeffs = left[0]
-    expr = sum(c * S.omega(n) for c, n in zip(coeffs, known))
-    lead = next(S.omega(n) for c, n in zip(coeffs, known) if c != 0)
-    sol = sp.solve(expr, lead)
-    return f"{lead} = {sol[0]}" if sol else "they are tied"
+    order = tuple(sorted(full))
+    row = _coefficient_table(system.mechanism, order)[dependent]
+    relation = _tidy(sp.Add(*(c * S.omega(n) for c, n in zip(row, order))))
+    return f"{S.omega(dependent)} = {relation}"
 
 
 @dataclass(frozen=True)
@@ -482,16 +487,29 @@ def ratio(mech: Mechanism, driver: str, driven: str, fixed: str | Sequence[str] 
         raise InputError("the frame (link 0) cannot drive; name a moving link as driver")
     if b == FRAME:
         raise InputError("the frame (link 0) does not turn, so it cannot be driven; name a moving link as driven")
-    known[a] = S.omega(a)
-    speeds = solve_speeds(mech, known)
-    coefficient = speeds.coefficient(b, a)  # omega_b / omega_a: a cancelled rational function
-    if coefficient == 0:
-        raise SingularConfigurationError(
-            f"link {b} stays still when {a} drives with {_fmt_links(cs)} fixed, so the ratio is infinite",
-            dof=kinematic_system(mech).dof,
-            admissible=(a,) + cs,
+    fixed_links = tuple(known)
+    system = kinematic_system(mech)
+
+    def drives(link: str) -> bool:  # with the fixed links still, does this link's speed set the motion?
+        chosen = fixed_links + (link,)
+        return system.rank_of(chosen) == len(chosen) == system.dof
+
+    if drives(a):  # the usual case: omega_b = c omega_a
+        coefficient = solve_speeds(mech, {**known, a: S.omega(a)}).coefficient(b, a)
+        if coefficient == 0:
+            raise SingularConfigurationError(
+                f"link {b} stays still when {a} drives with {_fmt_links(cs)} fixed, so the ratio is infinite",
+                dof=system.dof,
+                admissible=(a,) + cs,
+            )
+        value = _tidy(1 / coefficient)
+    elif drives(b):  # the driver cannot move while b turns: the ratio is zero, or b sets a
+        value = _tidy(solve_speeds(mech, {**known, b: S.omega(b)}).coefficient(a, b))
+    else:
+        check_known_links(mech, fixed_links + (a,))  # raises with the degrees of freedom and a choice
+        raise SingularConfigurationError(  # pragma: no cover - check_known_links has raised
+            f"neither {a} nor {b} moves with {_fmt_links(cs)} fixed", dof=system.dof, admissible=()
         )
-    value = _tidy(1 / coefficient)
     label = [mech.link(x).name for x in (driver, driven)]
     desc = f"ratio omega_{label[0]}/omega_{label[1]} with {_fmt_links(cs) if cs else 'nothing'} fixed"
     return Law(S.ratio_symbol(a, b, cs), value, desc)

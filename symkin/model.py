@@ -34,7 +34,7 @@ import sympy as sp
 
 from . import symbols as S
 from .budget import simplify_within
-from .errors import CoaxialityWarning, ModelError
+from .errors import CoaxialityWarning, ModelError, warn_user
 from .parsing import as_expr
 
 __all__ = ["FRAME", "LinkKind", "Gear", "Link", "Mesh", "Mechanism", "as_length", "as_teeth"]
@@ -486,8 +486,12 @@ class Mechanism:
         """
         defects = []
         for planet, ref, d in self._centre_distance_pairs():
-            diff = simplify_within(ref - d, what=f"the coaxiality condition of planet {planet}")
-            if not (diff.free_symbols - self._module_symbols) and diff != 0:
+            diff = sp.expand(ref - d)  # decides the usual linear combinations of radii at once
+            if diff.free_symbols - self._module_symbols:
+                continue  # symbolic dimensions: the condition is reported, not decided
+            if diff.is_zero is None:  # e.g. cos(beta) in helical radii
+                diff = simplify_within(diff, what=f"the coaxiality condition of planet {planet}")
+            if diff.is_zero is False or (diff.is_zero is None and not diff.equals(0)):
                 defects.append((planet, ref, d))
         return tuple(defects)
 
@@ -497,12 +501,11 @@ class Mechanism:
 
     def _warn_coaxiality(self) -> None:
         for planet, d1, d2 in self.coaxiality_defects():
-            warnings.warn(
+            warn_user(
                 f"planet {planet} is not coaxial: its meshes put its axis at {d1} and at {d2} from the "
                 "main axis; the kinematic laws hold for working pitch radii in the tooth ratios "
                 "(profile shift), positions use the first distance",
                 CoaxialityWarning,
-                stacklevel=4,
             )
 
     # ---- derived laws (delegated to the derivation modules; cached here)

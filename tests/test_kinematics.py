@@ -196,3 +196,19 @@ def test_property_derived_speeds_satisfy_every_contact(kind, z, omega1, omega4, 
     for va, vb in pitch_point_velocities(kind, radii, {k: speeds[k] for k in ("1", "4", "H", "23")}, theta):
         scale = 1 + np.abs(va).max() + np.abs(vb).max()
         assert np.allclose(va, vb, atol=1e-9 * scale, rtol=0)
+
+
+def test_a_driver_that_stands_still_gives_a_zero_ratio():
+    # AA with z1 z3 = z2 z4 and gear 4 fixed: the carrier turns while gear 1 stays still
+    m = schemes.two_row("AA", teeth=(100, 100, 100, 100))
+    assert m.ratio("1", "H", fixed="4").rhs == 0
+    with pytest.raises(SingularConfigurationError, match="stays still"):
+        m.ratio("H", "1", fixed="4")
+    # the symbolic law agrees at this tooth set
+    law = schemes.two_row("AA", teeth=True).ratio("1", "H", fixed="4").rhs
+    assert law.subs({z1: 100, z2: 100, z3: 100, z4: 100}) == 0
+
+
+def test_overdetermined_message_states_the_exact_relation():
+    with pytest.raises(OverdeterminedError, match=r"omega_H = \(omega_1\*r_1\*r_3 \+ omega_4\*r_2\*r_4\)/\(r_1\*r_3 \+ r_2\*r_4\)"):
+        schemes.two_row("AI").speeds({"1": 1, "4": 2, "H": 3})
