@@ -36,10 +36,10 @@ import sympy as sp
 from ..errors import InputError
 from ..laws import Law
 from .backends import BACKENDS, Plan, numba_available, warn_no_numba
-from .function import NumericFunction
+from .function import NonFiniteInputWarning, NumericFunction
 from .stable import RULE_NOTES, stable_form
 
-__all__ = ["compile", "NumericFunction", "BACKENDS", "Scene", "dask_map"]
+__all__ = ["compile", "NumericFunction", "NonFiniteInputWarning", "BACKENDS", "Scene", "dask_map"]
 
 #: Points per chunk of the NumPy backend (temporaries of 128 KiB stay in cache and are reused).
 DEFAULT_CHUNK = 1 << 14

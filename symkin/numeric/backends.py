@@ -71,39 +71,115 @@ class Plan:
 
 
 # --------------------------------------------------------------------------- inputs
+#: What each refused NumPy dtype kind holds, for the error message.
+_KIND_WORDS = {"c": "complex", "b": "boolean", "U": "text", "S": "bytes", "M": "date", "m": "time-span", "V": "raw"}
+_INT64_MAX = np.iinfo(np.int64).max
+
+
+def _refusal(name: str, got: str, integer: bool) -> InputError:
+    if integer:
+        return InputError(f"{name} is a tooth number (an integer), got {got}; give whole numbers below 2^63 in magnitude")
+    return InputError(f"{name} must be a real number or an array of them, got {got}; give int or float values")
+
+
+def _describe(v: Any) -> str:
+    text = repr(v)
+    return text if len(text) <= 40 else text[:37] + "..."
+
+
+def _real_item(v: Any, name: str) -> float:
+    """One element of an object array as a Python float, or an InputError."""
+    if v is None or isinstance(v, (bool, np.bool_, complex, np.complexfloating, str, bytes)):
+        raise _refusal(name, _describe(v), False)
+    try:
+        return float(v)  # Fraction, Decimal, SymPy and mpmath reals; a SymPy symbol or I raises
+    except (TypeError, ValueError, OverflowError):
+        raise _refusal(name, _describe(v), False) from None
+
+
+def _integer_item(v: Any, name: str) -> int:
+    """One element of an object array as a Python int, or an InputError."""
+    if isinstance(v, (int, np.integer)) and not isinstance(v, (bool, np.bool_)):
+        return int(v)
+    if v is None or isinstance(v, (bool, np.bool_, complex, np.complexfloating, str, bytes)):
+        raise _refusal(name, _describe(v), True)
+    try:
+        as_int = int(v)
+        whole = as_int == v
+    except (TypeError, ValueError, OverflowError):
+        whole = False
+    if not whole:
+        raise _refusal(name, _describe(v), True)
+    return as_int
+
+
 def _as_integers(a: np.ndarray, name: str) -> np.ndarray:
-    if a.dtype.kind in "iu":
+    """Tooth numbers as int64, or as Python integers (object) when int64 cannot hold them.
+
+    Float arrays cost one cast and one comparison (a value that is not whole, nan or
+    infinite fails the comparison); booleans, complex numbers, text and None are refused."""
+    kind = a.dtype.kind
+    if kind == "i":
         return a.astype(np.int64, copy=False)
-    if a.dtype == object:
-        try:
-            return np.asarray([int(v) if float(v) == int(v) else math.nan for v in a.ravel()], dtype=object).reshape(a.shape)
-        except (TypeError, ValueError, OverflowError):
-            raise InputError(f"{name} is an integer (a tooth number); got values that are not whole numbers") from None
-    if a.dtype.kind == "f":
-        ok = np.isfinite(a).all() and (np.abs(a) < 2.0**53).all() and (a == np.round(a)).all()
-        if ok:
-            return a.astype(np.int64)
-    raise InputError(f"{name} is an integer (a tooth number); give whole numbers below 2^53, got {a.dtype} values that are not")
+    if kind == "u":
+        if a.dtype.itemsize == 8 and a.size and a.max() > _INT64_MAX:
+            return a.astype(object)
+        return a.astype(np.int64)
+    if kind == "f":
+        with np.errstate(invalid="ignore"):
+            ints = a.astype(np.int64)
+        if (ints == a).all():
+            return ints
+        bad = a.reshape(-1)[np.flatnonzero(ints.reshape(-1) != a.reshape(-1))[0]]
+        raise _refusal(name, f"{float(bad)!r}", True)
+    if kind == "O":
+        values = [_integer_item(v, name) for v in a.reshape(-1)]
+        if all(-_INT64_MAX <= v <= _INT64_MAX for v in values):
+            return np.array(values, dtype=np.int64).reshape(a.shape)
+        out = np.empty(len(values), dtype=object)
+        out[:] = values
+        return out.reshape(a.shape)
+    raise _refusal(name, f"{_KIND_WORDS.get(kind, a.dtype.name)} values", True)
 
 
 def _as_floats(a: np.ndarray, name: str, dtype: Any) -> np.ndarray:
-    if a.dtype.kind in "fiu":
+    """Real inputs in the working precision; complex, boolean, text and None are refused
+    (a complex value would lose its imaginary part, None would become nan)."""
+    kind = a.dtype.kind
+    if kind in "fiu":
         return a.astype(dtype, copy=False)
-    if a.dtype.kind == "b":
-        raise InputError(f"{name} must be a number, got booleans")
+    if kind == "O":
+        out = np.empty(a.shape, dtype=dtype)
+        out.reshape(-1)[:] = [_real_item(v, name) for v in a.reshape(-1)]
+        return out
+    raise _refusal(name, f"{_KIND_WORDS.get(kind, a.dtype.name)} values", False)
+
+
+def as_array(v: Any, name: str) -> np.ndarray:
+    """``np.asarray(v)``, with ragged nested lists refused as an InputError."""
+    if isinstance(v, np.ndarray):
+        return v
     try:
-        return a.astype(dtype)
-    except (TypeError, ValueError):
-        raise InputError(f"{name} must be a real number or an array of them, got {a.dtype} values") from None
+        return np.asarray(v)
+    except (ValueError, TypeError):
+        raise InputError(f"{name} must be a number or a rectangular array of numbers, got {_describe(v)}") from None
+
+
+def common_shape(values: Sequence[np.ndarray], names: Sequence[str]) -> tuple[int, ...]:
+    """The shape the arguments broadcast to (an InputError when they do not)."""
+    shape = values[0].shape if values else ()
+    if all(v.shape == shape for v in values):
+        return shape
+    try:
+        return np.broadcast_shapes(*(v.shape for v in values))
+    except ValueError:
+        shapes = ", ".join(f"{n} {v.shape}" for n, v in zip(names, values))
+        raise InputError(f"the argument arrays do not broadcast to one shape ({shapes}); give arrays of matching shapes") from None
 
 
 def broadcast_flat(values: Sequence[np.ndarray], names: Sequence[str]) -> tuple[tuple[int, ...], list[np.ndarray]]:
     """The common shape and each value as a flat array of that size, or a 0-d scalar."""
-    try:
-        shape = np.broadcast_shapes(*(v.shape for v in values))
-    except ValueError:
-        shapes = ", ".join(f"{n} {v.shape}" for n, v in zip(names, values))
-        raise InputError(f"the argument arrays do not broadcast to one shape ({shapes}); give arrays of matching shapes") from None
+    shape = common_shape(values, names)
     n = math.prod(shape)
     flat = []
     for v in values:
@@ -114,6 +190,30 @@ def broadcast_flat(values: Sequence[np.ndarray], names: Sequence[str]) -> tuple[
         else:
             flat.append(np.ascontiguousarray(np.broadcast_to(v, shape)).reshape(-1))
     return shape, flat
+
+
+def _own(r: Any, shape: tuple[int, ...], dtype: Any, inputs: Sequence[np.ndarray]) -> np.ndarray:
+    """One output of the generated code as a fresh array of ``shape`` and ``dtype`` (a
+    constant law gives a number, a law ``x`` gives its input back)."""
+    r = np.asarray(r)
+    if r.dtype != dtype:
+        return np.broadcast_to(r, shape).astype(dtype)
+    if r.shape != shape:
+        return np.broadcast_to(r, shape).copy()
+    if r.base is not None or any(r is a for a in inputs):
+        return r.copy()
+    return r
+
+
+def _all_finite(results: Sequence[np.ndarray]) -> bool:
+    """True when every value is finite.  A finite sum of squares (one BLAS dot, no
+    temporary) proves it; otherwise (a non-finite value, or squares overflowing) each
+    value is checked."""
+    for r in results:
+        flat = r.reshape(-1)
+        if not math.isfinite(np.dot(flat, flat)) and not np.isfinite(flat).all():
+            return False
+    return True
 
 
 # --------------------------------------------------------------------------- numpy
@@ -149,6 +249,8 @@ class NumpyBackend:
         for e in plan.stable:
             outside |= e.replace(lambda n: isinstance(n, ExactRatio), lambda n: sp.Integer(1)).free_symbols
         self.float_used = tuple(s in outside for s in plan.args)
+        self.names = [s.name for s in plan.args]
+        self.dtype = plan.dtype
 
     @staticmethod
     def _exact_integer_symbols(plan: Plan) -> tuple[sp.Symbol, ...]:
@@ -165,23 +267,36 @@ class NumpyBackend:
         return e.replace(lambda n: isinstance(n, ExactRatio), lambda n: n.xreplace(self.twins))
 
     def prepare(self, values: Sequence[Any]) -> tuple[tuple[int, ...], list[np.ndarray], list[np.ndarray]]:
+        """The common shape, the float inputs and the integer inputs, flat.
+
+        Integer inputs given as float arrays stay floats here: :meth:`integer_chunk`
+        checks and converts them chunk by chunk, while the chunk is in cache."""
         plan = self.plan
-        arrays = [np.asarray(v) for v in values]
-        ints = [
-            _as_integers(a, s.name) if s in self.twins else None for a, s in zip(arrays, plan.args)
-        ]
-        floats = []
-        for a, i, s, used in zip(arrays, ints, plan.args, self.float_used):
-            if i is None:
+        arrays = [as_array(v, s.name) for v, s in zip(values, plan.args)]
+        floats, int_list = [], []
+        for a, s, used in zip(arrays, plan.args, self.float_used):
+            if s not in self.twins:
                 floats.append(_as_floats(a, s.name, plan.dtype))
-            elif not used:  # only its exact integer value is needed
+                continue
+            i = a if a.dtype.kind == "f" and a.ndim else _as_integers(a, s.name)
+            int_list.append(i)
+            if not used:  # only its exact integer value is needed
                 floats.append(np.zeros((), dtype=plan.dtype))
+            elif i.dtype.kind == "f":
+                floats.append(i.astype(plan.dtype, copy=False))
             else:
                 floats.append(np.asarray(i, dtype=np.float64).astype(plan.dtype, copy=False))
-        int_list = [i for i in ints if i is not None]
         shape, flat = broadcast_flat(floats + int_list, [s.name for s in plan.args] + [s.name for s in self.twins])
         k = len(floats)
         return shape, flat[:k], flat[k:]
+
+    def integer_chunk(self, ints: Sequence[np.ndarray]) -> list[np.ndarray]:
+        """Integer inputs of one chunk as int64 (float arrays checked and cast here), or
+        as Python integers where an integer polynomial could overflow int64."""
+        part = [_as_integers(i, s.name) if i.dtype.kind == "f" else i for i, s in zip(ints, self.twins)]
+        if self.needs_python_integers(part):
+            part = [np.asarray(i).astype(object) for i in part]
+        return part
 
     def needs_python_integers(self, ints: Sequence[np.ndarray]) -> bool:
         """True when an integer polynomial could overflow int64 for these inputs."""
@@ -206,40 +321,65 @@ class NumpyBackend:
             out = self.func(*floats, *ints)
         return list(out)
 
-    def evaluate(self, values: Sequence[Any], outs: Sequence[np.ndarray] | None = None) -> tuple[tuple[int, ...], list[np.ndarray]]:
-        shape, floats, ints = self.prepare(values)
-        n = math.prod(shape)
-        results = _allocate(outs, len(self.plan.stable), n, self.plan.dtype)
-        chunk = max(1, self.plan.chunk)
+    def evaluate(
+        self, values: Sequence[Any], outs: Sequence[np.ndarray] | None = None
+    ) -> tuple[tuple[int, ...], list[np.ndarray], bool]:
+        """``(shape, outputs, flagged)``: the outputs (flat, or of ``shape``) and whether
+        any of their values is not finite."""
+        plan = self.plan
+        if not self.twins:  # real inputs only
+            names, dtype = self.names, self.dtype
+            floats = [
+                v if type(v) is np.ndarray and v.dtype == dtype else _as_floats(as_array(v, nm), nm, dtype)
+                for v, nm in zip(values, names)
+            ]
+            shape = common_shape(floats, names)
+            n = math.prod(shape)
+            if outs is None and n <= plan.chunk:
+                # one call on the arrays as given: no copies, no chunks, one finiteness pass
+                with np.errstate(all="ignore"):
+                    out = self.func(*floats)
+                results = [_own(r, shape, dtype, floats) for r in out]
+                return shape, results, not _all_finite(results)
+            shape, floats = broadcast_flat(floats, names)
+            ints: list[np.ndarray] = []
+        else:
+            shape, floats, ints = self.prepare(values)
+            n = math.prod(shape)
+            if outs is None and n <= plan.chunk:
+                ints = self.integer_chunk(ints)
+                flat_shape = (n,) if shape else ()
+                results = [_own(r, flat_shape, plan.dtype, floats + ints) for r in self.run(floats, ints)]
+                return shape, results, not _all_finite(results)
+        results = _allocate(outs, len(plan.stable), n, plan.dtype)
+        chunk = max(1, plan.chunk)
         starts = list(range(0, n, chunk))
 
         def work(block: Sequence[int]) -> bool:
             flagged = False
             for start in block:
                 sl = slice(start, min(n, start + chunk))
-                int_part = [i[sl] if i.ndim else i for i in ints]
-                if self.needs_python_integers(int_part):  # checked per chunk, while it is in cache
-                    int_part = [np.asarray(i).astype(object) for i in int_part]
+                int_part = self.integer_chunk([i[sl] if i.ndim else i for i in ints])  # while it is in cache
                 part = self.run([f[sl] if f.ndim else f for f in floats], int_part)
                 for o, r in zip(results, part):
                     o[sl] = r
                     flagged = flagged or not np.isfinite(o[sl]).all()
             return flagged
 
-        threads = min(self.plan.threads or 1, len(starts))
+        threads = min(plan.threads or 1, len(starts))
         if threads > 1 and n >= _THREADS_FROM:
             per = -(-len(starts) // threads)  # contiguous blocks of chunks, one per thread
             blocks = [starts[k * per:(k + 1) * per] for k in range(threads)]
-            self.flagged = any(_pool(threads).map(work, blocks))
+            flagged = any(_pool(threads).map(work, blocks))
         else:
-            self.flagged = work(starts)
-        return shape, results
+            flagged = work(starts)
+        return shape, results, flagged
 
     def evaluate_points(self, values: Sequence[Any], index: np.ndarray) -> list[np.ndarray]:
         """Re-evaluate a few points (given by flat index) with Python integers."""
         shape, floats, ints = self.prepare(values)
         take = lambda a: a[index] if a.ndim else a  # noqa: E731
-        ints = [take(i).astype(object) for i in ints]
+        ints = [i.astype(object) for i in self.integer_chunk([take(i) for i in ints])]
         part = self.run([take(f) for f in floats], ints)
         return [np.broadcast_to(np.asarray(r, dtype=self.plan.dtype), index.shape) for r in part]
 
@@ -299,19 +439,19 @@ class NumbaBackend(NumpyBackend):
     def __init__(self, plan: Plan):
         _passive_openmp()
         super().__init__(plan)  # the NumPy code re-evaluates flagged points exactly
-        self.kernels: dict[tuple[tuple[bool, ...], bool], Any] = {}
+        self.kernels: dict[tuple[tuple[bool, ...], bool, tuple[bool, ...]], Any] = {}
         self.broken = False
         self.kernel_sources: dict[tuple[bool, ...], str] = {}
         self.namespace = runtime.numba_namespace(plan.precision)
 
-    def _kernel(self, scalar: tuple[bool, ...], parallel: bool) -> Any:
-        key = (scalar, parallel)
+    def _kernel(self, scalar: tuple[bool, ...], parallel: bool, float_integers: tuple[bool, ...] = ()) -> Any:
+        key = (scalar, parallel, float_integers)
         if key not in self.kernels:
             import numba
 
             plan = self.plan
             integer = tuple(s in self.twins for s in plan.args)
-            src = kernel_source(plan.stable, plan.args, integer, scalar, plan.precision, plan.cse)
+            src = kernel_source(plan.stable, plan.args, integer, scalar, plan.precision, plan.cse, float_integers)
             self.kernel_sources[scalar] = src
             ns: dict[str, Any] = {"numpy": np, "prange": numba.prange, "_F": plan.dtype, **self.namespace}
             exec(compile(src, "<symkin kernel>", "exec"), ns)  # generated from SymPy, no user text
@@ -327,19 +467,25 @@ class NumbaBackend(NumpyBackend):
     def source(self, value: str) -> None:
         pass
 
-    def evaluate(self, values: Sequence[Any], outs: Sequence[np.ndarray] | None = None) -> tuple[tuple[int, ...], list[np.ndarray]]:
+    def evaluate(
+        self, values: Sequence[Any], outs: Sequence[np.ndarray] | None = None
+    ) -> tuple[tuple[int, ...], list[np.ndarray], bool]:
         plan = self.plan
-        arrays = [np.asarray(v) for v in values]
+        arrays = [as_array(v, s.name) for v, s in zip(values, plan.args)]
         conv = [
-            (a if a.dtype.kind == "i" else _as_integers(a, s.name)) if s in self.twins else _as_floats(a, s.name, plan.dtype)
+            (a if a.dtype.kind == "i" or (a.dtype == np.float64 and a.ndim) else _as_integers(a, s.name))
+            if s in self.twins else _as_floats(a, s.name, plan.dtype)
             for a, s in zip(arrays, plan.args)
-        ]  # narrow signed integers pass as they are: Numba computes integer products in int64
+        ]  # narrow signed integers pass as they are (Numba computes integer products in int64), float64
+        # tooth arrays too (checked and cast in the loop)
         if any(c.dtype == object for c in conv):
             return super().evaluate(values, outs)
         shape, flat = broadcast_flat(conv, [s.name for s in plan.args])
         n = math.prod(shape)
         results = _allocate(outs, len(plan.stable), n, plan.dtype)
+        flat = [_as_integers(f, s.name) if f.ndim == 0 and f.dtype.kind == "f" and s in self.twins else f for f, s in zip(flat, plan.args)]
         scalar = tuple(f.ndim == 0 for f in flat)
+        float_integers = tuple(f.dtype.kind == "f" and s in self.twins for f, s in zip(flat, plan.args))
         import numba
 
         parallel = n >= _PARALLEL_FROM and (plan.threads or numba.get_num_threads()) > 1
@@ -349,10 +495,10 @@ class NumbaBackend(NumpyBackend):
         before = numba.get_num_threads()
         switch = bool(plan.threads and parallel and plan.threads != before)
         try:
-            kernel = self._kernel(scalar, parallel)
+            kernel = self._kernel(scalar, parallel, float_integers)
             if switch:
                 numba.set_num_threads(min(plan.threads, numba.config.NUMBA_NUM_THREADS))
-            bad = kernel(*inputs, *results, n)
+            bad, nonwhole = kernel(*inputs, *results, n)
         except numba.core.errors.NumbaError as err:  # a construct Numba cannot compile: NumPy instead
             self.broken = True
             warnings.warn(
@@ -364,13 +510,16 @@ class NumbaBackend(NumpyBackend):
         finally:
             if switch:
                 numba.set_num_threads(before)
+        if nonwhole:  # the message names the first value that is not a whole number
+            for f, s, as_float in zip(flat, plan.args, float_integers):
+                if as_float:
+                    _as_integers(f, s.name)
         if bad and self.twins:
             index = np.flatnonzero(np.logical_or.reduce([~np.isfinite(r) for r in results]))
             fixed = self.evaluate_points(values, index)
             for r, f in zip(results, fixed):
                 r[index] = f
-        self.flagged = bool(bad)
-        return shape, results
+        return shape, results, bool(bad)
 
 
 # --------------------------------------------------------------------------- mpmath
@@ -427,7 +576,9 @@ class MpmathBackend:
         self.func = sp.lambdify(list(plan.args), exprs, modules="mpmath", cse=plan.cse, docstring_limit=0)
         self.source = _lambdify_source(self.func)
 
-    def evaluate(self, values: Sequence[Any], outs: Sequence[np.ndarray] | None = None) -> tuple[tuple[int, ...], list[np.ndarray]]:
+    def evaluate(
+        self, values: Sequence[Any], outs: Sequence[np.ndarray] | None = None
+    ) -> tuple[tuple[int, ...], list[np.ndarray], bool]:
         import mpmath
 
         names = [s.name for s in self.plan.args]
@@ -442,7 +593,7 @@ class MpmathBackend:
                     raise PoleError(_pole_message(self.plan, names, point)) from None
                 for r, v in zip(results, out):
                     r[idx] = v
-        return shape, [r.reshape(-1) for r in results]
+        return shape, [r.reshape(-1) for r in results], False
 
 
 # --------------------------------------------------------------------------- exact
@@ -487,7 +638,9 @@ class ExactBackend:
         )
         self.source = _lambdify_source(self.func)
 
-    def evaluate(self, values: Sequence[Any], outs: Sequence[np.ndarray] | None = None) -> tuple[tuple[int, ...], list[np.ndarray]]:
+    def evaluate(
+        self, values: Sequence[Any], outs: Sequence[np.ndarray] | None = None
+    ) -> tuple[tuple[int, ...], list[np.ndarray], bool]:
         names = [s.name for s in self.plan.args]
         shape, arrays = _object_points(values, names)
         results = [np.empty(shape, dtype=object) for _ in self.plan.exprs]
@@ -499,7 +652,7 @@ class ExactBackend:
                 raise PoleError(_pole_message(self.plan, names, point)) from None
             for r, v in zip(results, out):
                 r[idx] = Fraction(v)
-        return shape, [r.reshape(-1) for r in results]
+        return shape, [r.reshape(-1) for r in results], False
 
 
 def _pole_message(plan: Plan, names: Sequence[str], point: Sequence[Any]) -> str:

@@ -115,13 +115,17 @@ def kernel_source(
     scalar: Sequence[bool],
     precision: str,
     cse: bool,
+    float_integers: Sequence[bool] = (),
 ) -> str:
     """Source of ``_kernel(A0, ..., O0, ..., n)``: one fused loop over n points writing
-    every output, returning how many outputs are not finite.
+    every output, returning how many output values are not finite and how many integer
+    inputs given as floats are not whole numbers.
 
-    Integer arguments arrive as int64 (their float values are ``_f_<name>``); scalar
+    Integer arguments arrive as int64 (their float values are ``_f_<name>``), or, where
+    ``float_integers`` says so, as float64 arrays checked and cast in the loop; scalar
     arguments arrive as numbers.
     """
+    float_integers = tuple(float_integers) or (False,) * len(args)
     names = [f"a{i}" for i in range(len(args))]
     ren = {}
     for s, nm, is_int in zip(args, names, integer_args):
@@ -159,6 +163,7 @@ def kernel_source(
         f"# arguments: {', '.join(f'{nm} = {s}' for nm, s in zip(names, args))}; {len(reduced)} outputs, {n_ops} operations per point",
         f"def _kernel({', '.join([n.upper() for n in names] + outs)}, n):",
         "    _bad = 0",
+        "    _nonwhole = 0",
     ]
     for nm, is_int, sc in zip(names, integer_args, scalar):
         if sc:
@@ -166,8 +171,17 @@ def kernel_source(
             if is_int:
                 lines.append(f"    {FLOAT_TWIN}{nm} = _F({nm})")
     lines.append("    for _i in prange(n):")
-    for nm, is_int, sc in zip(names, integer_args, scalar):
-        if not sc:
+    for nm, is_int, sc, as_float in zip(names, integer_args, scalar, float_integers):
+        if not sc and is_int and as_float:  # a tooth number given as a float: whole, and below 2^63
+            lines += [
+                f"        _w = {nm.upper()}[_i]",
+                "        if _w != numpy.floor(_w) or not (abs(_w) < 9.2e18):",
+                "            _nonwhole += 1",
+                "            _w = 0.0",
+                f"        {nm} = numpy.int64(_w)",
+                f"        {FLOAT_TWIN}{nm} = _F(_w)",
+            ]
+        elif not sc:
             lines.append(f"        {nm} = {nm.upper()}[_i]")
             if is_int:
                 lines.append(f"        {FLOAT_TWIN}{nm} = _F({nm})")
@@ -180,7 +194,7 @@ def kernel_source(
         lines.append(f"        O{k}[_i] = _v")
         lines.append("        if not numpy.isfinite(_v):")
         lines.append("            _bad += 1")
-    lines.append("    return _bad")
+    lines.append("    return _bad, _nonwhole")
     return "\n".join(lines) + "\n"
 
 

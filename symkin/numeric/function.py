@@ -16,9 +16,14 @@ from typing import Any, Sequence
 
 import numpy as np
 
-from ..errors import InputError, PoleError, PoleWarning
+from ..errors import InputError, PoleError, PoleWarning, SymkinWarning
 
-__all__ = ["NumericFunction"]
+__all__ = ["NumericFunction", "NonFiniteInputWarning"]
+
+
+class NonFiniteInputWarning(SymkinWarning):
+    """An input was nan or infinite, and the outputs at those points are nan or inf
+    (never a finite number taken for a value of the law)."""
 
 _REBUILT: dict[Any, "NumericFunction"] = {}
 
@@ -106,8 +111,8 @@ class NumericFunction:
             raise InputError(f"this function takes {len(self.args)} arguments ({', '.join(self.args)}), got {len(values)}")
         if isinstance(out, np.ndarray):
             out = [out]
-        shape, results = self._evaluator.evaluate(values, out)
-        if self.backend in ("numpy", "numba") and getattr(self._evaluator, "flagged", True):
+        shape, results, flagged = self._evaluator.evaluate(values, out)
+        if flagged:
             self._check_poles(values, shape, results)
         if out is not None:
             shaped = [o for o in out]
@@ -118,25 +123,56 @@ class NumericFunction:
         return shaped[0] if len(shaped) == 1 else tuple(shaped)
 
     def _check_poles(self, values: Sequence[Any], shape: tuple[int, ...], results: Sequence[np.ndarray]) -> None:
+        """Say where outputs are not finite: at non-finite inputs, or at a pole."""
         bad = [np.flatnonzero(~np.isfinite(r)) for r in results]
         if not any(b.size for b in bad):
             return
-        arrays = [np.broadcast_to(np.asarray(v, dtype=float), shape).reshape(-1) for v in values]
-        finite_in = np.logical_and.reduce([np.isfinite(a) for a in arrays]) if arrays else np.ones(math.prod(shape), bool)
+        arrays = [_reported(v, shape) for v in values]
+        total = math.prod(shape)
+        finite_in = np.logical_and.reduce([np.isfinite(a) for a in arrays]) if arrays else np.ones(total, bool)
         for name, b in zip(self.outputs, bad):
-            b = b[finite_in[b]] if b.size else b
             if not b.size:
                 continue
-            i = int(b[0])
-            at = ", ".join(f"{n}={float(a[i]):.17g}" for n, a in zip(self.args, arrays))
+            given = b[~finite_in[b]]
+            if given.size:
+                msg = (
+                    f"{name} is nan or infinite at {given.size} of {total} points where an input is nan or infinite "
+                    f"(first at {_point(self.args, arrays, int(given[0]))}); those points hold nan or inf"
+                )
+                warnings.warn(msg, NonFiniteInputWarning, stacklevel=3)
+            b = b[finite_in[b]]
+            if not b.size:
+                continue
             msg = (
-                f"{name} is infinite or undefined at {b.size} of {finite_in.size} points (first at {at}): "
+                f"{name} is infinite or undefined at {b.size} of {total} points (first at {_point(self.args, arrays, int(b[0]))}): "
                 f"a denominator vanishes there in {self.precision} (a pole of the law, or inputs closer to one "
                 f"than {self.precision} resolves)"
             )
             if self.on_pole == "raise":
                 raise PoleError(msg + "; choose inputs away from it")
             warnings.warn(msg + "; those points hold inf or nan", PoleWarning, stacklevel=3)
+
+
+def _reported(v: Any, shape: tuple[int, ...]) -> np.ndarray:
+    """An input as flat floats of ``shape``, for messages (Python integers too large for a
+    float count as finite)."""
+    try:
+        a = np.asarray(v, dtype=float)
+    except (TypeError, ValueError, OverflowError):
+        items = np.asarray(v, dtype=object)
+        a = np.array([_float_or_zero(x) for x in items.reshape(-1)]).reshape(items.shape)
+    return np.broadcast_to(a, shape).reshape(-1)
+
+
+def _float_or_zero(x: Any) -> float:
+    try:
+        return float(x)
+    except (TypeError, ValueError, OverflowError):
+        return 0.0
+
+
+def _point(names: Sequence[str], arrays: Sequence[np.ndarray], i: int) -> str:
+    return ", ".join(f"{n}={float(a[i]):.17g}" for n, a in zip(names, arrays))
 
 
 def _rebuild(token: str, payload: bytes) -> NumericFunction:
