@@ -20,7 +20,7 @@ import sympy as sp
 from sympy.printing.numpy import NumPyPrinter
 from sympy.printing.pycode import PythonCodePrinter
 
-from .stable import ExactRatio, Group, ReducedPhase
+from .stable import ExactRatio, Group, ProductDifference, ReducedPhase
 
 __all__ = ["FloatPrinter", "ExactPrinter", "kernel_source", "abs_bound"]
 
@@ -78,6 +78,9 @@ class FloatPrinter(NumPyPrinter):
             bn, bd = (self._print(abs_bound(a)) for a in expr.args)
             return f"_symkin_exact_ratio({num}, {den}, {bn}, {bd})"
         return f"_symkin_exact_ratio({num}, {den})"
+
+    def _print_ProductDifference(self, expr: ProductDifference) -> str:
+        return f"_symkin_product_difference({', '.join(self._print(a) for a in expr.args)})"
 
     def _print_ReducedPhase(self, expr: ReducedPhase) -> str:
         p, q, *xs = expr.args

@@ -19,6 +19,11 @@ pattern-based on SymPy expressions:
 * :func:`cosine_sums` -- ``c (1 + e^2 - 2 e cos x)`` becomes ``c ((1 - e)^2 + 4 e sin^2(x/2))``,
   and ``a + b cos x`` with ``a``, ``b`` of opposite (equal) signs becomes
   ``(a + b) - 2 b sin^2(x/2)`` (``(a - b) + 2 b cos^2(x/2)``): sums of like-signed terms.
+* :func:`difference_of_products` -- a two-term sum ``a b - c d`` of real inputs whose
+  terms can cancel (``1 - r2 r4/(r1 r3)`` after bringing it to one fraction) becomes
+  :class:`ProductDifference`, evaluated in double-double arithmetic: its relative error
+  is about 2^-53 however close ``a b`` and ``c d`` are, so a denominator near its zero
+  keeps its digits (the AA ratio ``r1 r3/(r1 r3 - r2 r4)`` near its pole).
 * :func:`reduce_phases` (on request) -- ``sin``/``cos``/``tan`` of ``c * x * y * t + b``
   evaluate the product in double-double arithmetic and reduce it modulo 2 pi before
   the call (:class:`ReducedPhase`), so ``omega t`` of 10^6 turns keeps its digits.
@@ -46,12 +51,14 @@ __all__ = [
     "Group",
     "ExactRatio",
     "ReducedPhase",
+    "ProductDifference",
     "stable_form",
     "relative_form",
     "exact_integer_parts",
     "unwrap_angles",
     "cosine_sums",
     "factor_differences",
+    "difference_of_products",
     "reduce_phases",
     "RULE_NOTES",
     "plain_form",
@@ -143,6 +150,40 @@ class ReducedPhase(sp.Function):
         return printer._print(self.doit())
 
 
+class ProductDifference(sp.Function):
+    """``a*b - c*d``, evaluated in double-double arithmetic by the float backends.
+
+    Both products are split exactly into a double and its rounding error (Dekker), and
+    the four parts are summed in double-double arithmetic, so the float64 result is
+    within about one unit in the last place of the exact ``a b - c d`` of the binary
+    inputs, whatever the cancellation (float32: the products are exact in float64).
+    This holds while the inputs are below 2^995 and the products above 2^-969 in
+    magnitude (or zero); outside that range the plain ``a*b - c*d`` is used.
+    """
+
+    nargs = 4
+    is_real = True
+
+    @classmethod
+    def eval(cls, a: sp.Expr, b: sp.Expr, c: sp.Expr, d: sp.Expr) -> sp.Expr | None:
+        if all(x.is_Number for x in (a, b, c, d)):
+            return a * b - c * d
+        return None
+
+    def doit(self, **hints: Any) -> sp.Expr:
+        a, b, c, d = self.args
+        return a * b - c * d
+
+    def _eval_evalf(self, prec: int) -> sp.Expr:
+        return self.doit()._eval_evalf(prec)
+
+    def _eval_derivative(self, s: sp.Symbol) -> sp.Expr:
+        return sp.diff(self.doit(), s)
+
+    def _latex(self, printer: Any) -> str:
+        return printer._print(self.doit())
+
+
 def plain_form(expr: sp.Expr) -> sp.Expr:
     """``expr`` with every :class:`ExactRatio` and :class:`ReducedPhase` written out.
 
@@ -150,7 +191,7 @@ def plain_form(expr: sp.Expr) -> sp.Expr:
     >>> plain_form(ExactRatio(z - 1, z))
     (z - 1)/z
     """
-    return expr.replace(lambda e: isinstance(e, (Group, ExactRatio, ReducedPhase)), lambda e: e.doit())
+    return expr.replace(lambda e: isinstance(e, (Group, ExactRatio, ReducedPhase, ProductDifference)), lambda e: e.doit())
 
 
 # --------------------------------------------------------------------------- signs
@@ -407,6 +448,99 @@ def factor_differences(expr: sp.Expr) -> sp.Expr:
 
 
 # --------------------------------------------------------------------------- rule 6
+def _float_exact(c: sp.Expr) -> bool:
+    """A rational that float64 holds exactly (numerator below 2^53, denominator a power of 2)."""
+    return bool(c.is_Rational and c != 0 and abs(c.p) < 2**53 and c.q & (c.q - 1) == 0)
+
+
+def _power_of_two(c: sp.Expr) -> bool:
+    return bool(_float_exact(c) and abs(c.p) & (abs(c.p) - 1) == 0)
+
+
+def _product_parts(term: sp.Expr) -> tuple[sp.Expr, sp.Expr] | None:
+    """``(x, y)`` with ``x * y == term`` computed exactly by one error-free product, or None.
+
+    Accepted: ``c``, ``c*u``, ``c*u*v`` (``u**2``) for symbols u, v and a float-exact c
+    (a power of two when there are two symbols, so that ``c*u`` is exact)."""
+    coeff, factors = term.as_coeff_mul()
+    syms: list[sp.Expr] = []
+    for f in factors:
+        base, e = f.as_base_exp()
+        if not (base.is_Symbol and e.is_Integer and e > 0):
+            return None
+        syms += [base] * int(e)
+    if len(syms) > 2 or not _float_exact(coeff):
+        return None
+    if len(syms) == 2:
+        return (coeff * syms[0], syms[1]) if _power_of_two(coeff) else None
+    return coeff, (syms[0] if syms else sp.Integer(1))
+
+
+def _monomial(term: sp.Expr) -> bool:
+    coeff, factors = term.as_coeff_mul()
+    return coeff.is_Rational and all(f.as_base_exp()[0].is_Symbol and f.as_base_exp()[1].is_Integer for f in factors)
+
+
+def difference_of_products(expr: sp.Expr, ranges: Mapping[sp.Symbol, tuple[Any, Any]] | None = None) -> sp.Expr:
+    """Rewrite two-term sums that can cancel, ``a b - c d`` of real symbols, as
+    :class:`ProductDifference` (double-double arithmetic at run time).
+
+    A sum of two monomials with denominators, such as ``1 - r2 r4/(r1 r3)``, is first
+    brought to one fraction.  Sums of like-signed terms (no cancellation), sums that one
+    float operation already rounds correctly (``a - b``, ``2 a - b``) and sums of integer
+    symbols only (evaluated exactly, see :func:`exact_integer_parts`) are left alone.
+
+    >>> r1, r2, r3, r4 = sp.symbols("r1:5", positive=True)
+    >>> difference_of_products(r1*r3/(r1*r3 - r2*r4))
+    r1*r3/ProductDifference(r1, r3, r2, r4)
+    >>> difference_of_products(1 - r2*r4/(r1*r3))
+    ProductDifference(r1, r3, r2, r4)/(r1*r3)
+    >>> difference_of_products(r1*r3 + r2*r4)   # like-signed: nothing cancels
+    r1*r3 + r2*r4
+    """
+
+    def same_sign(t1: sp.Expr, t2: sp.Expr) -> bool:
+        s1 = _sign(t1, ranges)
+        return s1 is not None and s1 == _sign(t2, ranges)
+
+    def exact_sum(t1: sp.Expr, t2: sp.Expr) -> bool:
+        """One float operation gives the sum correctly rounded (``a - b``, ``2 a - 1``)."""
+        parts = [_product_parts(t) for t in (t1, t2)]
+        return all(p is not None and p[1] == 1 or p is not None and p[0].is_Number and _power_of_two(p[0]) for p in parts)
+
+    def direct(t1: sp.Expr, t2: sp.Expr) -> sp.Expr | None:
+        if t1.could_extract_minus_sign() and not t2.could_extract_minus_sign():
+            t1, t2 = t2, t1  # the positive term first: ProductDifference(a, b, c, d) reads a b - c d
+        p1, p2 = _product_parts(t1), _product_parts(t2)
+        if p1 is None or p2 is None or exact_sum(t1, t2) or same_sign(t1, t2):
+            return None
+        (a, b), (c, d) = p1, p2
+        return ProductDifference(a, b, -c, d)  # t1 + t2 = a b - (-c) d
+
+    def rewrite(node: sp.Expr) -> sp.Expr:
+        if not node.is_Add or len(node.args) != 2 or not node.free_symbols:
+            return node
+        if all(s.is_integer for s in node.free_symbols):
+            return node
+        t1, t2 = node.args
+        new = direct(t1, t2)
+        if new is not None or exact_sum(t1, t2):
+            return node if new is None else new
+        if not (_monomial(t1) and _monomial(t2)) or same_sign(t1, t2):
+            return node
+        num, den = sp.fraction(sp.together(node))
+        num = sp.expand(num)
+        if not num.is_Add or len(num.args) != 2 or not _monomial(den):
+            return node
+        if exact_sum(*num.args):  # 1 - x/y as (y - x)/y: one correctly rounded difference
+            return num / den
+        new = direct(*num.args)
+        return node if new is None else new / den
+
+    return expr.replace(lambda n: n.is_Add and len(n.args) == 2, rewrite)
+
+
+# --------------------------------------------------------------------------- rule 7
 def reduce_phases(expr: sp.Expr, times: Iterable[sp.Symbol]) -> sp.Expr:
     """Reduce the phase of ``sin``, ``cos``, ``tan`` whose argument is ``c x y t + b``.
 
@@ -445,6 +579,8 @@ RULE_NOTES = {
     "cosine_sums": "cosine sums written as sums of like-signed terms",
     "factor_differences": "small polynomial differences factored (1 - e^2 as (1 - e)(1 + e))",
     "exact_integer_parts": "integer parts evaluated exactly before one division",
+    "difference_of_products": "differences of two products of inputs (a b - c d) in double-double arithmetic "
+    "(relative error about 2^-53 however close a b and c d are)",
     "reduce_phases": "phases reduced mod 2 pi in double-double (error ~2^-52 pi at any number of turns; "
     "the plain product loses |phase| 2^-53 rad)",
 }
@@ -458,7 +594,7 @@ def stable_form(
     applied: list[str] | None = None,
 ) -> sp.Expr:
     """Apply every rule: relative form, unwrapped angles, cosine sums, factored
-    differences, exact integer parts, and (when ``reduce_phase`` names time symbols)
+    differences, differences of products, exact integer parts, and (when ``reduce_phase`` names time symbols)
     reduced phases.  The names of the rules that changed something are appended to
     ``applied`` (see :data:`RULE_NOTES`).
 
@@ -477,6 +613,7 @@ def stable_form(
         ("unwrap_angles", lambda e: unwrap_angles(e, ranges)),
         ("cosine_sums", lambda e: cosine_sums(e, ranges)),
         ("factor_differences", factor_differences),
+        ("difference_of_products", lambda e: difference_of_products(e, ranges)),
         ("exact_integer_parts", exact_integer_parts),
     ]
     if times:
