@@ -129,3 +129,44 @@ def test_the_rule_leaves_sums_alone_that_cannot_cancel_or_round_once():
         rewritten = st.difference_of_products(e)
         assert rewritten.has(st.ProductDifference)
         assert sp.simplify(st.plain_form(rewritten) - e) == 0
+
+
+def _denominator_sums(expr):
+    """Sums that the float code divides by (ExactRatio and ProductDifference are exact or
+    double-double, and are not looked into)."""
+    for node in sp.preorder_traversal(expr):
+        if node.is_Pow and node.exp.is_negative:
+            for factor in sp.Mul.make_args(node.base):
+                base = factor.as_base_exp()[0]
+                if base.is_Add:
+                    yield base
+
+
+def _guaranteed(add):
+    terms = [t.as_coeff_mul() for t in add.args]
+    if len(terms) == 2 and all(abs(c) == 1 and len(f) <= 1 and all(x.is_Symbol for x in f) for c, f in terms):
+        return True  # x - y or x + y: zero exactly when it should be, one rounding
+    signs = {st._sign(t, None) for t in add.args}
+    return len(signs) == 1 and None not in signs  # like-signed: cannot cancel
+
+
+def test_every_two_row_ratio_and_speed_law_has_only_guaranteed_denominators():
+    # what README and docs/numerics.md promise: inf at a pole, never a finite number, and
+    # no digits lost near one, for every ratio and speed law of the two-row schemes
+    from itertools import combinations, permutations
+
+    from symkin import symbols as S
+
+    checked = 0
+    for kind in ("AA", "AI", "II"):
+        for teeth in (False, True):
+            mech = schemes.two_row(kind, teeth=teeth)
+            laws = [mech.ratio(a, b, fixed=c).rhs for a, b, c in permutations(("1", "4", "H"), 3)]
+            for known in combinations(("1", "4", "H"), 2):
+                solved = mech.speeds({k: S.omega(k) for k in known})
+                laws += [solved.law(n).rhs for n in ("1", "4", "H", "23")]
+            for law in laws:
+                for add in _denominator_sums(st.stable_form(law)):
+                    assert _guaranteed(add), (kind, teeth, law, add)
+                checked += 1
+    assert checked == 3 * 2 * (6 + 3 * 4)

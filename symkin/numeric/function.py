@@ -52,9 +52,18 @@ class NumericFunction:
 
     Notes
     -----
-    Float backends never return a finite wrong number at a pole: the points where a
-    law is infinite or undefined hold inf or nan and a :class:`~symkin.errors.PoleWarning`
-    says how many (``on_pole="raise"`` raises :class:`~symkin.errors.PoleError` instead).
+    Float backends check every output value: a nan or inf is never silent.  Where an
+    input is nan or infinite a :class:`NonFiniteInputWarning` counts the points; elsewhere
+    a :class:`~symkin.errors.PoleWarning` does (``on_pole="raise"`` raises
+    :class:`~symkin.errors.PoleError` instead).  Complex, boolean, text and None inputs
+    are refused with an :class:`~symkin.errors.InputError`.
+
+    Denominators that are integer polynomials of tooth numbers (exact), differences of
+    two inputs, differences of two products of inputs ``a b - c d`` (double-double) or
+    sums of like-signed terms, and products of these, are zero exactly where the law has
+    a pole for the binary inputs given, and lose no digits near one: there the result is
+    inf or nan at a pole, never a finite number.  Other denominators are evaluated as
+    written and can lose digits near their poles (see ``docs/numerics.md``).
     """
 
     def __init__(self, evaluator: Any, plan: Any, backend: str, notes: Sequence[str], spec: Any, on_pole: str = "warn"):
