@@ -17,7 +17,9 @@ allow-list of operators, names and functions; nothing is evaluated by Python.
 from __future__ import annotations
 
 import ast
+import decimal
 import math
+import numbers
 import re
 from fractions import Fraction
 from typing import Any, Callable, Iterable, Mapping
@@ -27,7 +29,20 @@ import sympy as sp
 from . import symbols as S
 from .errors import InputError
 
-__all__ = ["as_expr", "as_values", "substitute", "as_float", "parse_number", "parse_integer", "parse_expression", "FUNCTIONS", "CONSTANTS"]
+__all__ = [
+    "as_expr",
+    "as_values",
+    "substitute",
+    "as_float",
+    "as_rational",
+    "as_integer",
+    "as_real",
+    "parse_number",
+    "parse_integer",
+    "parse_expression",
+    "FUNCTIONS",
+    "CONSTANTS",
+]
 
 #: Functions a user expression may call.
 FUNCTIONS: Mapping[str, Callable[..., sp.Expr]] = {
@@ -124,6 +139,119 @@ def parse_integer(text: str, *, what: str = "value") -> sp.Integer:
     if not value.is_Integer:
         raise InputError(f"{what} must be a whole number, got {text!r}")
     return value
+
+
+def as_rational(value: Any, *, what: str = "value", text: bool = True, error: type[Exception] = InputError) -> sp.Rational:
+    """An exact rational from a user's number: the one gate for values that must be exact.
+
+    Integers, fractions (:class:`fractions.Fraction`, SymPy rationals) and decimals are
+    taken exactly; text is parsed by :func:`parse_number` (``"0.8"`` is 4/5); a float is
+    the decimal it prints as, its ``repr`` (``0.1`` is 1/10, never a guessed
+    ``sqrt(2)/2``), so what a user typed is what symkin computes with.  NaN, infinities,
+    irrational numbers and anything that is not a number are refused, as are numbers
+    outside the size :func:`parse_number` accepts.
+
+    Parameters
+    ----------
+    value : int, float, Fraction, Decimal, SymPy Rational or Float, or str
+    what : str
+        What the value is, for error messages.
+    text : bool
+        Accept text (False: numbers only).
+    error : exception class
+        Raised on a bad value (a :class:`~symkin.errors.SymkinError` subclass).
+
+    Examples
+    --------
+    >>> as_rational(0.7071067811865476)
+    1767766952966369/2500000000000000
+    >>> as_rational("2.25"), as_rational(Fraction(3, 4)), as_rational(10)
+    (9/4, 3/4, 10)
+    >>> as_rational(float("inf"), what="the total ratio")
+    Traceback (most recent call last):
+    ...
+    symkin.errors.InputError: the total ratio must be a finite number, got inf
+    """
+    try:
+        return _rational(value, what, text)
+    except InputError as err:
+        if error is InputError:
+            raise
+        raise error(str(err)) from None
+
+
+def _rational(value: Any, what: str, text: bool) -> sp.Rational:
+    if isinstance(value, str):
+        if not text:
+            raise InputError(f"{what} must be a number, not the string {value!r}")
+        return parse_number(value, what=what)
+    if isinstance(value, bool) or value is None:
+        raise InputError(f"{what} must be a number, got {value!r}")
+    if isinstance(value, sp.Basic):
+        if isinstance(value, sp.Rational):
+            return _bounded(value, what)
+        if isinstance(value, sp.Float):
+            if not value.is_finite:
+                raise InputError(f"{what} must be a finite number, got {value}")
+            # the decimal the Float prints as; a double-precision Float by its shortest repr
+            decimal_text = repr(float(value)) if value._prec <= 53 else str(value)
+            return parse_number(decimal_text, what=what)
+        if isinstance(value, sp.Expr) and value.is_number and value.is_extended_real and value.is_finite:
+            raise InputError(f"{what} must be a rational number (a decimal or a fraction), got {value}")
+        raise InputError(f"{what} must be a finite number, got {value}")
+    if isinstance(value, numbers.Rational):  # int, Fraction, NumPy integers
+        return _bounded(sp.Rational(int(value.numerator), int(value.denominator)), what)
+    if isinstance(value, decimal.Decimal):
+        if not value.is_finite():
+            raise InputError(f"{what} must be a finite number, got {value}")
+        return parse_number(str(value), what=what)
+    if isinstance(value, numbers.Real):  # float, NumPy floats: the decimal they print as
+        f = float(value)
+        if not math.isfinite(f):
+            raise InputError(f"{what} must be a finite number, got {value!r}")
+        return parse_number(repr(f) if isinstance(value, float) else str(value), what=what)
+    raise InputError(f"{what} must be a number, got {value!r}")
+
+
+def as_integer(value: Any, *, what: str = "value", text: bool = True, error: type[Exception] = InputError) -> sp.Integer:
+    """An exact integer: :func:`as_rational` that refuses fractions and floats (counts are not measured).
+
+    >>> as_integer("12"), as_integer(3)
+    (12, 3)
+    >>> as_integer(3.0, what="the number of satellites")
+    Traceback (most recent call last):
+    ...
+    symkin.errors.InputError: the number of satellites must be a whole number, got 3.0
+    """
+    if isinstance(value, (float, sp.Float)) or (isinstance(value, numbers.Real) and not isinstance(value, numbers.Rational)):
+        raise error(f"{what} must be a whole number, got {value!r}")
+    number = as_rational(value, what=what, text=text, error=error)
+    if not number.is_Integer:
+        raise error(f"{what} must be a whole number, got {value!r}")
+    return number
+
+
+def as_real(value: Any, *, what: str = "value", error: type[Exception] = InputError) -> sp.Expr:
+    """An exact finite real constant: :func:`as_rational` for numbers, and exact SymPy
+    constants such as ``sqrt(2)/2`` or ``pi/6`` (given as SymPy objects or as text, parsed
+    by :func:`parse_expression`) kept as they are.
+
+    >>> as_real("pi/6"), as_real(0.5), as_real(sp.sqrt(2) / 2)
+    (pi/6, 1/2, sqrt(2)/2)
+    >>> as_real("t + 1", what="the guide angle")
+    Traceback (most recent call last):
+    ...
+    symkin.errors.InputError: the guide angle: 't' is not allowed here; allowed names: E, pi; functions: ...
+    """
+    if isinstance(value, str):
+        expr = parse_expression(value, what=what)
+    elif isinstance(value, sp.Expr) and not isinstance(value, (sp.Rational, sp.Float)):
+        expr = value
+    else:
+        return as_rational(value, what=what, error=error)
+    if not expr.is_number or expr.has(sp.nan, sp.zoo, sp.oo, -sp.oo) or expr.is_extended_real is False or not expr.is_finite:
+        raise error(f"{what} must be a finite real number, got {value!r}")
+    return expr
 
 
 def parse_expression(
