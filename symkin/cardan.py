@@ -45,7 +45,7 @@ from .drives import ConstantSpeed, Drive, EllipticalGears, as_drive
 from .errors import InputError, ModelError, UnsupportedError
 from .laws import Law
 from .model import Mechanism, as_length, as_teeth
-from .parsing import as_expr, as_values, substitute
+from .parsing import as_expr, as_rational, as_values, substitute
 from .vectorloop import LinkVector, VectorLoop, harmonics, solve_linear
 
 __all__ = [
@@ -343,8 +343,9 @@ class CardanSlider:
 
     @cached_property
     def ring_ratio(self) -> sp.Expr:
-        """``r_3 / r_1`` (= z3/z1 with equal modules)."""
-        return sp.nsimplify(sp.cancel(self.mechanism.gear("3").radius / self.mechanism.gear("1").radius))
+        """``r_3 / r_1`` (= z3/z1 with equal modules); a float radius counts as the decimal it prints as."""
+        ratio = sp.cancel(self.mechanism.gear("3").radius / self.mechanism.gear("1").radius)
+        return sp.cancel(ratio.xreplace({f: as_rational(f, what="a pitch radius") for f in ratio.atoms(sp.Float)}))
 
     # ---- angles in time
     @cached_property

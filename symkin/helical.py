@@ -35,7 +35,7 @@ from typing import Any
 import sympy as sp
 
 from .errors import ModelError
-from .parsing import as_expr
+from .parsing import as_expr, as_rational
 from .model import Gear, Mechanism
 
 __all__ = [
@@ -420,12 +420,8 @@ def _as_modules(values: Any) -> tuple[Fraction, Fraction]:
         raise ModelError(f"give the two normal modules (m_n12, m_n34), got {values!r}") from None
     out = []
     for m, what in ((m12, "normal module of mesh 1-2"), (m34, "normal module of mesh 3-4")):
-        if isinstance(m, bool):
-            raise ModelError(f"{what} must be a number, got {m!r}")
-        try:
-            f = Fraction(str(m)) if isinstance(m, (sp.Rational, str)) else Fraction(m)
-        except (TypeError, ValueError):
-            raise ModelError(f"{what} must be an exact or finite number, got {m!r}") from None
+        r = as_rational(m, what=what, error=ModelError)
+        f = Fraction(int(r.p), int(r.q))
         if f <= 0:
             raise ModelError(f"{what} must be positive, got {m}")
         out.append(f)

@@ -37,6 +37,7 @@ import sympy as sp
 from . import symbols as S
 from .errors import InputError, UnsupportedError
 from .helical import SCHEME_MESHES, HelicalTrain, hand_name, helical_gear
+from .parsing import as_integer, as_rational, as_real
 
 __all__ = [
     "RATIO",
@@ -515,15 +516,8 @@ def existence_interval(scheme: str, satellites: int, delta: Any) -> tuple[sp.Exp
     True
     """
     scheme = _scheme(scheme)
-    if isinstance(delta, (str, bytes, bool)):  # nsimplify would parse a string as Python
-        raise InputError(f"d_w2/d_w3 must be a positive number, got {delta!r}")
-    try:
-        d = sp.nsimplify(delta) if not isinstance(delta, sp.Basic) else delta
-    except (sp.SympifyError, TypeError, ValueError, AttributeError):
-        raise InputError(f"d_w2/d_w3 must be a positive number, got {delta!r}") from None
-    if not isinstance(d, sp.Expr):
-        raise InputError(f"d_w2/d_w3 must be a positive number, got {delta!r}")
-    if not (d.is_number and d.is_positive):
+    d = as_real(delta, what="d_w2/d_w3")  # a float is its decimal, never a guessed surd
+    if not d.is_positive:
         raise InputError(f"d_w2/d_w3 must be a positive number, got {delta!r}")
     k = _whole(satellites, "the number of satellites")
     if k < 1:
@@ -611,34 +605,12 @@ def existence_range(scheme: str) -> tuple[tuple[sp.Expr, sp.Expr], ...]:
 # --------------------------------------------------------------------------- synthesis
 def _fraction(value: Any, what: str) -> Fraction:
     """An exact number from a user value (text is parsed safely, never evaluated)."""
-    if isinstance(value, bool):
-        raise InputError(f"{what} must be a number, got {value!r}")
-    if isinstance(value, str):
-        from .parsing import parse_number
-
-        r = parse_number(value, what=what)
-        return Fraction(int(r.p), int(r.q))
-    if isinstance(value, Fraction):
-        return value
-    if isinstance(value, int):
-        return Fraction(value)
-    if isinstance(value, sp.Rational):
-        return Fraction(int(value.p), int(value.q))
-    if isinstance(value, float):
-        if not math.isfinite(value):
-            raise InputError(f"{what} must be a finite number, got {value!r}")
-        return Fraction(repr(value))
-    raise InputError(f"{what} must be a number, got {value!r}")
+    r = as_rational(value, what=what)
+    return Fraction(int(r.p), int(r.q))
 
 
 def _whole(value: Any, what: str) -> int:
-    if isinstance(value, str):
-        from .parsing import parse_integer
-
-        value = parse_integer(value, what=what)
-    if isinstance(value, bool) or not isinstance(value, (int, sp.Integer)):
-        raise InputError(f"{what} must be a whole number, got {value!r}")
-    return int(value)
+    return int(as_integer(value, what=what))
 
 
 @dataclass(frozen=True)

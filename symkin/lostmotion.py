@@ -346,21 +346,9 @@ def _models(model: Any, n: int) -> tuple[StageErrorModel, ...]:
 
 
 def _number(value: Any, what: str) -> sp.Expr:
-    from .parsing import parse_number
+    from .parsing import as_real
 
-    if isinstance(value, bool):
-        raise InputError(f"{what} must be a number, got {value!r}")
-    if isinstance(value, str):
-        return parse_number(value, what=what)
-    if isinstance(value, float):
-        return parse_number(repr(value), what=what)
-    try:
-        v = sp.sympify(value, strict=True)
-    except (sp.SympifyError, TypeError):
-        raise InputError(f"{what} must be a number, got {value!r}") from None
-    if not (isinstance(v, sp.Expr) and v.is_number and v.is_finite and v.is_extended_real):
-        raise InputError(f"{what} must be a finite real number, got {value!r}")
-    return v
+    return as_real(value, what=what)
 
 
 # --------------------------------------------------------------------------- tolerance stacks

@@ -47,14 +47,18 @@ FRAME = "0"
 
 
 def as_length(value: Any, what: str) -> sp.Expr:
-    """Check and return a positive length (a pitch radius, an arm).
+    """Check and return a positive length (a pitch radius, a module, an arm).
 
     >>> as_length(2, "radius")
     2
-    >>> as_length(-1, "radius of gear 1")
+    >>> as_length(-1, "pitch radius of gear 1")
     Traceback (most recent call last):
     ...
-    symkin.errors.ModelError: radius of gear 1 must be positive, got -1; give a positive pitch radius
+    symkin.errors.ModelError: pitch radius of gear 1 must be positive, got -1; give a positive pitch radius
+    >>> as_length(0, "module of gear 1")
+    Traceback (most recent call last):
+    ...
+    symkin.errors.ModelError: module of gear 1 must be positive, got 0; give a positive module
     """
     expr = as_expr(value, what=what, text=False, finite=False, error=ModelError)
     if expr.is_number:
@@ -63,7 +67,7 @@ def as_length(value: Any, what: str) -> sp.Expr:
         if expr.is_extended_real is False:
             raise ModelError(f"{what} must be real, got {value!r}")
     if expr.is_positive is False:
-        raise ModelError(f"{what} must be positive, got {value!r}; give a positive pitch radius")
+        raise ModelError(f"{what} must be positive, got {value!r}; give a positive {what.split(' of ')[0]}")
     return expr
 
 
@@ -115,6 +119,17 @@ class Gear:
         True for an internal (ring) gear.
     module : sympy expression, optional
         Module of a gear built from its tooth number.
+
+    Notes
+    -----
+    ``radius`` need not equal ``module * teeth / 2``: a gear of a profile-shifted mesh
+    works on a pitch circle other than its reference one, so ``Gear("1", 5, teeth=20,
+    module=1)`` is accepted as given.  The kinematics uses ``radius`` only; ``teeth``
+    and ``module`` are kept for synthesis and printing.  :meth:`from_teeth` builds the
+    reference radius from them.
+
+    >>> Gear("1", 5, teeth=20, module=1).radius   # a working radius, not m z / 2 = 10
+    5
     """
 
     name: str

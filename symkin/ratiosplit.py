@@ -39,6 +39,7 @@ import sympy as sp
 from .budget import simplify_within
 from .errors import InputError, SymkinError, UnsupportedError
 from .lostmotion import LostMotion, StageErrorModel, lost_motion
+from .parsing import as_rational
 
 __all__ = [
     "SplitProblem",
@@ -59,25 +60,7 @@ _TABLE_SIZE = 200_000  # largest table of completion products the discrete searc
 
 # --------------------------------------------------------------------------- inputs
 def _rational(value: Any, what: str) -> sp.Rational:
-    from .parsing import parse_number
-
-    if isinstance(value, bool):
-        raise InputError(f"{what} must be a number, got {value!r}")
-    if isinstance(value, str):
-        return parse_number(value, what=what)
-    if isinstance(value, float):
-        if not math.isfinite(value):
-            raise InputError(f"{what} must be a finite number, got {value!r}")
-        return parse_number(repr(value), what=what)
-    if isinstance(value, Fraction):
-        return sp.Rational(value.numerator, value.denominator)
-    try:
-        v = sp.sympify(value, strict=True)
-    except (sp.SympifyError, TypeError):
-        raise InputError(f"{what} must be a number, got {value!r}") from None
-    if not isinstance(v, sp.Rational):
-        raise InputError(f"{what} must be an exact or decimal number, got {value!r}")
-    return v
+    return as_rational(value, what=what)
 
 
 def _per_stage(value: Any, n: int, what: str) -> tuple[sp.Rational, ...]:

@@ -49,11 +49,9 @@ class Comparison:
 
 def _expr(value: Any) -> Any:
     """A SymPy object from a value; text is parsed with the allow-list, never by Python."""
-    if isinstance(value, str):
-        from .parsing import parse_expression
+    from .parsing import as_expr
 
-        return parse_expression(value, what="a compared value")
-    return sp.sympify(value, strict=True)
+    return as_expr(value, what="a compared value", finite=False)
 
 
 def _difference(derived: Any, published: Any, under: Mapping[Any, Any] | None) -> sp.Expr:

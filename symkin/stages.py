@@ -25,7 +25,6 @@ evaluated exactly.  :func:`enumerate_stages` lists every feasible stage for a ri
 from __future__ import annotations
 
 import math
-import numbers
 from dataclasses import dataclass, field
 from functools import lru_cache
 from fractions import Fraction
@@ -35,6 +34,7 @@ import sympy as sp
 
 from . import symbols as S
 from .errors import InputError, ModelError
+from .parsing import as_integer, as_rational
 
 __all__ = [
     "Stage",
@@ -158,30 +158,14 @@ def stage_laws() -> StageLaws:
 
 
 def _integer(value: Any, what: str, minimum: int = 1) -> int:
-    if isinstance(value, bool) or not isinstance(value, (numbers.Integral, sp.Integer)):
-        raise InputError(f"{what} must be a whole number, got {value!r}")
-    value = int(value)
+    value = int(as_integer(value, what=what, text=False))
     if value < minimum:
         raise InputError(f"{what} must be at least {minimum}, got {value}")
     return value
 
 
 def _tip_height(ha: Any) -> sp.Rational:
-    if isinstance(ha, bool):
-        raise InputError(f"the tip-height coefficient must be a positive number, got {ha!r}")
-    if isinstance(ha, str):
-        from .parsing import parse_number
-
-        value = parse_number(ha, what="the tip-height coefficient h_a*")
-    elif isinstance(ha, float):
-        if not math.isfinite(ha):
-            raise InputError(f"the tip-height coefficient must be a finite positive number, got {ha!r}")
-        value = sp.Rational(str(ha))
-    else:
-        try:
-            value = sp.Rational(ha)
-        except (TypeError, ValueError):
-            raise InputError(f"the tip-height coefficient must be a positive number, got {ha!r}") from None
+    value = as_rational(ha, what="the tip-height coefficient h_a*")
     if value <= 0:
         raise InputError(f"the tip-height coefficient h_a* must be positive, got {value}; the usual value is 1")
     return value

@@ -13,7 +13,7 @@ from ..budget import simplify_within
 from ..cardan import CardanSlider
 from ..drives import AngleLaw, ConstantSpeed, EllipticalGears
 from ..errors import InputError
-from ..parsing import parse_expression, parse_integer
+from ..parsing import as_real, parse_expression, parse_integer
 from .common import add_json_flag, emit, teeth_list
 
 DESCRIPTION = (
@@ -52,9 +52,7 @@ def register(sub: Any) -> None:
 
 # ---- values
 def _number(text: str, what: str, *, positive: bool = False) -> sp.Expr:
-    value = parse_expression(text, what=what)
-    if not value.is_number or value.is_extended_real is False or not value.is_finite:
-        raise InputError(f"{what} must be a finite real number, got {text!r}")
+    value = as_real(text, what=what)
     if positive and not value.is_positive:
         raise InputError(f"{what} must be positive, got {text!r}")
     return value

@@ -1,0 +1,80 @@
+"""One gate per kind of value, one JSON shape, one return type per kind of result."""
+
+from decimal import Decimal
+from fractions import Fraction
+
+import numpy as np
+import pytest
+import sympy as sp
+
+from symkin.errors import InputError, ModelError
+from symkin.parsing import as_integer, as_rational, as_real
+
+
+# ---- exact numbers: a float is the decimal it prints as, never a guessed surd
+@pytest.mark.parametrize("value, expected", [
+    (0.1, sp.Rational(1, 10)),
+    (0.7071067811865476, sp.Rational(7071067811865476, 10**16)),
+    (1e-05, sp.Rational(1, 100000)),
+    (np.float32(0.1), sp.Rational(1, 10)),
+    (np.int64(7), sp.Integer(7)),
+    (Fraction(3, 4), sp.Rational(3, 4)),
+    (Decimal("2.50"), sp.Rational(5, 2)),
+    (sp.Float(0.25), sp.Rational(1, 4)),
+    ("6000/1331", sp.Rational(6000, 1331)),
+    (12, sp.Integer(12)),
+])
+def test_as_rational_takes_what_the_user_wrote(value, expected):
+    assert as_rational(value) == expected
+
+
+@pytest.mark.parametrize("value", [float("nan"), float("inf"), np.float64("-inf"), Decimal("NaN"), sp.oo, sp.nan,
+                                   True, None, [1], "x", sp.Symbol("x"), 10**400, 1e-320])
+def test_as_rational_refuses_what_is_not_a_finite_number(value):
+    with pytest.raises(InputError):
+        as_rational(value, what="v")
+
+
+def test_as_rational_refuses_an_irrational_and_says_so():
+    with pytest.raises(InputError, match="rational"):
+        as_rational(sp.sqrt(2))
+    with pytest.raises(ModelError):
+        as_rational("nan", error=ModelError)
+
+
+def test_as_integer_and_as_real():
+    assert as_integer("12") == 12 and as_integer(np.int32(3)) == 3
+    for bad in (3.0, "2.5", Fraction(1, 2)):
+        with pytest.raises(InputError, match="whole number"):
+            as_integer(bad)
+    assert as_real("pi/6") == sp.pi / 6 and as_real(sp.sqrt(2) / 2) == sp.sqrt(2) / 2 and as_real(0.5) == sp.Rational(1, 2)
+    for bad in ("t", sp.Symbol("x"), sp.zoo, "sqrt(-1)"):
+        with pytest.raises(InputError):
+            as_real(bad)
+
+
+def test_existence_interval_of_a_float_is_that_of_its_decimal_not_of_sqrt2_over_2():
+    from symkin.helical_synthesis import existence_interval
+
+    decimal = existence_interval("II", 3, 0.7071067811865476)
+    assert decimal == existence_interval("II", 3, sp.Rational(7071067811865476, 10**16))
+    surd = existence_interval("II", 3, sp.sqrt(2) / 2)
+    assert decimal != surd and sp.N(decimal[1] - surd[1], 30) != 0
+    assert abs(float(decimal[1] - surd[1])) < 1e-15  # the same to float precision, as it should be
+
+
+def test_floats_given_to_every_gate_are_their_decimals():
+    from symkin.helical import HelicalTrain
+    from symkin.helical_synthesis import SynthesisRequest
+    from symkin.lostmotion import StageErrorModel
+    from symkin.ratiosplit import SplitProblem
+    from symkin.stages import enumerate_stages
+
+    assert StageErrorModel.linear(0.854, 0.858).expr == sp.Rational(854, 1000) + sp.Rational(858, 1000) * sp.Symbol("u", positive=True)
+    p = SplitProblem.build(100.5, 2, lower=2.25, upper=11, model=StageErrorModel.linear(1, 1))
+    assert p.total == sp.Rational(201, 2) and p.lower[0] == sp.Rational(9, 4)
+    assert SynthesisRequest(scheme="AI", ratio=25.1, tolerance=0.02).ratio == Fraction(251, 10)
+    assert HelicalTrain("AI", (20, 40, 20, 80), (2.5, 0.1), (0.1, 0.1)).normal_modules == (Fraction(5, 2), Fraction(1, 10))
+    assert enumerate_stages(80, 3, zmin=17, ha=0.8).ha == sp.Rational(4, 5)
+    with pytest.raises(InputError):
+        enumerate_stages(80, 3.0)
