@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import heapq
 import math
+import re
 import time
 import warnings
 from bisect import bisect_left, bisect_right
@@ -267,20 +268,8 @@ class ContinuousSplit:
                 lines.append(f"stage {i} upper bound: multiplier {mu:.4g} >= 0; raising it by 1% lowers the objective by about {mu * 0.01:.3g}")
             elif a == "lower":
                 lines.append(f"stage {i} lower bound: multiplier {mu:.4g} >= 0; lowering it by 1% lowers the objective by about {mu * 0.01:.3g}")
-        diffs = [g[j] - g[j + 1] for j in range(n - 1)]
-        if n > 1 and all(d > 0 for d in diffs):
-            lines.append(
-                "why: g_j - g_(j+1) > 0 along the whole train, so moving ln-ratio from any stage to a later one lowers "
-                "the objective; hence the stages nearest the output sit on their upper bounds, those nearest the input "
-                "on their lower bounds, and at most one stage is free to meet the product"
-            )
-        elif n > 1 and all(d < 0 for d in diffs):
-            lines.append(
-                "why: g_j - g_(j+1) < 0 along the whole train, so ratio is best moved toward the input: the input "
-                "stages sit on their upper bounds"
-            )
-        elif n > 1:
-            lines.append("why: the free stages share one gradient value nu; each bound holds because its multiplier is non-negative")
+        if n > 1:
+            lines.append(_why(self.active, g))
         lines.append(
             "the objective is a posynomial in the u_i, hence convex in ln u: this KKT point is the global minimum"
             if self.global_optimum
@@ -302,6 +291,37 @@ class ContinuousSplit:
             "global_optimum": self.global_optimum,
             "explanation": self.explain(),
         }
+
+
+#: Gradient differences smaller than this, relative to the largest |g_j|, count as equal.
+_GRADIENT_RTOL = 1e-6
+
+
+def _why(active: Sequence[str], g: Sequence[float]) -> str:
+    """Why the bounds are active, said only when the active set agrees with the reason.
+
+    >>> _why(("free", "upper"), (2.0, 1.0))[:40]
+    'why: g_j - g_(j+1) > 0 along the whole t'
+    >>> _why(("free", "free"), (0.03465, 0.03465000001))
+    'why: the free stages share one gradient value nu; each bound holds because its multiplier is non-negative'
+    """
+    tol = _GRADIENT_RTOL * max(max(abs(v) for v in g), 1e-300)
+    diffs = [g[j] - g[j + 1] for j in range(len(g) - 1)]
+    pattern = "".join({"lower": "l", "upper": "u", "fixed": "x", "free": "f"}[a] for a in active)
+    if all(d > tol for d in diffs) and re.fullmatch(r"[lx]*f?[ux]*", pattern):
+        return (
+            "why: g_j - g_(j+1) > 0 along the whole train, so moving ln-ratio from any stage to a later one lowers "
+            "the objective; hence the stages nearest the output sit on their upper bounds, those nearest the input "
+            "on their lower bounds, and at most one stage is free to meet the product"
+        )
+    if all(d < -tol for d in diffs) and re.fullmatch(r"[ux]*f?[lx]*", pattern):
+        return (
+            "why: g_j - g_(j+1) < 0 along the whole train, so ratio is best moved toward the input: the stages "
+            "nearest the input sit on their upper bounds, those nearest the output on their lower bounds"
+        )
+    if "f" in pattern:
+        return "why: the free stages share one gradient value nu; each bound holds because its multiplier is non-negative"
+    return "why: every stage is on a bound; each bound holds because its multiplier is non-negative"
 
 
 def _fill(lo: np.ndarray, hi: np.ndarray, L: float, order: Sequence[int]) -> np.ndarray:

@@ -78,3 +78,21 @@ def test_floats_given_to_every_gate_are_their_decimals():
     assert enumerate_stages(80, 3, zmin=17, ha=0.8).ha == sp.Rational(4, 5)
     with pytest.raises(InputError):
         enumerate_stages(80, 3.0)
+
+
+# ---- the "why" of the active bounds is said only when it is true
+def test_why_sentence_matches_the_active_set():
+    from symkin.lostmotion import StageErrorModel
+    from symkin.ratiosplit import optimise_split
+
+    both_free = optimise_split(100, 2, lower=2, upper=20, model=StageErrorModel.from_expression("sin(u) + 2"))
+    assert both_free.active == ("free", "free")
+    g = both_free.log_gradient
+    assert abs(g[0] - g[1]) <= 1e-6 * max(map(abs, g))  # equal gradients: no direction is preferred
+    text = "\n".join(both_free.explain())
+    assert "g_j - g_(j+1) > 0" not in text and "free stages share one gradient value" in text
+
+    khai = optimise_split(6000, 4, lower="2.25", upper=11, model=StageErrorModel.linear("0.854", "0.858"))
+    assert khai.active == ("free", "upper", "upper", "upper")
+    assert all(a - b > 0 for a, b in zip(khai.log_gradient, khai.log_gradient[1:]))
+    assert any(line.startswith("why: g_j - g_(j+1) > 0") for line in khai.explain())
