@@ -18,7 +18,8 @@ import statistics
 import sys
 import time
 
-from symkin.helical_synthesis import SynthesisRequest, _check_candidate, _compiled, synthesise
+from symkin.helical_synthesis import SynthesisRequest, synthesise
+from symkin.helical_synthesis.search import _check_candidate, _compiled
 
 SMALL = dict(scheme="AI", ratio=4, tolerance="0.03", satellites=3, normal_modules=(2, 3), teeth_min=17,
              teeth_max=50, top=None)

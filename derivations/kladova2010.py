@@ -152,7 +152,7 @@ def _balance_checks() -> list[Check]:
 # --------------------------------------------------------------------------- section 1.1
 def _section_11_checks() -> list[Check]:
     out = []
-    law = {kd: HS.ratio_law(kd) for kd in HS.SCHEMES}
+    law = {kd: HS.ratio_law(kd).rhs for kd in HS.SCHEMES}
     out.append(_check("(1)", "ratio i_1H^(4) of the stepped planet in section 1.1 (derived for AI)",
                       law["AI"], PUBLISHED["(1)"], compare_symbolic(law["AI"], PUBLISHED["(1)"])))
     coax_aa = HS.helical_coaxiality("AA")
@@ -252,7 +252,7 @@ def _section_12_checks() -> list[Check]:
     # evidence for the printed (9): the 2009 II example, spur, equal modules, coaxial
     zz = EXAMPLE_II_2009
     vals = {z1: zz[0], z2: zz[1], z3: zz[2], z4: zz[3]}
-    i_ex = HS.ratio_law("II").subs(vals)
+    i_ex = HS.ratio_law("II").rhs.subs(vals)
     d_ex = sp.Rational(zz[1], zz[2])
     printed_z1 = (PUBLISHED["(9) as printed"]).subs({z2: zz[1], i: i_ex, delta: d_ex})
     derived_z1 = sp.solve(sp.Eq(zz[1], ch[z2].subs({i: i_ex, delta: d_ex})), z1)[0]
@@ -274,7 +274,7 @@ def _section_12_checks() -> list[Check]:
 def _rebuild_example(kind: str, teeth: tuple[int, int, int, int], k_value: int, label: str) -> Check:
     """Put an example's i, x, d_w2/d_w3, k, P, Q into the derived tooth equations."""
     vals = dict(zip((z1, z2, z3, z4), teeth))
-    i_ex = HS.ratio_law(kind).subs(vals)
+    i_ex = HS.ratio_law(kind).rhs.subs(vals)
     p_ex, q_ex = HS.assembly_integers(kind, teeth, k_value)
     params = {i: i_ex, x: sp.Rational(teeth[1], teeth[2]), delta: sp.Rational(teeth[1], teeth[2]),
               k: k_value, P: p_ex, Q: q_ex}

@@ -29,7 +29,7 @@ import math
 import numbers
 from dataclasses import dataclass
 from fractions import Fraction
-from functools import cached_property, lru_cache
+from functools import cached_property
 from typing import Any
 
 import sympy as sp
@@ -37,6 +37,7 @@ import sympy as sp
 from .errors import ModelError
 from .parsing import as_expr, as_rational
 from .model import Gear, Mechanism
+from .schemes import TWO_ROW
 
 __all__ = [
     "RIGHT",
@@ -60,7 +61,8 @@ __all__ = [
 RIGHT, LEFT = 1, -1
 
 #: For each two-row scheme: is the central gear of mesh 1-2, and of mesh 3-4, internal?
-SCHEME_MESHES: dict[str, tuple[bool, bool]] = {"AI": (False, True), "AA": (False, False), "II": (True, True)}
+#: (the schemes' own table, :data:`symkin.schemes.TWO_ROW`)
+SCHEME_MESHES = TWO_ROW
 
 DEFAULT_PRESSURE_ANGLE = math.radians(20)
 
@@ -589,18 +591,11 @@ class HelicalTrain:
     def ratio(self) -> Fraction:
         """i_1H^(4) = omega_1 / omega_H with gear 4 fixed, exact.
 
-        The engine's law for the scheme (derived once, in pitch radii) at this train's
-        exact working radii: the same value as ``self.mechanism.ratio("1", "H", fixed="4")``.
+        The engine's law for the scheme (:func:`symkin.helical_synthesis.ratio_law`,
+        derived once) at this train's tooth numbers: within each mesh the working radii
+        are in the tooth ratio, and the law depends on nothing else, so this is the value
+        of ``self.mechanism.ratio("1", "H", fixed="4")``.
         """
-        law = _ratio_in_radii(self.scheme)
-        radii = {sp.Symbol(f"r_{n}", positive=True): sp.Rational(r.numerator, r.denominator)
-                 for n, r in zip((1, 2, 3, 4), self.working_radii_exact)}
-        value = sp.nsimplify(law.subs(radii))
-        return Fraction(int(sp.numer(value)), int(sp.denom(value)))
+        from .helical_synthesis.laws import ratio_function
 
-
-@lru_cache(maxsize=None)
-def _ratio_in_radii(scheme: str) -> sp.Expr:
-    from .schemes import two_row
-
-    return two_row(scheme).ratio("1", "H", fixed="4").rhs
+        return ratio_function(self.scheme)(*self.teeth)

@@ -21,9 +21,10 @@ from typing import Any, Callable, Sequence
 from .errors import ModelError
 from .model import Gear, Link, Mechanism
 
-__all__ = ["single_row_AI", "two_row", "common_ring_train", "cardan", "scheme", "SCHEMES"]
+__all__ = ["single_row_AI", "two_row", "common_ring_train", "cardan", "scheme", "SCHEMES", "TWO_ROW"]
 
-_TWO_ROW = {"AI": (False, True), "AA": (False, False), "II": (True, True)}  # internal gear 1?, gear 4?
+#: For each two-row scheme: is the central gear of mesh 1-2 (gear 1), and of mesh 3-4 (gear 4), internal?
+TWO_ROW: dict[str, tuple[bool, bool]] = {"AI": (False, True), "AA": (False, False), "II": (True, True)}
 
 
 def _gears(names: Sequence[str], internal: Sequence[bool], radii: Any, teeth: Any, module: Any) -> list[Gear]:
@@ -71,9 +72,9 @@ def two_row(kind: str, *, radii: Any = None, teeth: Any = None, module: Any = No
     >>> two_row("II").coaxiality
     (Eq(r_1 - r_2, -r_3 + r_4),)
     """
-    if kind not in _TWO_ROW:
-        raise ModelError(f"unknown two-row scheme {kind!r}; choose one of {', '.join(_TWO_ROW)}")
-    in1, in4 = _TWO_ROW[kind]
+    if kind not in TWO_ROW:
+        raise ModelError(f"unknown two-row scheme {kind!r}; choose one of {', '.join(TWO_ROW)}")
+    in1, in4 = TWO_ROW[kind]
     g1, g2, g3, g4 = _gears(("1", "2", "3", "4"), (in1, False, False, in4), radii, teeth, module)
     return Mechanism(
         links=(Link.central("1", g1), Link.planet("23", g2, g3, carrier="H"), Link.central("H"), Link.central("4", g4)),

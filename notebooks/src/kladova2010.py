@@ -91,7 +91,7 @@ print(checks["(2) with lambda = m_n12/m_n34"].comparison.detail)
 
 # %%
 for kind in HS.SCHEMES:
-    display(Math(r"\text{" + kind + r"}:\quad " + symkin.latex(sp.Eq(HS.RATIO, HS.ratio_law(kind)))))
+    display(Math(r"\text{" + kind + r"}:\quad " + symkin.latex(HS.ratio_law(kind))))
 print(checks["(1)-(7) scheme label"].comparison.detail)
 
 # %% [markdown]

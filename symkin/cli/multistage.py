@@ -143,7 +143,7 @@ class _Progress:
 
 
 def run_split(args: Any) -> int:
-    from ..ratiosplit import SplitProblem, _solve, best_designs
+    from ..ratiosplit import SplitProblem, best_designs, solve_continuous
 
     n = parse_integer(args.stages, what="--stages")
     if not 1 <= n <= MAX_STAGES:
@@ -162,7 +162,7 @@ def run_split(args: Any) -> int:
     tolerance = parse_number(args.tolerance, what="--tolerance")
     top = parse_integer(args.top, what="--top")
     problem = SplitProblem.build(total, n, lower=umin, upper=umax, model=model)
-    best = _solve(problem)
+    best = solve_continuous(problem)
     discrete = None
     if found is not None:
         progress = _Progress()
