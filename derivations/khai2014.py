@@ -159,7 +159,7 @@ def _train_checks() -> list[Check]:
     laws = stage_laws()
     z1, z2, z4 = (S.teeth(g) for g in ("1", "2", "4"))
     out.append(_check("stage ratio", "single-row AI stage: u = omega_sun/omega_carrier, ring fixed (2009 paper (13b))",
-                      laws.ratio, 1 + z4 / z1, compare_symbolic(laws.ratio, 1 + z4 / z1)))
+                      laws.ratio.rhs, 1 + z4 / z1, compare_symbolic(laws.ratio.rhs, 1 + z4 / z1)))
     out.append(_check("coaxiality", "single-row AI: ring teeth from coaxiality with equal modules",
                       laws.ring_from_coaxiality, z1 + 2 * z2, compare_symbolic(laws.ring_from_coaxiality, z1 + 2 * z2)))
     for n in (2, 3, STAGES):

@@ -119,7 +119,10 @@ class LineConditions:
     frequencies : tuple of sympy expressions
         The harmonics e^{i nu alpha} the deviation is made of.
     ratio : sympy.Eq
-        The ring radius for which the pin's harmonic can cancel the carrier's.
+        The ring radius for which the pin's harmonic can cancel the carrier's.  Like
+        ``lengths`` and ``installation`` it is a condition (an equation the mechanism
+        must satisfy), not a derived law, so it is a ``sympy.Eq`` and not a
+        :class:`~symkin.laws.Law`.
     excluded : tuple of (sympy.Eq, str)
         Other coincidences of frequencies, and why the model refuses them.
     lengths, installation : sympy.Eq

@@ -290,7 +290,7 @@ class StageErrorModel:
         backlash = sum(c0 + c1 * a for a in distances)
         sun_diameter = 2 * mech.gear("1").radius
         laws = stage_laws()
-        (sun_teeth,) = sp.solve(sp.Eq(U, laws.ratio), z1)
+        (sun_teeth,) = sp.solve(sp.Eq(U, laws.ratio.rhs), z1)
         planet = laws.planet_from_coaxiality
         expr = (backlash / sun_diameter).subs(z2, planet).subs(z1, sun_teeth).subs(z4, ring)
         expr = sp.expand(sp.cancel(expr))

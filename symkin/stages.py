@@ -34,6 +34,7 @@ import sympy as sp
 
 from . import symbols as S
 from .errors import InputError, ModelError
+from .laws import Law
 from .parsing import as_integer, as_rational
 
 __all__ = [
@@ -65,8 +66,8 @@ class StageLaws:
 
     Attributes
     ----------
-    ratio : sympy expression
-        i_1H^(4) in z_1 (sun) and z_4 (ring).
+    ratio : Law
+        i_1H^(4) in z_1 (sun) and z_4 (ring), the engine's law.
     coaxiality : sympy.Eq
         The engine's coaxiality condition, in teeth with a common module.
     ring_from_coaxiality : sympy expression
@@ -80,7 +81,7 @@ class StageLaws:
         The planet arm a_w in modules.
     """
 
-    ratio: sp.Expr
+    ratio: Law
     coaxiality: sp.Eq
     ring_from_coaxiality: sp.Expr
     planet_from_coaxiality: sp.Expr
@@ -125,7 +126,7 @@ def _compiled() -> dict[str, Callable[..., Fraction]]:
     return {
         "planet": _exact_function(laws.planet_from_coaxiality, (Z_SUN, Z_RING)),
         "ring": _exact_function(laws.ring_from_coaxiality, (Z_SUN, Z_PLANET)),
-        "ratio": _exact_function(laws.ratio, (Z_SUN, Z_RING)),
+        "ratio": _exact_function(laws.ratio.rhs, (Z_SUN, Z_RING)),
         "arm": _exact_function(laws.centre_distance, (Z_SUN, Z_PLANET)),
         "margin_constant": _exact_function(rest, (Z_SUN, Z_PLANET, HA)),
         "margin_slope": _exact_function(slope, (Z_SUN, Z_PLANET)),
@@ -137,8 +138,10 @@ def stage_laws() -> StageLaws:
     """Derive the stage laws once from :func:`symkin.schemes.single_row_AI`.
 
     >>> laws = stage_laws()
-    >>> laws.ratio, laws.ring_from_coaxiality
-    (1 + z_4/z_1, z_1 + 2*z_2)
+    >>> print(laws.ratio)
+    i_{1H}^{(4)} = 1 + z_4/z_1
+    >>> laws.ring_from_coaxiality
+    z_1 + 2*z_2
     >>> laws.neighbour_margin
     -2*h_a^* - z_2 + (z_1 + z_2)*sin(pi/k)
     """
@@ -146,7 +149,7 @@ def stage_laws() -> StageLaws:
 
     mech = single_row_AI(teeth=True)
     m = S.module()
-    ratio = mech.ratio("1", "H", fixed="4").rhs
+    ratio = mech.ratio("1", "H", fixed="4")
     (cond,) = mech.coaxiality
     (ring,) = sp.solve(cond, Z_RING)
     (planet,) = sp.solve(cond, Z_PLANET)

@@ -96,3 +96,45 @@ def test_why_sentence_matches_the_active_set():
     assert khai.active == ("free", "upper", "upper", "upper")
     assert all(a - b > 0 for a, b in zip(khai.log_gradient, khai.log_gradient[1:]))
     assert any(line.startswith("why: g_j - g_(j+1) > 0") for line in khai.explain())
+
+
+# ---- a derived law is a Law wherever it is returned as such; conditions stay Eq
+def test_laws_are_laws_and_conditions_are_equations():
+    from symkin import schemes, symbols as S
+    from symkin.cardan import line_conditions
+    from symkin.helical_synthesis import RATIO, ratio_law
+    from symkin.laws import Law
+    from symkin.stages import stage_laws
+
+    mech = schemes.two_row("II", teeth=True)
+    direct = mech.ratio("1", "H", fixed="4")
+    law = ratio_law("II")
+    assert isinstance(direct, Law) and isinstance(law, Law) and law.lhs == RATIO
+    assert sp.simplify(law.rhs - direct.rhs) == 0
+    z1, z4 = S.teeth("1"), S.teeth("4")
+    stage = stage_laws()
+    assert isinstance(stage.ratio, Law) and sp.simplify(stage.ratio.rhs - (1 + z4 / z1)) == 0  # 2009 paper (13b)
+    assert isinstance(stage.coaxiality, sp.Eq)
+    c = line_conditions()
+    assert all(isinstance(e, sp.Eq) for e in (c.ratio, c.lengths, c.installation))
+
+
+def test_helical_train_ratio_is_the_mechanisms_ratio():
+    from fractions import Fraction
+
+    from symkin.helical import HelicalTrain
+
+    train = HelicalTrain("AI", (18, 80, 20, 108), (2, sp.Rational(5, 2)), (0.49, 0.15))
+    assert train.ratio == Fraction(25) == 1 + Fraction(80 * 108, 18 * 20)  # 1 + z2 z4/(z1 z3)
+    law = train.mechanism.ratio("1", "H", fixed="4").rhs
+    assert train.ratio == Fraction(int(sp.numer(law)), int(sp.denom(law)))
+
+
+def test_scene_values_accept_names_and_symbols():
+    import symkin
+    from symkin import schemes, symbols as S
+
+    scene = symkin.Scene(schemes.two_row("AI"), ratios=[("1", "H", "4")])
+    by_name = scene.evaluate({"r_1": 1, "r_2": 2, "r_3": 1, "r_4": 4})
+    by_symbol = scene.evaluate({S.radius("1"): 1, S.radius("2"): 2, S.radius("3"): 1, S.radius("4"): 4})
+    assert list(by_name.values()) == list(by_symbol.values()) == [9.0]  # 1 + r2 r4/(r1 r3)

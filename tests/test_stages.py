@@ -78,7 +78,7 @@ def test_neighbour_condition_is_decided_exactly_at_equality():
 def test_the_laws_come_from_the_engine():
     laws = stage_laws()
     z1, z2, z4 = sp.symbols("z_1 z_2 z_4", positive=True, integer=True)
-    assert sp.simplify(laws.ratio - (1 + z4 / z1)) == 0
+    assert sp.simplify(laws.ratio.rhs - (1 + z4 / z1)) == 0
     assert sp.simplify(laws.ring_from_coaxiality - (z1 + 2 * z2)) == 0
     assert sp.simplify(laws.centre_distance - (z1 + z2) / 2) == 0
 
