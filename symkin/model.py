@@ -365,7 +365,7 @@ class Mechanism:
                 return self._links_by_name[name]
             if name in self._gears:
                 return self._gears[name][1]
-        valid = sorted(set(self.link_names) | set(self._gears) | {FRAME})
+        valid = sorted(set(self.link_names) | set(self._gears))  # not the frame: it is no driver, driven or moving link
         raise ModelError(f"no link {name!r} in this mechanism; name one of {', '.join(valid)}")
 
     # ---- validation

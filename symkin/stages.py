@@ -34,6 +34,7 @@ import sympy as sp
 
 from . import symbols as S
 from .errors import InputError, ModelError
+from .jsonout import exact_json, exact_json_list
 from .laws import Law
 from .parsing import as_integer, as_rational
 
@@ -313,8 +314,8 @@ class Stage:
             "planet": self.planet,
             "ring": self.ring,
             "satellites": self.satellites,
-            "ratio": {"exact": str(self.ratio), "float": float(self.ratio)},
-            "centre_distance_modules": {"exact": str(self.centre_distance), "float": float(self.centre_distance)},
+            "ratio": exact_json(self.ratio),
+            "centre_distance_modules": exact_json(self.centre_distance),
         }
 
 
@@ -372,9 +373,9 @@ class StageSet:
             "satellites": self.satellites,
             "zmin": self.zmin,
             "zmax": self.zmax,
-            "ha": str(self.ha),
+            "ha": exact_json(self.ha),
             "count": len(self.stages),
-            "ratio_range": [str(self.stages[0].ratio), str(self.stages[-1].ratio)] if self.stages else None,
+            "ratio_range": exact_json_list([self.stages[0].ratio, self.stages[-1].ratio]) if self.stages else None,
             "rejected": dict(self.rejected),
             "stages": [s.to_json() for s in self.stages],
         }

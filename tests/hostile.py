@@ -9,7 +9,8 @@ of :data:`HOSTILE` in its place.  :func:`run` runs one argument list in this pro
 - the exit status is 0 (the value was valid) or 2 (bad input); 3 is an internal error,
   a bug; 1 only where the command means "a result differs";
 - a failure prints exactly one line on stderr, naming the command, without "Traceback";
-- a success with ``--json`` prints strict JSON (no NaN or Infinity);
+- a success with ``--json`` prints strict JSON (no NaN or Infinity) with a ``"warnings"`` list;
+  a failure with ``--json`` prints ``{"error": ..., "exit": status}`` on stdout;
 - no injected code ran: the marker file the injection strings try to create is absent;
 - the run ends within :data:`LIMIT` seconds.
 
@@ -129,16 +130,18 @@ COMMANDS: dict[str, Command] = {
     "curves": Command(("curves", *_AI1, "--point", "2:10,0", "--module", "1", "--t-end", "2", "--out", "c.png", "--json")),
     "animate": Command(("animate", *_AI1, "--point", "2:10,0", "--module", "1", "--turns", "1", "--frames", "2", "--fps", "5",
                         "--dpi", "20", "--out", "a.gif", "--json"), slow=frozenset({(15, "1_000")})),
-    "cardan": Command(("cardan", "--length", "0.02", "--omega", "0.8*pi", "--guide-angle", "0", "--carrier-angle", "0",
+    "cardan": Command(("cardan", "--length", "0.02", "--speed", "0.8*pi", "--guide-angle", "0", "--carrier-angle", "0",
                        "--teeth", "20,40", "--pin-radius", "0.02", "--pin-angle", "0", "--t-start", "0", "--t-end", "1",
                        "--samples", "3", "--json")),
-    "cardan-elliptical": Command(("cardan", "--length", "0.02", "--omega", "1", "-e", "0.4", "-m", "1", "--samples", "3", "--json")),
+    "cardan-elliptical": Command(("cardan", "--length", "0.02", "--speed", "1", "-e", "0.4", "--order", "1", "--samples", "3", "--json")),
+    # the former name of --speed, kept as a deprecated alias
+    "cardan-omega": Command(("cardan", "--length", "0.02", "--omega", "1", "--samples", "3", "--json")),
     "cardan-law": Command(("cardan", "--length", "1", "--angle-law", "t + sin(t)", "--times", "0,0.5,1", "--json")),
     "stages": Command(("stages", "--ring", "180", "--satellites", "3", "--zmin", "18", "--zmax", "180", "--ha", "1", "--json")),
     "split": Command(("split", "--total", "5000", "--stages", "3", "--umin", "2", "--umax", "12", "--model", "1 + u/10",
                       "--tolerance", "0.01", "--top", "3", "--json")),
     "split-ring": Command(("split", "--total", "100", "--stages", "2", "--ring", "60", "--satellites", "3", "--zmin", "12",
-                           "--model", "1 + u/10", "--top", "2", "--plot", "s.png", "--json")),
+                           "--model", "1 + u/10", "--top", "2", "--plot", "s.png", "--quiet", "--json")),
     "split-backlash": Command(("split", "--total", "100", "--stages", "2", "--ring", "60", "--backlash-line", "0.01,0.001",
                                "--module", "1", "--top", "2", "--json")),
     "helical": Command(("helical", "AI", "--ratio", "25", "--tolerance", "0.01", "-k", "3", "--mn12", "2", "--mn34", "2",
@@ -232,11 +235,20 @@ def verdict(outcome: Outcome, folder: Path, ok_codes: frozenset[int] = frozenset
             return f"the message does not say error: {lines[0][:200]!r}"
         if len(lines[0]) > 2000:
             return f"a {len(lines[0])}-character message"
+        if "--json" in outcome.argv and outcome.code in (2, 3):
+            try:
+                data = json.loads(outcome.out, parse_constant=_no_nan)
+            except ValueError as exc:
+                return f"exit {outcome.code} with --json but stdout is not strict JSON ({exc})"
+            if not isinstance(data, dict) or data.get("exit") != outcome.code or not data.get("error"):
+                return f"exit {outcome.code} with --json but stdout is not {{'error': ..., 'exit': {outcome.code}}}"
     elif "--json" in outcome.argv:
         try:
-            json.loads(outcome.out, parse_constant=_no_nan)
+            data = json.loads(outcome.out, parse_constant=_no_nan)
         except ValueError as exc:
             return f"exit 0 but the JSON output is not strict JSON ({exc})"
+        if not isinstance(data, dict) or not isinstance(data.get("warnings"), list):
+            return "exit 0 but the JSON output has no warnings list"
     return None
 
 

@@ -17,7 +17,7 @@ WRITERS = {
     "curves": (["curves", *AI1, "--out", "c.pdf"], ["c.pdf"], (Figure, "savefig")),
     "animate": (["animate", *AI1, "--frames", "3", "--dpi", "20", "--out", "a.gif"], ["a.gif"], (animation.Animation, "save")),
     "split --plot": (["split", "--total", "100", "--stages", "2", "--umin", "2", "--umax", "12", "--model", "1 + u/10",
-                      "--plot", "s.png"], ["s.png", "s.pdf"], (Figure, "savefig")),
+                      "--plot", "s.png"], ["s.png"], (Figure, "savefig")),
 }
 MAGIC = {".png": b"\x89PNG", ".pdf": b"%PDF", ".gif": b"GIF8"}
 

@@ -15,7 +15,7 @@ def run(capsys, *argv):
 
 
 def test_table1_mechanism_text(capsys):
-    code, out, _ = run(capsys, "--length", "0.02", "--omega", "0.8*pi", "--samples", "5")
+    code, out, _ = run(capsys, "--length", "0.02", "--speed", "0.8*pi", "--samples", "5")
     assert code == 0
     assert "path: line" in out and "period: 5/2 = 2.5 s" in out and "ratio K = 1" in out
     rows = [line.split() for line in out.splitlines()[-5:]]
@@ -24,11 +24,12 @@ def test_table1_mechanism_text(capsys):
 
 
 def test_elliptical_json(capsys):
-    code, out, _ = run(capsys, "--length", "20e-3", "--omega", "0.8*pi", "-e", "0.4", "-m", "1", "--carrier-angle", "pi/2",
+    code, out, _ = run(capsys, "--length", "20e-3", "--speed", "0.8*pi", "-e", "0.4", "--order", "1", "--carrier-angle", "pi/2",
                        "--times", "0,0.5,1", "--json")
     data = json.loads(out)
-    assert code == 0 and data["drive"] == {"kind": "elliptical", "omega": "4*pi/5", "eccentricity": "2/5", "order": "1"}
-    assert data["mechanism"]["pin_angle"] == "-pi" and data["path"]["on_guide"] is True
+    assert code == 0 and data["drive"] == {"kind": "elliptical", "speed_rad_s": {"exact": "4*pi/5", "float": pytest.approx(0.8 * math.pi)},
+                                  "eccentricity": {"exact": "2/5", "float": 0.4}, "order": {"exact": "1", "float": 1.0}}
+    assert data["mechanism"]["pin_angle_rad"]["exact"] == "-pi" and data["path"]["on_guide"] is True
     assert data["columns"]["t"] == [0.0, 0.5, 1.0] and set(data["columns"]) == {"t", "s", "v", "a"}
     # at t = 0 the carrier is at pi/2 and fastest: v = 2 l omega (1 + e)/(1 - e) sin(-pi/2)
     assert data["columns"]["v"][0] == pytest.approx(-0.04 * 0.8 * math.pi * 1.4 / 0.6)
@@ -38,7 +39,7 @@ def test_elliptical_json(capsys):
 def test_law_drive(capsys):
     code, out, _ = run(capsys, "--length", "1", "--angle-law", "t + t**3", "--t-end", "2", "--samples", "3", "--json")
     data = json.loads(out)
-    assert code == 0 and data["drive"]["kind"] == "law" and data["period"] is None
+    assert code == 0 and data["drive"]["kind"] == "law" and data["period_s"] is None
     assert data["columns"]["s"][2] == pytest.approx(2 * math.cos(10))
 
 
@@ -52,32 +53,32 @@ def test_law_drive(capsys):
     ],
 )
 def test_other_paths_are_not_errors_and_are_named(capsys, extra, kind, phrase):
-    code, out, _ = run(capsys, "--length", "0.02", "--omega", "1", "--samples", "3", *extra)
+    code, out, _ = run(capsys, "--length", "0.02", "--speed", "1", "--samples", "3", *extra)
     assert code == 0 and f"path: {kind}:" in out and phrase in out
     assert "no slider on the guide can follow" in out and "deviation" in out and "stroke times" not in out
 
 
 BAD = [
-    (["--length", "0.02", "--omega", "1", "-e", "1"], "[0, 1)"),
-    (["--length", "0.02", "--omega", "1", "-e", "-0.2"], "[0, 1)"),
-    (["--length", "0.02", "--omega", "1", "-e", "0.3", "-m", "0"], "--order must be positive"),
-    (["--length", "0.02", "--omega", "1", "-e", "0.3", "-m", "-1"], "--order must be positive"),
-    (["--length", "0", "--omega", "1"], "--length must be positive"),
-    (["--length", "-0.02", "--omega", "1"], "--length must be positive"),
-    (["--length", "0.02", "--omega", "0"], "--omega must be positive"),
-    (["--length", "0.02", "--omega", "-1"], "--omega must be positive"),
-    (["--length", "0.02", "--omega", "1", "--pin-radius", "0"], "--pin-radius must be positive"),
-    (["--length", "abc", "--omega", "1"], "not allowed"),
-    (["--length", "0.02", "--omega", "nan"], "not allowed"),
-    (["--length", "0.02", "--omega", "1", "--times", ","], "--times is empty"),
-    (["--length", "0.02", "--omega", "1", "--times", "0,2,1"], "strictly increasing"),
-    (["--length", "0.02", "--omega", "1", "--times", "0,0"], "strictly increasing"),
-    (["--length", "0.02", "--omega", "1", "--t-start", "3", "--t-end", "1"], "must increase"),
-    (["--length", "0.02", "--omega", "1", "--samples", "0"], "at least 1"),
-    (["--length", "0.02", "--omega", "1", "--samples", "2.5"], "whole number"),
-    (["--length", "0.02", "--omega", "1", "--teeth", "40,20"], "more teeth"),
-    (["--length", "0.02"], "needs --omega"),
-    (["--length", "0.02", "--omega", "1", "-m", "2"], "belong to the elliptical drive"),
+    (["--length", "0.02", "--speed", "1", "-e", "1"], "[0, 1)"),
+    (["--length", "0.02", "--speed", "1", "-e", "-0.2"], "[0, 1)"),
+    (["--length", "0.02", "--speed", "1", "-e", "0.3", "--order", "0"], "--order must be positive"),
+    (["--length", "0.02", "--speed", "1", "-e", "0.3", "--order", "-1"], "--order must be positive"),
+    (["--length", "0", "--speed", "1"], "--length must be positive"),
+    (["--length", "-0.02", "--speed", "1"], "--length must be positive"),
+    (["--length", "0.02", "--speed", "0"], "--speed must be positive"),
+    (["--length", "0.02", "--speed", "-1"], "--speed must be positive"),
+    (["--length", "0.02", "--speed", "1", "--pin-radius", "0"], "--pin-radius must be positive"),
+    (["--length", "abc", "--speed", "1"], "not allowed"),
+    (["--length", "0.02", "--speed", "nan"], "not allowed"),
+    (["--length", "0.02", "--speed", "1", "--times", ","], "--times is empty"),
+    (["--length", "0.02", "--speed", "1", "--times", "0,2,1"], "strictly increasing"),
+    (["--length", "0.02", "--speed", "1", "--times", "0,0"], "strictly increasing"),
+    (["--length", "0.02", "--speed", "1", "--t-start", "3", "--t-end", "1"], "must increase"),
+    (["--length", "0.02", "--speed", "1", "--samples", "0"], "at least 1"),
+    (["--length", "0.02", "--speed", "1", "--samples", "2.5"], "whole number"),
+    (["--length", "0.02", "--speed", "1", "--teeth", "40,20"], "more teeth"),
+    (["--length", "0.02"], "needs --speed"),
+    (["--length", "0.02", "--speed", "1", "--order", "2"], "belong to the elliptical drive"),
     (["--length", "0.02", "--angle-law", "t"], "has no known period; give --t-end"),
     (["--length", "0.02", "--angle-law", "__import__('os')", "--t-end", "1"], "not allowed"),
 ]
@@ -88,3 +89,18 @@ def test_bad_input_one_line_exit_2(capsys, argv, message):
     code, out, err = run(capsys, *argv)
     assert code == 2 and message in err, err
     assert len(err.strip().splitlines()) == 1 and "Traceback" not in err and not out
+
+
+def test_the_former_omega_still_works_with_a_deprecation_note(capsys):
+    code, out, err = run(capsys, "--length", "0.02", "--omega", "0.8*pi", "--samples", "3", "--json")
+    data = json.loads(out)
+    assert code == 0 and data["drive"]["speed_rad_s"]["exact"] == "4*pi/5"
+    assert any("--omega W is deprecated" in w for w in data["warnings"])
+    code, out, err = run(capsys, "--length", "0.02", "--omega", "1", "--speed", "1")
+    assert code == 2 and "give --speed only" in err
+
+
+def test_m_is_no_longer_the_order(capsys):
+    with pytest.raises(SystemExit):
+        run(capsys, "--length", "0.02", "--speed", "1", "-e", "0.3", "-m", "2")
+    assert "unrecognized arguments: -m" in capsys.readouterr().err

@@ -74,3 +74,61 @@ def test_console_script_runs_as_a_process():
         capture_output=True, text=True, timeout=120,
     )
     assert proc.returncode == 0 and "= 25/4 = 6.25" in proc.stdout  # 1 + 30*70/(20*20)
+
+
+# ---- conventions shared by every command (symkin.cli.common)
+def test_with_json_an_error_is_also_json_on_stdout(capsys):
+    code, out, err = run(capsys, "ratio", "AA", "--teeth", "100,100,101,99", "--driver", "Q", "--driven", "1", "--fixed", "4",
+                         "--json")
+    assert code == 2 and len(err.strip().splitlines()) == 1
+    data = json.loads(out)
+    assert data["exit"] == 2 and data["error"] in err and "no link 'Q'" in data["error"]
+    with pytest.raises(SystemExit) as exc:  # argparse's refusal too
+        main(["ratio", "AA", "--teeth", "1,2,3,4", "--json"])
+    out, err = capsys.readouterr()
+    assert exc.value.code == 2 and json.loads(out)["exit"] == 2 and "required" in json.loads(out)["error"]
+
+
+def test_the_no_link_message_does_not_offer_the_frame(capsys):
+    code, _, err = run(capsys, "ratio", "AA", "--teeth", "100,100,101,99", "--driver", "Q", "--driven", "1", "--fixed", "4")
+    assert code == 2 and "name one of 1, 2, 23, 3, 4, H" in err and " 0," not in err
+
+
+def test_warnings_are_in_the_json_and_notes_in_the_text(capsys):
+    argv = ["ratio", "AA", "--teeth", "100,99,100,101", "--driver", "H", "--driven", "1", "--fixed", "4"]
+    code, out, err = run(capsys, *argv, "--json")
+    data = json.loads(out)
+    assert code == 0 and any("not coaxial" in w for w in data["warnings"]) and not err
+    code, out, err = run(capsys, *argv)
+    assert code == 0 and "= 10000" in out and "symkin ratio: note:" in err and "not coaxial" in err
+
+
+def _options():
+    from symkin.cli import build_parser
+
+    parser = build_parser()
+    for name, sub in parser._subparsers._group_actions[0].choices.items():
+        for action in sub._actions:
+            yield name, action
+
+
+def test_every_command_has_json_and_every_angle_states_its_unit():
+    from symkin.cli import build_parser
+
+    commands = set(build_parser()._subparsers._group_actions[0].choices)
+    assert {name for name, a in _options() if "--json" in a.option_strings} == commands
+    angles = [(name, a) for name, a in _options()
+              if any(w in a.dest for w in ("angle", "beta", "alpha")) and a.help != "==SUPPRESS=="]
+    assert len(angles) >= 7
+    for name, a in angles:
+        assert "degrees" in a.help or "radians" in a.help, (name, a.option_strings)
+
+
+def test_progress_commands_take_quiet_and_omega_is_always_link_value():
+    quiet = {name for name, a in _options() if "--quiet" in a.option_strings}
+    assert quiet == {"reproduce", "helical", "split"}
+    for name, a in _options():
+        if "--omega" in a.option_strings and a.help != "==SUPPRESS==":
+            assert a.metavar == "LINK=VALUE", name
+        if "--out" in a.option_strings:
+            assert a.metavar in ("FILE", "DIR"), name

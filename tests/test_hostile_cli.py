@@ -38,11 +38,14 @@ def test_hostile_values_give_an_answer_or_one_line_and_exit_2(name, tmp_path):
 
 
 def test_the_verdict_catches_what_it_should(tmp_path):
-    ok = Outcome(("ratio", "--json"), 0, '{"a": 1}', "", 0.1)
+    ok = Outcome(("ratio", "--json"), 0, '{"a": 1, "warnings": []}', "", 0.1)
     assert verdict(ok, tmp_path) is None
     assert "exit status 3" in verdict(Outcome(("ratio",), 3, "", "symkin ratio: internal error: x\n", 0.1), tmp_path)
     assert "2 lines" in verdict(Outcome(("ratio",), 2, "", "warning\nsymkin ratio: error: x\n", 0.1), tmp_path)
     assert "strict JSON" in verdict(Outcome(("ratio", "--json"), 0, '{"a": NaN}', "", 0.1), tmp_path)
+    assert "warnings list" in verdict(Outcome(("ratio", "--json"), 0, '{"a": 1}', "", 0.1), tmp_path)
+    assert "stdout is not" in verdict(Outcome(("ratio", "--json"), 2, "", "symkin ratio: error: x\n", 0.1), tmp_path)
+    assert "'error'" in verdict(Outcome(("ratio", "--json"), 2, '{"exit": 2}', "symkin ratio: error: x\n", 0.1), tmp_path)
     assert "did not finish" in verdict(Outcome(("ratio",), None, "", "", 30, hung=True), tmp_path)
     (tmp_path / MARKER).touch()
     assert "injected" in verdict(ok, tmp_path)

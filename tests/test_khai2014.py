@@ -74,12 +74,13 @@ def test_split_command_text_json_and_plot(capsys, tmp_path):
     code, out, _ = cli(capsys, "split", "--total", "6000", "--stages", "4", "--model", "0.854 + 0.858*u",
                        "--ring", "180", "--zmin", "18", "--tolerance", "0.05", "--top", "3", "--json", "--plot", str(plot))
     data = json.loads(out)
-    assert data["umin"] == "9/4" and data["umax"] == "11"  # from the feasible stages
-    assert data["continuous"]["exact_ratios"] == ["6000/1331", "11", "11", "11"]
+    assert data["umin"]["exact"] == "9/4" and data["umax"]["exact"] == "11"  # from the feasible stages
+    assert [r["exact"] for r in data["continuous"]["exact_ratios"]] == ["6000/1331", "11", "11", "11"]
     assert data["discrete"]["meets_tolerance"] is True
     best = data["discrete"]["designs"][0]
     assert best["teeth"] == [[54, 63, 180], [18, 81, 180], [18, 81, 180], [18, 81, 180]]
-    assert plot.stat().st_size > 10_000 and plot.with_suffix(".pdf").exists()
+    assert plot.stat().st_size > 10_000 and not plot.with_suffix(".pdf").exists()  # the suffix chooses the format
+    assert data["plot"] == [str(plot)]
     code, out, _ = cli(capsys, "split", "--total", "6000", "--stages", "4", "--model", "0.854 + 0.858*u",
                        "--ring", "180", "--zmin", "18", "--tolerance", "0.01", "--top", "2")
     assert code == 0 and "no design meets the tolerance 0.01; the nearest total ratio is 5929" in out

@@ -2,7 +2,9 @@
 
 Each command lives in its own module under :mod:`symkin.cli` with a ``register``
 function; :data:`COMMANDS` lists them.  Every command takes ``--json``; bad input gives
-a one-line message on stderr and exit status 2, never a traceback.
+a one-line message on stderr and exit status 2, never a traceback (with ``--json``, also
+``{"error": message, "exit": 2}`` on stdout).  The conventions the commands share are
+in :mod:`symkin.cli.common`.
 
 Exit status: 0 success; 1 a reproduction found a result that differs; 2 bad input;
 3 an internal error (set SYMKIN_DEBUG=1 for the traceback).
@@ -12,12 +14,13 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import json
 import os
 import sys
 import warnings
 from typing import NoReturn, Sequence
 
-from ..errors import SymkinError
+from ..errors import SymkinError, SymkinWarning
 
 __all__ = ["main", "COMMANDS", "ArgumentParser"]
 
@@ -27,11 +30,21 @@ COMMANDS = ("reproduce", "gears", "plots", "cardan", "multistage", "helical")
 EXIT_OK, EXIT_DIFFERS, EXIT_USAGE, EXIT_INTERNAL = 0, 1, 2, 3
 
 
+class UsageExit(SystemExit):
+    """A command line argparse refused; ``message`` is the one line printed on stderr."""
+
+    def __init__(self, message: str):
+        super().__init__(EXIT_USAGE)
+        self.message = message
+
+
 class ArgumentParser(argparse.ArgumentParser):
     """argparse with a one-line error message."""
 
     def error(self, message: str) -> NoReturn:
-        self.exit(EXIT_USAGE, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
+        message = f"{message} (see {self.prog} --help)"
+        sys.stderr.write(f"{self.prog}: error: {message}\n")
+        raise UsageExit(message)
 
 
 def build_parser() -> ArgumentParser:
@@ -62,39 +75,83 @@ def one_line(message: object, word: int = 80) -> str:
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; returns the exit status.
 
-    A failure prints one line on stderr; a Python warning raised on the way (for example
-    a NumPy overflow) becomes a one-line note after a success and is dropped after a
-    failure, whose message says what went wrong.
+    The command's result is printed after it has run: its text, with every warning
+    raised on the way (a :class:`~symkin.errors.SymkinWarning`, a NumPy overflow) as a
+    one-line note on stderr, or with ``--json`` one JSON object whose ``"warnings"`` list
+    holds the same notes.  A failure prints one line on stderr (and with ``--json``
+    ``{"error": ..., "exit": ...}`` on stdout); its warnings are dropped, the message
+    says what went wrong.  A command line argparse refuses raises :class:`UsageExit`
+    (a ``SystemExit`` with status 2) after the same output.
     """
+    argv = list(sys.argv[1:] if argv is None else argv)
+    wants_json = "--json" in argv
     parser = build_parser()
-    args = parser.parse_args(argv)
+    try:
+        args = parser.parse_args(argv)
+    except UsageExit as exc:
+        if wants_json:
+            _print_json({"error": exc.message, "exit": EXIT_USAGE, "warnings": []})
+        raise
     prog = f"symkin {args.command}"
     with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("default")
+        warnings.simplefilter("always")
         code = _run(args, prog)
-    if code in (EXIT_OK, EXIT_DIFFERS):
-        for w in dict.fromkeys(f"{w.category.__name__}: {w.message}" for w in caught):
-            print(f"{prog}: note: {one_line(w)}", file=sys.stderr)
+    if code not in (EXIT_OK, EXIT_DIFFERS):
+        return code
+    notes = list(dict.fromkeys(_note(w) for w in caught))
+    output = getattr(args, "_output", None)
+    try:
+        if output is not None:
+            text, data = output
+            if getattr(args, "json", False):
+                _print_json({**data, "warnings": list(dict.fromkeys([*data.get("warnings", []), *notes]))})
+            else:
+                sys.stdout.write(text if text.endswith("\n") else text + "\n")
+            sys.stdout.flush()
+    except BrokenPipeError:  # the reader stopped (| head): nothing more to say
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        return code
+    if output is None or not getattr(args, "json", False):
+        for note in notes:
+            print(f"{prog}: note: {note}", file=sys.stderr)
     return code
+
+
+def _note(w: warnings.WarningMessage) -> str:
+    """A warning as one line: symkin's own by their message, others with their category."""
+    if issubclass(w.category, SymkinWarning):
+        return one_line(w.message)
+    return one_line(f"{w.category.__name__}: {w.message}")
+
+
+def _print_json(data: dict) -> None:
+    json.dump(data, sys.stdout, indent=2, ensure_ascii=False, allow_nan=False)
+    sys.stdout.write("\n")
 
 
 def _run(args: argparse.Namespace, prog: str) -> int:
     try:
         return int(args.run(args) or EXIT_OK)
     except SymkinError as err:
-        print(f"{prog}: error: {one_line(err)}", file=sys.stderr)
-        return EXIT_USAGE
+        return _fail(args, prog, "error", one_line(err), EXIT_USAGE)
     except KeyboardInterrupt:
-        print(f"{prog}: interrupted; nothing was written", file=sys.stderr)
-        return 130
+        return _fail(args, prog, "interrupted", "nothing was written", 130)
     except BrokenPipeError:
         return EXIT_OK
     except Exception as err:  # a bug: say so in one line, keep the traceback for debugging
         if os.environ.get("SYMKIN_DEBUG"):
             raise
-        print(f"{prog}: internal error: {type(err).__name__}: {one_line(err)} (set SYMKIN_DEBUG=1 for details; "
-              "please report)", file=sys.stderr)
-        return EXIT_INTERNAL
+        return _fail(args, prog, "internal error", f"{type(err).__name__}: {one_line(err)} (set SYMKIN_DEBUG=1 for "
+                     "details; please report)", EXIT_INTERNAL)
+
+
+def _fail(args: argparse.Namespace, prog: str, kind: str, message: str, code: int) -> int:
+    """One line on stderr; with --json also {"error": message, "exit": code} on stdout."""
+    print(f"{prog}: {kind}: {message}" if kind != "interrupted" else f"{prog}: interrupted; {message}", file=sys.stderr)
+    if getattr(args, "json", False):
+        _print_json({"error": message, "exit": code, "warnings": []})
+    return code
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import argparse
 import math
+import warnings
 from typing import Any
 
 import numpy as np
@@ -12,42 +14,45 @@ from .. import symbols as S
 from ..budget import simplify_within
 from ..cardan import CardanSlider
 from ..drives import AngleLaw, ConstantSpeed, EllipticalGears
-from ..errors import InputError
+from ..errors import InputError, SymkinWarning
 from ..parsing import as_real, parse_expression, parse_integer
-from .common import add_json_flag, emit, teeth_list
+from .common import add_command, add_teeth_argument, emit, exact_json, teeth_list
 
 DESCRIPTION = (
     "Evaluate the Cardan-circle mechanism (carrier H, planet 1 rolling in the fixed ring 3, slider 2 pinned on the "
     "planet, guide through the centre at angle theta_2) on a time grid and print the slider's s, v, a. The carrier "
     "turns at a constant speed, through a pair of identical elliptical gears (eccentricity e, order m, input speed "
-    "--omega), or by a law theta_H(t) you give. Values are exact where possible (0.02, 0.8*pi, pi/6); angles in "
+    "--speed), or by a law theta_H(t) you give. Values are exact where possible (0.02, 0.8*pi, pi/6); angles in "
     "radians, lengths in any unit (speeds come out in that unit per second). A pin off the pitch circle or a ratio "
     "other than 1:2 is not an error: the output says which path the pin traces."
 )
 
 
 def register(sub: Any) -> None:
-    p = sub.add_parser("cardan", help="slider displacement, velocity, acceleration of the Cardan-circle mechanism",
-                       description=DESCRIPTION)
+    p = add_command(sub, "cardan", help="slider displacement, velocity, acceleration of the Cardan-circle mechanism",
+                    description=DESCRIPTION, run=run_cardan)
     p.add_argument("--length", required=True, metavar="L", help="carrier length l_H (= planet pitch radius for 1:2)")
-    p.add_argument("--omega", metavar="W", help="carrier speed (constant drive) or input gear speed (elliptical), rad/s")
-    p.add_argument("--guide-angle", default="0", metavar="THETA2", help="guide angle theta_2 (default 0)")
-    p.add_argument("--carrier-angle", default="0", metavar="THETAH0", help="carrier angle at t = 0 (default 0)")
-    p.add_argument("--teeth", default="20,40", metavar="Z1,Z3", help="planet and ring tooth numbers (default 20,40)")
+    p.add_argument("--speed", metavar="W",
+                   help="carrier speed (constant drive) or input gear speed (elliptical), in rad/s")
+    p.add_argument("--omega", dest="omega_deprecated", metavar="W", help=argparse.SUPPRESS)  # the former name of --speed
+    p.add_argument("--guide-angle", default="0", metavar="RAD", help="guide angle theta_2, in radians (default 0)")
+    p.add_argument("--carrier-angle", default="0", metavar="RAD", help="carrier angle at t = 0, in radians (default 0)")
+    add_teeth_argument(p, "20,40", required=False, default="20,40", metavar="Z1,Z3",
+                       help="planet and ring tooth numbers (default 20,40)")
     p.add_argument("--pin-radius", metavar="L1", help="pin distance from the planet axis (default: on the pitch circle)")
-    p.add_argument("--pin-angle", metavar="THETA10",
-                   help="pin angle on the planet from the carrier at t = 0 (default: the installation angle the guide needs)")
+    p.add_argument("--pin-angle", metavar="RAD",
+                   help="pin angle on the planet from the carrier at t = 0, in radians (default: the installation "
+                   "angle the guide needs)")
     p.add_argument("--drive", choices=("constant", "elliptical", "law"),
                    help="carrier drive (default: elliptical if -e is given, law if --angle-law is given, else constant)")
     p.add_argument("-e", "--eccentricity", metavar="E", help="eccentricity of the elliptical gears, 0 <= e < 1")
-    p.add_argument("-m", "--order", metavar="M", help="order of the elliptical gears (default 1)")
-    p.add_argument("--angle-law", metavar="EXPR", help="carrier angle law theta_H(t) in t, e.g. '0.8*pi*t + 0.2*sin(t)'")
-    p.add_argument("--t-start", default="0", metavar="T0", help="first time (default 0)")
-    p.add_argument("--t-end", metavar="T1", help="last time (default: one period of the motion)")
+    p.add_argument("--order", metavar="M", help="order of the elliptical gears (default 1)")
+    p.add_argument("--angle-law", metavar="EXPR",
+                   help="carrier angle law theta_H(t) in radians, in t (seconds), e.g. '0.8*pi*t + 0.2*sin(t)'")
+    p.add_argument("--t-start", default="0", metavar="T0", help="first time, in seconds (default 0)")
+    p.add_argument("--t-end", metavar="T1", help="last time, in seconds (default: one period of the motion)")
     p.add_argument("--samples", default="9", metavar="N", help="number of equally spaced times (default 9)")
     p.add_argument("--times", metavar="T,T,...", help="explicit increasing times instead of --t-start/--t-end/--samples")
-    add_json_flag(p)
-    p.set_defaults(run=run_cardan)
 
 
 # ---- values
@@ -61,28 +66,30 @@ def _number(text: str, what: str, *, positive: bool = False) -> sp.Expr:
 def _drive(args: Any):
     kind = args.drive or ("elliptical" if args.eccentricity is not None else "law" if args.angle_law is not None else "constant")
     if kind != "elliptical" and (args.eccentricity is not None or args.order is not None):
-        raise InputError(f"-e/--eccentricity and -m/--order belong to the elliptical drive, not the {kind} drive")
+        raise InputError(f"-e/--eccentricity and --order belong to the elliptical drive, not the {kind} drive")
     if kind != "law" and args.angle_law is not None:
         raise InputError(f"--angle-law belongs to the law drive, not the {kind} drive")
     if kind == "law":
         if args.angle_law is None:
             raise InputError("the law drive needs --angle-law EXPR, the carrier angle theta_H(t)")
-        if args.omega is not None:
-            raise InputError("--omega does not apply to the law drive: the law gives the carrier's speed")
+        if args.speed is not None:
+            raise InputError("--speed does not apply to the law drive: the law gives the carrier's speed")
         law = parse_expression(args.angle_law, names=("t",), what="--angle-law")
-        return AngleLaw(law), {"kind": "law", "angle_law": str(law)}
-    if args.omega is None:
-        raise InputError(f"the {kind} drive needs --omega W, the {'carrier' if kind == 'constant' else 'input gear'} speed")
-    omega = _number(args.omega, "--omega", positive=True)
+        return AngleLaw(law), {"kind": "law", "angle_law_rad": str(law)}
+    if args.speed is None:
+        raise InputError(f"the {kind} drive needs --speed W, the {'carrier' if kind == 'constant' else 'input gear'} "
+                         "speed in rad/s")
+    omega = _number(args.speed, "--speed", positive=True)
     if kind == "constant":
-        return ConstantSpeed(omega), {"kind": "constant", "omega": str(omega)}
+        return ConstantSpeed(omega), {"kind": "constant", "speed_rad_s": exact_json(omega)}
     if args.eccentricity is None:
         raise InputError("the elliptical drive needs -e/--eccentricity E with 0 <= E < 1")
     e = _number(args.eccentricity, "--eccentricity")
     if not (e >= 0 and e < 1):
         raise InputError(f"--eccentricity must lie in [0, 1), got {args.eccentricity!r}; 0 gives circular gears")
     m = _number(args.order, "--order", positive=True) if args.order is not None else sp.Integer(1)
-    return EllipticalGears(omega, e, m), {"kind": "elliptical", "omega": str(omega), "eccentricity": str(e), "order": str(m)}
+    return EllipticalGears(omega, e, m), {"kind": "elliptical", "speed_rad_s": exact_json(omega), "eccentricity": exact_json(e),
+                                          "order": exact_json(m)}
 
 
 def _times(args: Any, period: sp.Expr | None) -> np.ndarray:
@@ -119,6 +126,12 @@ def _fmt(x: float) -> str:
 
 
 def run_cardan(args: Any) -> int:
+    if args.omega_deprecated is not None:
+        if args.speed is not None:
+            raise InputError("give --speed only (--omega is its former name)")
+        warnings.warn("symkin cardan --omega W is deprecated: it is now --speed W (--omega LINK=VALUE names a link's "
+                      "speed in the other commands)", SymkinWarning, stacklevel=1)
+        args.speed = args.omega_deprecated
     length = _number(args.length, "--length", positive=True)
     z1, z3 = teeth_list(args.teeth, (2,))
     if z3 <= z1:
@@ -141,18 +154,18 @@ def run_cardan(args: Any) -> int:
     columns = ["t", "s", "v", "a"] + ([] if path.on_guide else ["x", "y", "deviation"])
     result = {
         "mechanism": {
-            "length": str(length),
+            "length": exact_json(length),
             "teeth": [int(z1), int(z3)],
-            "pin_radius": str(slider.pin_radius),
+            "pin_radius": exact_json(slider.pin_radius),
             "pin_on_pitch_circle": bool(simplify_within(slider.pin_radius - slider.mechanism.gear("1").radius,
                                                         what="the pin radius") == 0),
-            "pin_angle": str(slider.pin_angle),
-            "guide_angle": str(guide),
-            "carrier_angle": str(carrier),
+            "pin_angle_rad": exact_json(slider.pin_angle),
+            "guide_angle_rad": exact_json(guide),
+            "carrier_angle_rad": exact_json(carrier),
         },
         "drive": drive_data,
         "path": {"kind": path.kind, "on_guide": path.on_guide, "description": path.description},
-        "period": None if period is None else {"exact": str(period), "float": float(period)},
+        "period_s": exact_json(period),
         "stroke_times": None if strokes is None else {"forward": strokes.forward, "return": strokes.back, "ratio": strokes.ratio},
         "laws": {k: str(law.rhs) for k, law in zip("sva", slider.laws())},
         "columns": {k: [float(x) for x in data[k]] for k in columns},
@@ -160,7 +173,7 @@ def run_cardan(args: Any) -> int:
     lines = [
         f"Cardan mechanism: l_H = {length}, z1:z3 = {z1}:{z3}, pin radius {slider.pin_radius}, pin angle {slider.pin_angle}, "
         f"guide angle {guide}, carrier angle {carrier}",
-        "drive: " + ", ".join(f"{k} {v}" for k, v in drive_data.items() if k != "kind") + f" ({drive_data['kind']})",
+        "drive: " + ", ".join(_drive_text(k, v) for k, v in drive_data.items() if k != "kind") + f" ({drive_data['kind']})",
         f"path: {path.kind}: {path.description}",
     ]
     if not path.on_guide:
@@ -175,6 +188,15 @@ def run_cardan(args: Any) -> int:
         lines.append("  ".join(f"{_fmt(float(data[c][i])):>16}" for c in columns))
     emit(args, "\n".join(lines), result)
     return 0
+
+
+def _drive_text(key: str, value: Any) -> str:
+    """'speed_rad_s', {'exact': '4*pi/5', ...} -> 'speed 4*pi/5 rad/s'."""
+    text = value["exact"] if isinstance(value, dict) else str(value)
+    for suffix, unit in (("_rad_s", " rad/s"), ("_rad", " rad")):
+        if key.endswith(suffix):
+            return f"{key[: -len(suffix)].replace('_', ' ')} {text}{unit}"
+    return f"{key.replace('_', ' ')} {text}"
 
 
 def _turns_forward(slider: CardanSlider, ts: np.ndarray) -> bool:

@@ -1,24 +1,137 @@
-"""Helpers shared by the CLI commands: parsing values, printing text or JSON."""
+"""Helpers shared by the CLI commands: registering the common options, parsing values,
+and handing the output (text or JSON) to :func:`symkin.cli.main`.
+
+Conventions every command follows:
+
+- ``--json`` prints one JSON object on stdout; it always has a ``"warnings"`` list, and
+  every exact number in it is ``{"exact": text, "float": number or null}``
+  (:func:`symkin.jsonout.exact_json`).  A failure with ``--json`` prints
+  ``{"error": message, "exit": status}`` on stdout besides the one-line message on stderr.
+- ``--omega LINK=VALUE`` is a known angular velocity of a named link (rad/s);
+  a plain speed has another name (``symkin cardan --speed``).
+- ``--out`` names what a command writes: a folder (``--out DIR``, reproduce) or a file
+  whose suffix chooses the format (``--out FILE``); an extra figure beside a command's
+  printed result is ``--plot FILE`` (split).  Files appear whole or not at all.
+- Every angle option states its unit in its help and in its JSON key (``_deg`` or
+  ``_rad``): gear-design angles (helix, pressure) in degrees, angles of motion (guide,
+  carrier, pin) in radians.
+- ``--quiet`` turns off the progress display of a command that has one.
+"""
 
 from __future__ import annotations
 
-import json
-import math
+import argparse
 import sys
-import warnings
-from contextlib import contextmanager
-from typing import Any, Iterator
+from pathlib import Path
+from typing import Any, Callable
 
 import sympy as sp
 
-from ..errors import InputError, SymkinWarning
+from ..errors import InputError
+from ..jsonout import exact_json
 from ..parsing import parse_expression, parse_integer
 
-__all__ = ["teeth_list", "link_value", "exact_json", "emit", "collect_warnings", "add_json_flag"]
+__all__ = [
+    "teeth_list",
+    "link_value",
+    "exact_json",
+    "emit",
+    "add_command",
+    "add_json_flag",
+    "add_quiet_flag",
+    "add_scheme_argument",
+    "add_teeth_argument",
+    "add_omega_argument",
+    "add_out_argument",
+    "fmt_float",
+    "figure_file",
+    "Progress",
+    "save_figure",
+    "SCHEME_HELP",
+]
+
+SCHEME_HELP = "AI1 (single-row AI, teeth Z1,Z2,Z4), AI, AA or II (two-row, teeth Z1,Z2,Z3,Z4)"
+
+
+def add_command(sub: Any, name: str, *, help: str, description: str, run: Callable[[Any], int]) -> argparse.ArgumentParser:
+    """A subcommand with ``--json``; ``run(args)`` is called with the parsed arguments."""
+    p = sub.add_parser(name, help=help, description=description)
+    add_json_flag(p)
+    p.set_defaults(run=run)
+    return p
 
 
 def add_json_flag(parser: Any) -> None:
-    parser.add_argument("--json", action="store_true", help="print machine-readable JSON instead of text")
+    parser.add_argument("--json", action="store_true",
+                        help="print machine-readable JSON instead of text (errors too, as {\"error\": ..., \"exit\": 2})")
+
+
+def add_quiet_flag(parser: Any) -> None:
+    parser.add_argument("--quiet", action="store_true", help="no progress display")
+
+
+def add_scheme_argument(parser: Any) -> None:
+    parser.add_argument("scheme", help=SCHEME_HELP)
+
+
+def add_teeth_argument(parser: Any, example: str, *, required: bool = True, default: str | None = None,
+                       metavar: str | None = None, help: str | None = None) -> None:
+    parser.add_argument("--teeth", required=required, default=default, metavar=metavar,
+                        help=help or f"comma-separated tooth numbers, e.g. {example}")
+
+
+def add_omega_argument(parser: Any, help: str = "a known angular velocity LINK=VALUE in rad/s (repeat)") -> None:
+    parser.add_argument("--omega", action="append", default=[], metavar="LINK=VALUE", help=help)
+
+
+def add_out_argument(parser: Any, what: str, *, required: bool = True, default: str | None = None) -> None:
+    """``--out FILE`` (``what`` says which suffixes) or ``--out DIR``."""
+    folder = what.upper().startswith("DIR")
+    parser.add_argument("--out", required=required, default=default, metavar="DIR" if folder else "FILE",
+                        help=what if folder else f"write FILE: {what}; the suffix chooses the format")
+
+
+class Progress:
+    """A one-line progress display on a terminal (stderr by default); silent elsewhere or when disabled."""
+
+    def __init__(self, enabled: bool = True, stream: Any = None) -> None:
+        self.stream = stream if stream is not None else sys.stderr
+        self.enabled = enabled and hasattr(self.stream, "isatty") and self.stream.isatty()
+        self.shown = False
+
+    def show(self, text: str) -> None:
+        if self.enabled:
+            self.shown = True
+            self.stream.write(f"\r\x1b[2K{text}")
+            self.stream.flush()
+
+    def close(self) -> None:
+        if self.shown:
+            self.stream.write("\r\x1b[2K")
+            self.stream.flush()
+
+
+def figure_file(text: str, option: str = "--out") -> Path:
+    """The figure file an option names: a .png or .pdf in an existing folder.
+
+    >>> figure_file("plot.png")
+    PosixPath('plot.png')
+    """
+    out = Path(text)
+    if out.suffix.lower() not in (".png", ".pdf"):
+        raise InputError(f"{option} {text}: give a file ending in .png or .pdf")
+    if not out.resolve().parent.is_dir():
+        raise InputError(f"{option} {text}: the folder {out.resolve().parent} does not exist")
+    if out.is_dir():
+        raise InputError(f"{option} {text} is a folder; give a file name ending in .png or .pdf")
+    return out
+
+
+def save_figure(fig: Any, out: Path) -> list[Path]:
+    """Save under a temporary name beside ``out``, then rename (never a half-written file)."""
+    from ..plotting import save
+
+    return save(fig, out, formats=(out.suffix.lstrip(".").lower(),))
 
 
 def teeth_list(text: str, counts: tuple[int, ...], what: str = "--teeth") -> list[sp.Integer]:
@@ -46,17 +159,6 @@ def link_value(text: str, what: str = "--omega") -> tuple[str, sp.Expr]:
     return link, parse_expression(value, what=f"{what} value for link {link}")
 
 
-def exact_json(value: sp.Expr) -> dict[str, Any]:
-    """An exact value as {'exact': text, 'float': number or null}."""
-    out: dict[str, Any] = {"exact": str(value)}
-    try:
-        f = float(sp.N(value, 17)) if value.is_number else None
-    except (TypeError, ValueError, OverflowError):
-        f = None
-    out["float"] = f if f is not None and math.isfinite(f) else None
-    return out
-
-
 def fmt_float(value: sp.Expr) -> str:
     if not value.is_number:
         return ""
@@ -67,18 +169,6 @@ def fmt_float(value: sp.Expr) -> str:
 
 
 def emit(args: Any, text: str, data: dict[str, Any]) -> None:
-    if getattr(args, "json", False):
-        json.dump(data, sys.stdout, indent=2, ensure_ascii=False, allow_nan=False)
-        sys.stdout.write("\n")
-    else:
-        sys.stdout.write(text if text.endswith("\n") else text + "\n")
-
-
-@contextmanager
-def collect_warnings() -> Iterator[list[str]]:
-    """Collect symkin warnings as one-line messages instead of printing them."""
-    messages: list[str] = []
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always", SymkinWarning)
-        yield messages
-    messages.extend(str(w.message) for w in caught if issubclass(w.category, SymkinWarning))
+    """Hand the command's result to :func:`symkin.cli.main`, which prints it after the run:
+    ``text`` (and the warnings as notes on stderr), or ``data`` as JSON with its ``"warnings"``."""
+    args._output = (text, data)

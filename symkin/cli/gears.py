@@ -2,43 +2,51 @@
 
 from __future__ import annotations
 
-import sys
 from typing import Any
 
 from .. import schemes
 from ..errors import InputError
 from ..printing import latex
-from .common import add_json_flag, collect_warnings, emit, exact_json, fmt_float, link_value, teeth_list
+from .common import (
+    SCHEME_HELP,
+    add_command,
+    add_omega_argument,
+    add_scheme_argument,
+    add_teeth_argument,
+    emit,
+    exact_json,
+    fmt_float,
+    link_value,
+    teeth_list,
+)
 
-SCHEME_HELP = "AI1 (single-row AI, teeth Z1,Z2,Z4), AI, AA or II (two-row, teeth Z1,Z2,Z3,Z4)"
+__all__ = ["register", "SCHEME_HELP"]
 
 
 def register(sub: Any) -> None:
-    p = sub.add_parser(
-        "ratio",
+    p = add_command(
+        sub, "ratio",
         help="ratio i_ab^(c) = omega_a/omega_b of a scheme with link c fixed",
         description="The ratio i_ab^(c) = omega_a / omega_b (a = driver, b = driven) with link c fixed, "
         "exact and as a float. Links: 1, 2, 3, 4, H (2 and 3 name the planet).",
+        run=run_ratio,
     )
-    p.add_argument("scheme", help=SCHEME_HELP)
-    p.add_argument("--teeth", required=True, help="comma-separated tooth numbers, e.g. 100,100,101,99")
+    add_scheme_argument(p)
+    add_teeth_argument(p, "100,100,101,99")
     p.add_argument("--driver", required=True, help="link a")
     p.add_argument("--driven", required=True, help="link b")
     p.add_argument("--fixed", required=True, help="link c, held still")
-    add_json_flag(p)
-    p.set_defaults(run=run_ratio)
 
-    q = sub.add_parser(
-        "speeds",
+    q = add_command(
+        sub, "speeds",
         help="angular velocity of every link of a scheme from known speeds",
         description="Every link's angular velocity from the known ones (give as many as the scheme's "
         "degrees of freedom; a fixed link has speed 0). Values are exact: 100, 0.5, 3/4, 2*pi.",
+        run=run_speeds,
     )
-    q.add_argument("scheme", help=SCHEME_HELP)
-    q.add_argument("--teeth", required=True, help="comma-separated tooth numbers, e.g. 54,45,44,55")
-    q.add_argument("--omega", action="append", default=[], metavar="LINK=VALUE", help="a known speed (repeat)")
-    add_json_flag(q)
-    q.set_defaults(run=run_speeds)
+    add_scheme_argument(q)
+    add_teeth_argument(q, "54,45,44,55")
+    add_omega_argument(q)
 
 
 def _mechanism(scheme: str, teeth_text: str):
@@ -53,15 +61,9 @@ def _mechanism(scheme: str, teeth_text: str):
     return schemes.scheme(scheme, teeth=tuple(teeth)), teeth
 
 
-def _notes(messages: list[str]) -> None:
-    for m in messages:
-        print(f"note: {m}", file=sys.stderr)
-
-
 def run_ratio(args: Any) -> int:
-    with collect_warnings() as notes:
-        mech, teeth = _mechanism(args.scheme, args.teeth)
-        law = mech.ratio(args.driver, args.driven, fixed=args.fixed)
+    mech, teeth = _mechanism(args.scheme, args.teeth)
+    law = mech.ratio(args.driver, args.driven, fixed=args.fixed)
     a, b, c = (mech.link(x).name for x in (args.driver, args.driven, args.fixed))
     value = law.rhs
     data = {
@@ -73,14 +75,11 @@ def run_ratio(args: Any) -> int:
         "ratio": exact_json(value),
         "latex": latex(law),
         "coaxial": not mech.coaxiality_defects(),
-        "warnings": notes,
     }
     text = f"{args.scheme} z = {', '.join(map(str, teeth))}\ni_{a}{b}^({c}) = omega_{a}/omega_{b} = {value}"
     f = fmt_float(value)
     if f and f != str(value):
         text += f" = {f}"
-    if not args.json:
-        _notes(notes)
     emit(args, text, data)
     return 0
 
@@ -90,9 +89,8 @@ def run_speeds(args: Any) -> int:
     for item in args.omega:
         link, value = link_value(item)
         known[link] = value
-    with collect_warnings() as notes:
-        mech, teeth = _mechanism(args.scheme, args.teeth)
-        speeds = mech.speeds(known)
+    mech, teeth = _mechanism(args.scheme, args.teeth)
+    speeds = mech.speeds(known)
     given = {mech.link(k).name for k in known}
     rows, data_links = [], {}
     for name, value in speeds.items():
@@ -105,9 +103,6 @@ def run_speeds(args: Any) -> int:
         "teeth": [int(z) for z in teeth],
         "speeds": data_links,
         "coaxial": not mech.coaxiality_defects(),
-        "warnings": notes,
     }
-    if not args.json:
-        _notes(notes)
     emit(args, f"{args.scheme} z = {', '.join(map(str, teeth))}\n" + "\n".join(rows), data)
     return 0

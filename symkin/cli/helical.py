@@ -2,30 +2,31 @@
 
 from __future__ import annotations
 
-import sys
-from typing import Any, TextIO
+from typing import Any
 
 from ..errors import InputError
 from ..helical_synthesis import SCHEMES, SynthesisRequest, synthesise
 from ..parsing import parse_integer, parse_number
 from ..statics import planet_forces
-from .common import add_json_flag, emit
+from .common import Progress, add_command, add_quiet_flag, emit
 
 #: Relative axial residual every listed design must meet in the independent force check.
 FORCE_TOLERANCE = 1e-12
 
 
 def register(sub: Any) -> None:
-    p = sub.add_parser(
-        "helical",
+    p = add_command(
+        sub, "helical",
         help="synthesise a two-row train whose helical stepped planet carries no axial force",
         description=(
             "List integer tooth numbers Z1..Z4 and the helix angles beta12, beta34 (unshifted meshes) for which "
             "the axial forces on the stepped planet cancel, the ratio i_1H^(4) = omega_1/omega_H (gear 4 fixed) is "
             "within the tolerance of the target, and the train is coaxial, assembles with k equally spaced "
             "satellites and leaves room between them.  Ranked by ratio error, then planet envelope diameter.  "
-            "Every listed design is re-checked by an independent 3-D force computation (unit input torque)."
+            "Every listed design is re-checked by an independent 3-D force computation (unit input torque).  "
+            "Angles are in degrees, lengths in mm."
         ),
+        run=run_helical,
     )
     p.add_argument("scheme", help=f"{', '.join(SCHEMES)} (A external, I internal central gear; first letter gear 1)")
     p.add_argument("--ratio", required=True, help="target i_1H^(4), exact (25, 0.02, 1/50)")
@@ -33,36 +34,16 @@ def register(sub: Any) -> None:
     p.add_argument("--satellites", "-k", required=True, help="number of equally spaced planets")
     p.add_argument("--mn12", required=True, help="normal module of mesh 1-2 (mm)")
     p.add_argument("--mn34", required=True, help="normal module of mesh 3-4 (mm)")
-    p.add_argument("--beta-min", default="8", help="least helix angle, degrees (default 8)")
-    p.add_argument("--beta-max", default="30", help="largest helix angle, degrees, below 45 (default 30)")
+    p.add_argument("--beta-min", default="8", metavar="DEG", help="least helix angle, in degrees (default 8)")
+    p.add_argument("--beta-max", default="30", metavar="DEG", help="largest helix angle, in degrees, below 45 (default 30)")
     p.add_argument("--zmin", default="17", help="least tooth number of every gear (default 17)")
     p.add_argument("--zmax", default="150", help="largest tooth number of every gear (default 150)")
-    p.add_argument("--alpha-n", default="20", help="normal pressure angle, degrees (default 20)")
+    p.add_argument("--alpha-n", default="20", metavar="DEG", help="normal pressure angle, in degrees (default 20)")
     p.add_argument("--addendum", default="1", help="addendum coefficient h_a* for tip circles (default 1)")
     p.add_argument("--min-ring-difference", default="8",
                    help="least tooth difference of an internal gear and its rim (default 8)")
     p.add_argument("--top", default="20", help="how many designs to list, or 'all' (default 20)")
-    p.add_argument("--quiet", action="store_true", help="no progress display")
-    add_json_flag(p)
-    p.set_defaults(run=run_helical)
-
-
-class _Progress:
-    """A one-line progress display on a terminal; silent otherwise."""
-
-    def __init__(self, stream: TextIO, enabled: bool):
-        self.stream = stream
-        self.enabled = enabled and hasattr(stream, "isatty") and stream.isatty()
-
-    def __call__(self, done: int, total: int) -> None:
-        if self.enabled:
-            self.stream.write(f"\r\x1b[2Ksearching: Z2 {done}/{total}")
-            self.stream.flush()
-
-    def close(self) -> None:
-        if self.enabled:
-            self.stream.write("\r\x1b[2K")
-            self.stream.flush()
+    add_quiet_flag(p)
 
 
 def _request(args: Any) -> SynthesisRequest:
@@ -88,9 +69,9 @@ def _request(args: Any) -> SynthesisRequest:
 
 def run_helical(args: Any) -> int:
     req = _request(args)
-    bar = _Progress(sys.stderr, not args.quiet)
+    bar = Progress(enabled=not args.quiet)
     try:
-        result = synthesise(req, progress=bar)
+        result = synthesise(req, progress=lambda done, total: bar.show(f"searching: Z2 {done}/{total}"))
     finally:
         bar.close()
     checks = []

@@ -3,38 +3,37 @@ ratio split of least lost motion over a common-ring train (continuous and discre
 
 from __future__ import annotations
 
-import sys
-from pathlib import Path
 from typing import Any
 
 from ..errors import InputError
 from ..parsing import parse_integer, parse_number
-from .common import add_json_flag, emit
+from ..jsonout import exact_json
+from .common import Progress, add_command, add_quiet_flag, emit, figure_file, save_figure
 
 #: More stages than this take long to derive symbolically (about 5 s at 8 stages).
 MAX_STAGES = 8
 
 
 def register(sub: Any) -> None:
-    p = sub.add_parser(
-        "stages",
+    p = add_command(
+        sub, "stages",
         help="every feasible single-row AI stage for a ring (exact ratios)",
         description="Enumerate every single-row AI stage (sun, planets, fixed ring) for a ring of --ring teeth: "
         "coaxiality z_ring = z_sun + 2 z_planet, assembly (z_sun + z_ring)/k whole, neighbour condition "
         "(z_sun + z_planet) sin(pi/k) > z_planet + 2 h_a*, and zmin <= z <= zmax for every gear.",
+        run=run_stages,
     )
     _stage_arguments(p, required=True)
-    add_json_flag(p)
-    p.set_defaults(run=run_stages)
 
-    q = sub.add_parser(
-        "split",
+    q = add_command(
+        sub, "split",
         help="split a total ratio over common-ring stages for the least lost motion",
         description="Minimise the lost motion carried to the output carrier over the ratio split of a "
         "common-ring train of single-row AI stages. Without --ring: the continuous optimum (each u_i in "
         "[umin, umax], product fixed) with its active bounds and multipliers. With --ring: also the best discrete "
         "designs, every stage from the ring's feasible tooth sets, the total within --tolerance, ranked by the "
         "objective (or the nearest designs when none meets it).",
+        run=run_split,
     )
     q.add_argument("--total", required=True, help="total ratio U, e.g. 5000")
     q.add_argument("--stages", required=True, help=f"number of stages n (1 to {MAX_STAGES})")
@@ -48,9 +47,10 @@ def register(sub: Any) -> None:
     q.add_argument("--tolerance", default="0.01", help="relative tolerance on the total ratio (default 0.01 = 1%%)")
     q.add_argument("--top", default="10", help="how many discrete designs to list (default 10)")
     q.add_argument("--all-orders", action="store_true", help="list every stage order, not only the best order of each stage set")
-    q.add_argument("--plot", metavar="FILE", help="save the objective against the split as FILE (.png and .pdf)")
-    add_json_flag(q)
-    q.set_defaults(run=run_split)
+    q.add_argument("--plot", metavar="FILE",
+                   help="also write a figure of the objective against the split to FILE; .png or .pdf, the suffix "
+                   "chooses the format (the result itself is printed)")
+    add_quiet_flag(q)
 
 
 def _stage_arguments(p: Any, required: bool) -> None:
@@ -123,25 +123,6 @@ def _model(args: Any):
                      "or --backlash-line C0,C1 with --module and --ring")
 
 
-class _Progress:
-    def __init__(self, stream: Any = None) -> None:
-        self.stream = stream if stream is not None else sys.stderr
-        self.tty = hasattr(self.stream, "isatty") and self.stream.isatty()
-        self.shown = False
-
-    def __call__(self, fraction: float, nodes: int) -> None:
-        if not self.tty:
-            return
-        self.shown = True
-        self.stream.write(f"\r\x1b[2Ksearching designs: {fraction:4.0%} ({nodes} nodes)")
-        self.stream.flush()
-
-    def close(self) -> None:
-        if self.shown:
-            self.stream.write("\r\x1b[2K")
-            self.stream.flush()
-
-
 def run_split(args: Any) -> int:
     from ..ratiosplit import SplitProblem, best_designs, solve_continuous
 
@@ -161,30 +142,28 @@ def run_split(args: Any) -> int:
     umax = parse_number(args.umax, what="--umax") if args.umax is not None else found[-1].ratio
     tolerance = parse_number(args.tolerance, what="--tolerance")
     top = parse_integer(args.top, what="--top")
+    plot = figure_file(args.plot, "--plot") if args.plot else None
     problem = SplitProblem.build(total, n, lower=umin, upper=umax, model=model)
     best = solve_continuous(problem)
     discrete = None
     if found is not None:
-        progress = _Progress()
+        progress = Progress(enabled=not args.quiet)
         try:
             discrete = best_designs(total, found, n, model=model, tolerance=tolerance, top=int(top), lower=umin,
-                                    upper=umax, distinct=not args.all_orders, progress=progress)
+                                    upper=umax, distinct=not args.all_orders,
+                                    progress=lambda done, nodes: progress.show(f"searching designs: {done:4.0%} ({nodes} nodes)"))
         finally:
             progress.close()
     plots: list[str] = []
-    if args.plot:
-        from ..plotting import save
+    if plot is not None:
         from ..splitplot import split_figure
 
-        target = Path(args.plot)
-        if not target.resolve().parent.is_dir():
-            raise InputError(f"cannot write {target}: its folder does not exist")
-        plots = [str(p) for p in save(split_figure(best, discrete), target)]
+        plots = [str(p) for p in save_figure(split_figure(best, discrete), plot)]
     data = {
-        "total": str(problem.total),
+        "total": exact_json(problem.total),
         "stages": n,
-        "umin": str(umin),
-        "umax": str(umax),
+        "umin": exact_json(umin),
+        "umax": exact_json(umax),
         "model": str(model.expr),
         "continuous": best.to_json(),
         "discrete": discrete.to_json() if discrete is not None else None,

@@ -16,8 +16,18 @@ import sympy as sp
 from ..errors import InputError
 from ..model import LinkKind
 from ..parsing import parse_expression, parse_integer, parse_number
-from .common import add_json_flag, collect_warnings, emit, link_value
-from .gears import SCHEME_HELP, _mechanism, _notes
+from .common import (
+    add_command,
+    add_omega_argument,
+    add_out_argument,
+    add_scheme_argument,
+    add_teeth_argument,
+    emit,
+    figure_file,
+    link_value,
+    save_figure,
+)
+from .gears import _mechanism
 
 __all__ = ["register"]
 
@@ -25,10 +35,10 @@ MAX_FRAMES = 5000
 
 
 def _common(p: Any, out_help: str) -> None:
-    p.add_argument("scheme", help=SCHEME_HELP)
-    p.add_argument("--teeth", required=True, help="comma-separated tooth numbers, e.g. 20,30,20,70")
-    p.add_argument("--omega", action="append", default=[], metavar="LINK=VALUE",
-                   help="a known speed in rad/s (repeat; as many as the scheme's degrees of freedom, 0 fixes a link)")
+    add_scheme_argument(p)
+    add_teeth_argument(p, "20,30,20,70")
+    add_omega_argument(p, "a known angular velocity LINK=VALUE in rad/s (repeat; as many as the scheme's degrees of "
+                       "freedom, 0 fixes a link)")
     p.add_argument("--point", action="append", default=[], metavar="LINK:a,b",
                    help="a particle of LINK at (a, b) from the link's axis at t = 0 (repeat); default: planet "
                    "particles on the pitch circle of its first rim and at half its radius")
@@ -36,41 +46,40 @@ def _common(p: Any, out_help: str) -> None:
     span = p.add_mutually_exclusive_group()
     span.add_argument("--turns", default=None, help="time span: turns of the carrier H (or of the fastest link), default 1")
     span.add_argument("--t-end", default=None, help="time span in seconds")
-    p.add_argument("--out", required=True, metavar="FILE", help=out_help)
-    add_json_flag(p)
+    add_out_argument(p, out_help)
 
 
 def register(sub: Any) -> None:
-    p = sub.add_parser(
-        "trajectory",
-        help="plot the paths of chosen particles of a scheme (PNG and PDF)",
+    p = add_command(
+        sub, "trajectory",
+        help="plot the paths of chosen particles of a scheme (PNG or PDF)",
         description="Plot the paths of particles of a scheme's links over a time span, with the pitch circles "
         "at t = 0, eq. (4). Writes FILE (.png or .pdf).",
+        run=run_trajectory,
     )
-    _common(p, "figure file, .png or .pdf")
-    p.set_defaults(run=run_trajectory)
+    _common(p, "a figure, .png or .pdf")
 
-    q = sub.add_parser(
-        "curves",
+    q = add_command(
+        sub, "curves",
         help="plot speed and acceleration of chosen particles against time",
         description="Plot |V| and |w| of particles of a scheme's links against time, eqs. (5) and (6). "
         "Writes FILE (.png or .pdf).",
+        run=run_curves,
     )
-    _common(q, "figure file, .png or .pdf")
-    q.set_defaults(run=run_curves)
+    _common(q, "a figure, .png or .pdf")
 
-    a = sub.add_parser(
-        "animate",
+    a = add_command(
+        sub, "animate",
         help="animate a scheme: carrier, gears turning, particles tracing their paths (GIF or MP4)",
         description="Animate a scheme over a time span: the carrier, every gear turning, and particles tracing "
         "their paths. Writes FILE.gif (always available) or FILE.mp4 (needs ffmpeg); the file appears only "
         "when complete.",
+        run=run_animate,
     )
-    _common(a, "animation file, .gif or .mp4")
+    _common(a, "an animation, .gif or .mp4 (needs ffmpeg)")
     a.add_argument("--fps", default="20", help="frames per second (default 20)")
     a.add_argument("--frames", default=None, help=f"number of frames, 2 to {MAX_FRAMES} (default: 4 s of animation per turn)")
     a.add_argument("--dpi", default="80", help="resolution (default 80)")
-    a.set_defaults(run=run_animate)
 
 
 # --------------------------------------------------------------------------- parsing
@@ -100,7 +109,7 @@ def _default_points(mech: Any) -> list[tuple[str, tuple[sp.Expr, sp.Expr]]]:
     return [(planet.name, (r, sp.Integer(0))), (planet.name, (r / 2, sp.Integer(0)))]
 
 
-def _setup(args: Any) -> tuple[Any, Any, list, float, list[str], list[str]]:
+def _setup(args: Any) -> tuple[Any, Any, list, float, list[str]]:
     known: dict[str, Any] = {}
     for item in args.omega:
         link, value = link_value(item)
@@ -110,9 +119,8 @@ def _setup(args: Any) -> tuple[Any, Any, list, float, list[str], list[str]]:
     module = parse_number(args.module, what="--module")
     if module <= 0:
         raise InputError(f"--module must be positive, got {args.module}")
-    with collect_warnings() as notes:
-        mech, teeth = _scheme(args.scheme, args.teeth, module)
-        motion = mech.motion(known)
+    mech, teeth = _scheme(args.scheme, args.teeth, module)
+    motion = mech.motion(known)
     points = [_point(p, mech) for p in args.point] or _default_points(mech)
     from ..plotting import turn_time
 
@@ -124,7 +132,7 @@ def _setup(args: Any) -> tuple[Any, Any, list, float, list[str], list[str]]:
     else:
         t_end = turn_time(motion, _turns(args))
     labels = [f"link {mech.link(l).name} at ({_fmt(a)}, {_fmt(b)}) from its axis" for l, (a, b) in points]
-    return mech, motion, points, t_end, labels, notes
+    return mech, motion, points, t_end, labels
 
 
 def _scheme(name: str, teeth_text: str, module: sp.Rational) -> tuple[Any, list]:
@@ -154,34 +162,13 @@ def _fmt(v: sp.Expr) -> str:
     return f"{float(v):g}"
 
 
-def _figure_path(args: Any) -> Path:
-    out = Path(args.out)
-    if out.suffix.lower() not in (".png", ".pdf"):
-        raise InputError(f"--out {args.out}: give a file ending in .png or .pdf")
-    if not out.resolve().parent.is_dir():
-        raise InputError(f"--out {args.out}: the folder {out.resolve().parent} does not exist")
-    if out.is_dir():
-        raise InputError(f"--out {args.out} is a folder; give a file name ending in .png or .pdf")
-    return out
-
-
-def _save(fig: Any, out: Path) -> None:
-    """Save under a temporary name beside ``out``, then rename (never a half-written file)."""
-    from ..plotting import save
-
-    save(fig, out, formats=(out.suffix.lstrip("."),))
-
-
-def _report(args: Any, kind: str, out: Path, mech: Any, points: list, t_end: float, notes: list[str], extra: dict | None = None) -> None:
-    if not args.json:
-        _notes(notes)
+def _report(args: Any, kind: str, out: Path, mech: Any, points: list, t_end: float, extra: dict | None = None) -> None:
     data = {
         "command": kind,
         "scheme": args.scheme,
         "file": str(out),
         "t_end": t_end,
         "particles": [{"link": mech.link(l).name, "a": float(a), "b": float(b)} for l, (a, b) in points],
-        "warnings": notes,
         **(extra or {}),
     }
     emit(args, f"{kind} of {args.scheme} over t = 0 ... {t_end:.4g} s written to {out}", data)
@@ -193,8 +180,8 @@ def run_trajectory(args: Any) -> int:
 
     from ..plotting import draw_pitch_circles, draw_trajectories
 
-    out = _figure_path(args)
-    mech, motion, points, t_end, labels, notes = _setup(args)
+    out = figure_file(args.out)
+    mech, motion, points, t_end, labels = _setup(args)
     fig = Figure(figsize=(5.5, 5.5))
     ax = fig.add_subplot()
     draw_pitch_circles(ax, mech)
@@ -202,20 +189,20 @@ def run_trajectory(args: Any) -> int:
     ax.set_aspect("equal")
     ax.set_title(f"{args.scheme}, z = {args.teeth}: particle paths, t = 0 ... {t_end:.3g} s", fontsize=9)
     ax.legend(fontsize=7, loc="upper right")
-    _save(fig, out)
-    _report(args, "trajectory", out, mech, points, t_end, notes)
+    save_figure(fig, out)
+    _report(args, "trajectory", out, mech, points, t_end)
     return 0
 
 
 def run_curves(args: Any) -> int:
     from ..plotting import kinematics_figure
 
-    out = _figure_path(args)
-    mech, motion, points, t_end, labels, notes = _setup(args)
+    out = figure_file(args.out)
+    mech, motion, points, t_end, labels = _setup(args)
     fig = kinematics_figure(motion, points, t_end, relative_to="pole", labels=labels,
                             title=f"{args.scheme}, z = {args.teeth}: speed and acceleration, eqs. (5), (6)")
-    _save(fig, out)
-    _report(args, "curves", out, mech, points, t_end, notes)
+    save_figure(fig, out)
+    _report(args, "curves", out, mech, points, t_end)
     return 0
 
 
@@ -228,12 +215,12 @@ def run_animate(args: Any) -> int:
     fps = _whole(args.fps, "--fps", 1, MAX_FPS)
     dpi = _whole(args.dpi, "--dpi", 10, MAX_DPI)
     frames = _whole(args.frames, "--frames", 2, MAX_FRAMES) if args.frames is not None else None
-    mech, motion, points, t_end, labels, notes = _setup(args)
+    mech, motion, points, t_end, labels = _setup(args)
     if frames is None:
         turns = _turns(args) if args.t_end is None else 1.0
         frames = max(2, min(2000, int(round(4 * fps * turns))))
     scene = Scene.build(motion, points, t_end=t_end, frames=frames, labels=labels,
                         title=f"{args.scheme}, z = {args.teeth}")
     animate(scene, out, fps=fps, dpi=dpi)
-    _report(args, "animation", out, mech, points, t_end, notes, {"frames": frames, "fps": fps})
+    _report(args, "animation", out, mech, points, t_end, {"frames": frames, "fps": fps})
     return 0

@@ -4,32 +4,33 @@ from __future__ import annotations
 
 import json
 import signal
-import sys
+import warnings
 from contextlib import contextmanager
 from pathlib import Path
 from typing import Any, Iterator
 
-from ..errors import InputError
-from ..reproduce import format_table, paper_names, report_json, run
+from ..errors import InputError, SymkinWarning
+from ..reproduce import format_table, paper_names, run
 from ..texbuild import MISSING, find_pdflatex
+from .common import add_command, add_out_argument, add_quiet_flag, emit
 
 
 def register(sub: Any) -> None:
-    p = sub.add_parser(
-        "reproduce",
+    p = add_command(
+        sub, "reproduce",
         help="derive every result of the papers and compare with the published ones",
         description="Derive and compare every result of one paper or all, print the verification table and "
         "write DIR/report.json, DIR/report.txt, DIR/equations.tex, DIR/equations.pdf (with pdflatex) and "
         "DIR/figures/. The folder is replaced only when the run completes: an interrupted or failed run "
         "leaves the previous report as it was. Exit 0 when every check matches or is an explained paper "
-        "slip, 1 otherwise, 2 on bad input.",
+        "slip, 1 otherwise, 2 on bad input. With --json the report is printed instead of the table.",
+        run=run_reproduce,
     )
     p.add_argument("papers", nargs="*", default=["all"], metavar="PAPER", help=f"all (default) or any of: {', '.join(paper_names())}")
-    p.add_argument("--out", default="symkin-out", metavar="DIR", help="report folder (default ./symkin-out)")
-    p.add_argument("--json", action="store_true", help="print the JSON report instead of the table")
-    p.add_argument("--quiet", action="store_true", help="no progress display")
+    add_out_argument(p, "DIR: the report folder, written whole or not at all (default ./symkin-out)", required=False,
+                     default="symkin-out")
+    add_quiet_flag(p)
     p.add_argument("--no-pdf", action="store_true", help="do not compile equations.tex to equations.pdf")
-    p.set_defaults(run=run_reproduce)
 
 
 @contextmanager
@@ -64,17 +65,12 @@ def run_reproduce(args: Any) -> int:
     with _terminate_as_interrupt():
         results = run(names, out, quiet=args.quiet, pdf=pdf)
     pdf_note = MISSING if pdf and find_pdflatex() is None else ""
-    if args.json:
-        data = report_json(results, out)
-        data["equations"] = {"tex": "equations.tex", "pdf": "equations.pdf" if (out / "equations.pdf").exists() else None}
-        if pdf_note:
-            data["equations"]["note"] = pdf_note
-        json.dump(data, sys.stdout, indent=2, ensure_ascii=False)
-        sys.stdout.write("\n")
-    else:
-        sys.stdout.write(format_table(results))
-        written = ["report.json", "report.txt", "equations.tex"] + (["equations.pdf"] if (out / "equations.pdf").exists() else []) + ["figures/"]
-        sys.stdout.write(f"report written to {out}/: {', '.join(written)}\n")
+    # the report as written (its figure paths are relative to the folder it was built in)
+    data = json.loads((out / "report.json").read_text()) if args.json else {}
+    data["equations"] = {"tex": "equations.tex", "pdf": "equations.pdf" if (out / "equations.pdf").exists() else None}
     if pdf_note:
-        print(f"symkin reproduce: note: {pdf_note}", file=sys.stderr)
+        data["equations"]["note"] = pdf_note
+        warnings.warn(pdf_note, SymkinWarning, stacklevel=1)
+    written = ["report.json", "report.txt", "equations.tex"] + (["equations.pdf"] if (out / "equations.pdf").exists() else []) + ["figures/"]
+    emit(args, format_table(results) + f"report written to {out}/: {', '.join(written)}\n", data)
     return 0 if all(r.ok for r in results) else 1

@@ -13,7 +13,7 @@ from typing import Any
 
 from ..errors import InputError
 from ..helical import HelicalTrain, hand_name
-from ..jsonout import exact_json
+from ..jsonout import exact_json, exact_json_list
 from ..parsing import as_integer, as_rational
 from .laws import _scheme
 
@@ -145,14 +145,15 @@ class SynthesisRequest:
     def to_json(self) -> dict[str, Any]:
         return {
             "scheme": self.scheme,
-            "ratio": str(self.ratio),
-            "tolerance": str(self.tolerance),
+            "ratio": exact_json(self.ratio),
+            "tolerance": exact_json(self.tolerance),
             "satellites": self.satellites,
-            "normal_modules": [str(m) for m in self.normal_modules],
-            "beta_deg": [float(self.beta_min_deg), float(self.beta_max_deg)],
+            "normal_modules_mm": exact_json_list(self.normal_modules),
+            "beta_min_deg": exact_json(self.beta_min_deg),
+            "beta_max_deg": exact_json(self.beta_max_deg),
             "teeth": [self.teeth_min, self.teeth_max],
-            "alpha_n_deg": float(self.alpha_n_deg),
-            "addendum": float(self.addendum),
+            "alpha_n_deg": exact_json(self.alpha_n_deg),
+            "addendum": exact_json(self.addendum),
             "min_ring_difference": self.min_ring_difference,
             "top": self.top,
         }
@@ -203,18 +204,18 @@ class HelicalDesign:
         t = self.train
         return {
             "teeth": list(t.teeth),
-            "ratio": {"exact": str(self.ratio), "float": float(self.ratio)},
-            "relative_error": {"exact": str(self.relative_error), "float": float(self.relative_error)},
+            "ratio": exact_json(self.ratio),
+            "relative_error": exact_json(self.relative_error),
             "beta12_deg": self.betas_deg[0],
             "beta34_deg": self.betas_deg[1],
             "helix_free": self.helix_free,
             "hands": [hand_name(h) for h in t.hands],
             "P": self.assembly[0],
             "Q": self.assembly[1],
-            "centre_distance": self.centre_distance,
+            "centre_distance_mm": self.centre_distance,
             "d_w2/d_w3": t.working_diameter_ratio,
-            "envelope_diameter": self.envelope_diameter,
-            "neighbour_margin": t.neighbour_margin if math.isfinite(t.neighbour_margin) else None,
+            "envelope_diameter_mm": self.envelope_diameter,
+            "neighbour_margin_mm": t.neighbour_margin if math.isfinite(t.neighbour_margin) else None,
         }
 
 

@@ -24,6 +24,7 @@ import numpy as np
 import sympy as sp
 
 from ..errors import SymkinError
+from ..jsonout import exact_json, exact_json_list
 from ..lostmotion import StageErrorModel  # noqa: F401  (the doctests use it)
 from .problem import _BOUND_TOL, SplitProblem
 
@@ -112,9 +113,9 @@ class ContinuousSplit:
     def to_json(self) -> dict[str, Any]:
         return {
             "ratios": list(self.ratios),
-            "exact_ratios": [str(r) for r in self.exact_ratios] if self.exact_ratios else None,
+            "exact_ratios": exact_json_list(self.exact_ratios),
             "objective": self.objective,
-            "exact_objective": str(self.exact_objective) if self.exact_objective is not None else None,
+            "exact_objective": exact_json(self.exact_objective),
             "active": list(self.active),
             "log_gradient": list(self.log_gradient),
             "nu": self.nu,

@@ -19,6 +19,7 @@ import numpy as np
 import sympy as sp
 
 from ..errors import InputError, UnsupportedError
+from ..jsonout import exact_json, exact_json_list
 from ..lostmotion import StageErrorModel  # noqa: F401  (the doctests use it)
 from .problem import _TABLE_SIZE, SplitProblem, _rational
 
@@ -53,10 +54,10 @@ class Design:
         return {
             "stages": [s.to_json() for s in self.stages],
             "teeth": [[s.sun, s.planet, s.ring] for s in self.stages],
-            "ratios": [str(r) for r in self.ratios],
-            "total": {"exact": str(self.total), "float": float(self.total)},
-            "deviation": {"exact": str(self.deviation), "float": float(self.deviation)},
-            "objective": {"exact": str(self.objective), "float": float(self.objective)},
+            "ratios": exact_json_list(self.ratios),
+            "total": exact_json(self.total),
+            "deviation": exact_json(self.deviation),
+            "objective": exact_json(self.objective),
         }
 
 
@@ -99,7 +100,7 @@ class DiscreteSplit:
 
     def to_json(self) -> dict[str, Any]:
         return {
-            "tolerance": str(self.tolerance),
+            "tolerance": exact_json(self.tolerance),
             "meets_tolerance": self.meets_tolerance,
             "message": self.message(),
             "nodes": self.nodes,
