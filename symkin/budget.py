@@ -9,8 +9,16 @@ simplification when its time is up, and then returns the expression as it was, w
 
 The time limit uses the interval timer (SIGALRM) of the main thread, which interrupts
 SymPy's pure-Python work wherever it is, at no cost per call; an outer timer (a test
-harness's, say) is kept and re-armed.  Off the main thread, or where the platform has
-no interval timer, only the size budget applies.
+harness's, say) is kept and re-armed.  Off the main thread (a Dask worker, a Jupyter
+background thread, a web server's request thread), or where the platform has no interval
+timer, signals cannot be used: there a watchdog thread raises the same exception in the
+working thread when the time is up (CPython's ``PyThreadState_SetAsyncExc``), again at no
+cost per call.  Where that is not available (another Python implementation) a call
+tracer (:func:`sys.settrace`, for the calling thread only) looks at the clock every few
+hundred Python calls; it about doubles the time of the simplification
+(``benchmarks/bench_budget.py``) and suspends a debugger's tracer in that thread while
+it runs.  Work inside one C call (a large integer product, say) is not interrupted by any
+route.
 
     >>> import sympy as sp
     >>> x = sp.Symbol("x")
@@ -29,6 +37,7 @@ no interval timer, only the size budget applies.
 from __future__ import annotations
 
 import signal
+import sys
 import threading
 import time
 import warnings
@@ -108,10 +117,16 @@ def simplify_within(
         return expr
 
 
+#: The tracer off the main thread looks at the clock once in this many Python calls.
+_CALLS_PER_CHECK = 256
+
+
 @contextmanager
 def _time_limit(seconds: float) -> Iterator[None]:
     if threading.current_thread() is not threading.main_thread() or not hasattr(signal, "setitimer"):
-        yield
+        limit = _watchdog_time_limit if _set_async_exc() is not None else _traced_time_limit
+        with limit(seconds):
+            yield
         return
 
     def expire(signum: int, frame: Any) -> None:
@@ -129,3 +144,59 @@ def _time_limit(seconds: float) -> Iterator[None]:
         if outer_left > 0:  # re-arm the outer timer with what is left of it (at least a moment)
             left = outer_left - (time.monotonic() - start)
             signal.setitimer(signal.ITIMER_REAL, max(left, 1e-6), outer_interval)
+
+
+def _set_async_exc() -> Any:
+    """CPython's PyThreadState_SetAsyncExc, or None where there is none."""
+    try:
+        import ctypes
+
+        return ctypes.pythonapi.PyThreadState_SetAsyncExc
+    except (ImportError, AttributeError):  # pragma: no cover - not CPython
+        return None
+
+
+@contextmanager
+def _watchdog_time_limit(seconds: float) -> Iterator[None]:
+    """A time limit without signals: a timer thread raises _OutOfTime in this thread when the time is up."""
+    import ctypes
+
+    target = threading.get_ident()
+    lock = threading.Lock()
+    done = False
+
+    def expire() -> None:
+        with lock:
+            if not done:
+                _set_async_exc()(ctypes.c_ulong(target), ctypes.py_object(_OutOfTime))
+
+    timer = threading.Timer(seconds, expire)
+    timer.daemon = True
+    timer.start()
+    try:
+        yield
+    finally:
+        with lock:
+            done = True
+        timer.cancel()
+
+
+@contextmanager
+def _traced_time_limit(seconds: float) -> Iterator[None]:
+    """A time limit without signals: a call tracer of this thread raises when the time is up."""
+    deadline = time.monotonic() + seconds
+    calls = 0
+
+    def tracer(frame: Any, event: str, arg: Any) -> None:
+        nonlocal calls
+        calls += 1
+        if calls % _CALLS_PER_CHECK == 0 and time.monotonic() > deadline:
+            raise _OutOfTime
+        return None  # no line tracing: only calls are counted
+
+    previous = sys.gettrace()
+    sys.settrace(tracer)
+    try:
+        yield
+    finally:
+        sys.settrace(previous)

@@ -68,12 +68,62 @@ def test_an_outer_timer_survives_and_still_fires():
         signal.signal(signal.SIGALRM, previous)
 
 
-def test_off_the_main_thread_only_the_size_budget_applies():
-    out = []
-    worker = threading.Thread(target=lambda: out.append(simplify_within(sp.sqrt(8), seconds=0.01)))
+def _in_a_thread(fn):
+    out, caught = [], []
+
+    def work():
+        with warnings.catch_warnings(record=True) as seen:
+            warnings.simplefilter("always")
+            start = time.perf_counter()
+            out.append(fn())
+            out.append(time.perf_counter() - start)
+        caught.extend(seen)
+
+    worker = threading.Thread(target=work)
     worker.start()
-    worker.join(30)
-    assert out == [2 * sp.sqrt(2)]
+    worker.join(60)
+    assert not worker.is_alive()
+    return out[0], out[1], caught
+
+
+def test_off_the_main_thread_the_time_budget_applies_too():
+    # a Dask worker or a Jupyter background thread has no SIGALRM: the call tracer stops it
+    out, seconds, caught = _in_a_thread(lambda: simplify_within(SLOW, seconds=0.5, what="the slow number"))
+    assert out is SLOW and seconds < 3
+    assert [w.category for w in caught] == [SimplificationBudgetWarning] and "longer than 0.5 s" in str(caught[0].message)
+    out, _, caught = _in_a_thread(lambda: simplify_within(sp.sin(sp.Symbol("x")) ** 2 + sp.cos(sp.Symbol("x")) ** 2))
+    assert out == 1 and not caught
+    assert threading.current_thread() is threading.main_thread()  # and the main thread's tracer was not touched
+
+
+def test_without_the_watchdog_the_call_tracer_keeps_the_budget(monkeypatch):
+    from symkin import budget
+
+    monkeypatch.setattr(budget, "_set_async_exc", lambda: None)  # as on a Python without it
+    out, seconds, caught = _in_a_thread(lambda: simplify_within(SLOW, seconds=0.5, what="the slow number"))
+    assert out is SLOW and seconds < 3 and [w.category for w in caught] == [SimplificationBudgetWarning]
+
+
+def test_the_tracer_is_restored_after_a_budgeted_simplification(monkeypatch):
+    from symkin import budget
+
+    monkeypatch.setattr(budget, "_set_async_exc", lambda: None)
+    import sys
+
+    seen = []
+
+    def outer(frame, event, arg):
+        seen.append(event)
+
+    def work():
+        sys.settrace(outer)
+        simplify_within(sp.sqrt(8), seconds=5)
+        after = sys.gettrace()
+        sys.settrace(None)
+        return after
+
+    out, _, _ = _in_a_thread(work)
+    assert out is outer
 
 
 def test_the_cardan_path_for_a_slow_angle_is_decided_within_the_budget():
