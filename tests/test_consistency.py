@@ -138,3 +138,22 @@ def test_scene_values_accept_names_and_symbols():
     by_name = scene.evaluate({"r_1": 1, "r_2": 2, "r_3": 1, "r_4": 4})
     by_symbol = scene.evaluate({S.radius("1"): 1, S.radius("2"): 2, S.radius("3"): 1, S.radius("4"): 4})
     assert list(by_name.values()) == list(by_symbol.values()) == [9.0]  # 1 + r2 r4/(r1 r3)
+
+
+# ---- import symkin is cheap; every public name is still there on first use
+def test_import_symkin_loads_no_sympy_and_every_name_resolves():
+    import subprocess
+    import sys
+
+    code = ("import sys, symkin; assert 'sympy' not in sys.modules, 'sympy loaded'; "
+            "assert all(getattr(symkin, n) is not None for n in symkin.__all__); "
+            "assert symkin.numeric.dask_map and symkin.helical_synthesis.synthesise and symkin.Gear.__module__ == 'symkin.model'; "
+            "print(symkin.schemes.two_row('AA', teeth=(100, 100, 101, 99)).ratio('H', '1', fixed='4').rhs)")
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stdout.strip() == "101/2"  # the 2009 paper's 50.5
+    import symkin
+
+    with pytest.raises(AttributeError):
+        symkin.no_such_name
+    assert "Mechanism" in dir(symkin) and "ratiosplit" in dir(symkin)
