@@ -16,23 +16,8 @@ from __future__ import annotations
 import importlib
 from typing import TYPE_CHECKING, Any
 
-from .errors import (
-    CoaxialityWarning,
-    DeterminacyError,
-    PoleError,
-    PoleWarning,
-    PrecisionWarning,
-    InputError,
-    ModelError,
-    OverdeterminedError,
-    SimplificationBudgetWarning,
-    SingularConfigurationError,
-    SymkinError,
-    SymkinWarning,
-    ToolError,
-    UnderdeterminedError,
-    UnsupportedError,
-)
+from .errors import *  # noqa: F403  (every error and warning class)
+from .errors import __all__ as _ERRORS
 
 if TYPE_CHECKING:  # what the lazy attributes below are, for type checkers and IDEs
     from . import cardan, drives, lostmotion, ratiosplit, schemes, stages, symbols, vectorloop
@@ -116,19 +101,5 @@ __all__ = [
     "lostmotion",
     "ratiosplit",
     "symbols",
-    "SymkinError",
-    "ModelError",
-    "InputError",
-    "DeterminacyError",
-    "UnderdeterminedError",
-    "OverdeterminedError",
-    "SingularConfigurationError",
-    "UnsupportedError",
-    "ToolError",
-    "SymkinWarning",
-    "CoaxialityWarning",
-    "PoleError",
-    "PoleWarning",
-    "PrecisionWarning",
-    "SimplificationBudgetWarning",
+    *_ERRORS,
 ]
