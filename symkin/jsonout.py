@@ -6,8 +6,8 @@ with :func:`symkin.parsing.parse_expression`; the float is for plotting and sort
 ``null`` where the value has none (a symbol, an infinity), so the JSON stays strict.
 
     >>> from fractions import Fraction
-    >>> exact_json(Fraction(6000, 1331))
-    {'exact': '6000/1331', 'float': 4.507888805409467}
+    >>> exact_json(Fraction(22, 7))
+    {'exact': '22/7', 'float': 3.142857142857143}
     >>> import sympy as sp
     >>> exact_json(2 * sp.pi / 5)
     {'exact': '2*pi/5', 'float': 1.2566370614359172}
