@@ -15,6 +15,7 @@ more specific one::
 from __future__ import annotations
 
 __all__ = [
+    "NonFiniteInputWarning",
     "warn_user",
     "SymkinError",
     "ModelError",
@@ -93,6 +94,11 @@ class SymkinWarning(UserWarning):
 
 class CoaxialityWarning(SymkinWarning):
     """The tooth numbers or radii put a planet's axis at two different distances."""
+
+
+class NonFiniteInputWarning(SymkinWarning):
+    """An input was nan or infinite, and the outputs at those points are nan or inf
+    (never a finite number taken for a value of the law)."""
 
 
 class PoleWarning(SymkinWarning):

@@ -581,19 +581,8 @@ class MpmathBackend:
     ) -> tuple[tuple[int, ...], list[np.ndarray], bool]:
         import mpmath
 
-        names = [s.name for s in self.plan.args]
-        shape, arrays = _object_points(values, names)
-        results = [np.empty(shape, dtype=object) for _ in self.plan.exprs]
         with mpmath.workdps(self.plan.digits or 50):
-            for idx in np.ndindex(shape):
-                point = [_to_mpf(a[idx], nm) for a, nm in zip(arrays, names)]
-                try:
-                    out = self.func(*point)
-                except ZeroDivisionError:
-                    raise PoleError(_pole_message(self.plan, names, point)) from None
-                for r, v in zip(results, out):
-                    r[idx] = v
-        return shape, [r.reshape(-1) for r in results], False
+            return _pointwise(self.plan, self.func, values, _to_mpf, lambda v: v)
 
 
 # --------------------------------------------------------------------------- exact
@@ -641,18 +630,25 @@ class ExactBackend:
     def evaluate(
         self, values: Sequence[Any], outs: Sequence[np.ndarray] | None = None
     ) -> tuple[tuple[int, ...], list[np.ndarray], bool]:
-        names = [s.name for s in self.plan.args]
-        shape, arrays = _object_points(values, names)
-        results = [np.empty(shape, dtype=object) for _ in self.plan.exprs]
-        for idx in np.ndindex(shape):
-            point = [_to_fraction(a[idx], nm) for a, nm in zip(arrays, names)]
-            try:
-                out = self.func(*point)
-            except ZeroDivisionError:
-                raise PoleError(_pole_message(self.plan, names, point)) from None
-            for r, v in zip(results, out):
-                r[idx] = Fraction(v)
-        return shape, [r.reshape(-1) for r in results], False
+        return _pointwise(self.plan, self.func, values, _to_fraction, Fraction)
+
+
+def _pointwise(
+    plan: Plan, func: Any, values: Sequence[Any], convert: Any, result: Any
+) -> tuple[tuple[int, ...], list[np.ndarray], bool]:
+    """Evaluate ``func`` point by point (object arrays), for the arbitrary-precision backends."""
+    names = [s.name for s in plan.args]
+    shape, arrays = _object_points(values, names)
+    results = [np.empty(shape, dtype=object) for _ in plan.exprs]
+    for idx in np.ndindex(shape):
+        point = [convert(a[idx], nm) for a, nm in zip(arrays, names)]
+        try:
+            out = func(*point)
+        except ZeroDivisionError:
+            raise PoleError(_pole_message(plan, names, point)) from None
+        for r, v in zip(results, out):
+            r[idx] = result(v)
+    return shape, [r.reshape(-1) for r in results], False
 
 
 def _pole_message(plan: Plan, names: Sequence[str], point: Sequence[Any]) -> str:

@@ -16,14 +16,11 @@ from typing import Any, Sequence
 
 import numpy as np
 
-from ..errors import InputError, PoleError, PoleWarning, SymkinWarning
+from ..errors import InputError, NonFiniteInputWarning, PoleError, PoleWarning
 
-__all__ = ["NumericFunction", "NonFiniteInputWarning"]
+__all__ = ["NumericFunction", "NonFiniteInputWarning"]  # the warning lives in symkin.errors
 
 
-class NonFiniteInputWarning(SymkinWarning):
-    """An input was nan or infinite, and the outputs at those points are nan or inf
-    (never a finite number taken for a value of the law)."""
 
 _REBUILT: dict[Any, "NumericFunction"] = {}
 

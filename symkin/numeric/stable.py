@@ -96,7 +96,20 @@ class Group(sp.Function):
         return printer._print(self.args[0])
 
 
-class ExactRatio(sp.Function):
+class _Deferred(sp.Function):
+    """A float-evaluation form that is, symbolically, just its ``doit()``."""
+
+    def _eval_evalf(self, prec: int) -> sp.Expr:
+        return self.doit()._eval_evalf(prec)
+
+    def _eval_derivative(self, s: sp.Symbol) -> sp.Expr:
+        return sp.diff(self.doit(), s)
+
+    def _latex(self, printer: Any) -> str:
+        return printer._print(self.doit())
+
+
+class ExactRatio(_Deferred):
     """``N/D`` with ``N`` and ``D`` integer polynomials of integer-valued symbols.
 
     Float backends evaluate ``N`` and ``D`` in exact integer arithmetic (int64, or
@@ -140,17 +153,8 @@ class ReducedPhase(sp.Function):
         p, q, *xs = self.args
         return sp.Rational(p, q) * sp.Mul(*xs)
 
-    def _eval_evalf(self, prec: int) -> sp.Expr:
-        return self.doit()._eval_evalf(prec)
 
-    def _eval_derivative(self, s: sp.Symbol) -> sp.Expr:
-        return sp.diff(self.doit(), s)
-
-    def _latex(self, printer: Any) -> str:
-        return printer._print(self.doit())
-
-
-class ProductDifference(sp.Function):
+class ProductDifference(_Deferred):
     """``a*b - c*d``, evaluated in double-double arithmetic by the float backends.
 
     Both products are split exactly into a double and its rounding error (Dekker), and
@@ -173,15 +177,6 @@ class ProductDifference(sp.Function):
     def doit(self, **hints: Any) -> sp.Expr:
         a, b, c, d = self.args
         return a * b - c * d
-
-    def _eval_evalf(self, prec: int) -> sp.Expr:
-        return self.doit()._eval_evalf(prec)
-
-    def _eval_derivative(self, s: sp.Symbol) -> sp.Expr:
-        return sp.diff(self.doit(), s)
-
-    def _latex(self, printer: Any) -> str:
-        return printer._print(self.doit())
 
 
 def plain_form(expr: sp.Expr) -> sp.Expr:
