@@ -580,8 +580,8 @@ def write_markdown(res: dict, path: Path) -> None:
     lines += [
         "## Start-up",
         "",
-        f"- after `import symkin`, building the AA scheme with symbolic teeth: {res['scene_s']['mechanism_s']:.3f} s (core; most of it the",
-        "  first `sympy.simplify` call of the coaxiality check, which imports sympy.physics)",
+        f"- after `import symkin`, building the AA scheme with symbolic teeth: {res['scene_s']['mechanism_s']:.3f} s (core; `import symkin`",
+        "  itself is lazy, so this includes importing SymPy)",
         f"- then the ratio-only scene (derive + compile + evaluate once): {res['scene_s']['scene_s']:.3f} s (medians of 3 processes)",
         f"- `symkin reproduce` (all papers): {res['reproduce_s']:.1f} s",
         "",
