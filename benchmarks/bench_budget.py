@@ -15,8 +15,8 @@ import time
 import sympy as sp
 
 from symkin import schemes
-from symkin import budget
-from symkin.budget import simplify_within
+from symkin._util import budget
+from symkin._util.budget import simplify_within
 
 x = sp.Symbol("x")
 CASES = {

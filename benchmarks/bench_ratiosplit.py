@@ -18,9 +18,9 @@ import argparse
 import statistics
 import time
 
-from symkin.lostmotion import StageErrorModel, lost_motion
-from symkin.ratiosplit import best_designs
-from symkin.stages import enumerate_stages
+from symkin.mechanisms.multistage.lostmotion import StageErrorModel, lost_motion
+from symkin.mechanisms.multistage.split import best_designs
+from symkin.mechanisms.multistage.stages import enumerate_stages
 
 
 def main() -> None:

@@ -15,7 +15,7 @@ import time
 import numpy as np
 import sympy as sp
 
-from symkin.cardan import CardanSlider, line_conditions
+from symkin.mechanisms.cardan import CardanSlider, line_conditions
 from symkin.drives import ConstantSpeed, EllipticalGears
 
 OMEGA = sp.Rational(4, 5) * sp.pi

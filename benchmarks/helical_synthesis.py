@@ -18,8 +18,8 @@ import statistics
 import sys
 import time
 
-from symkin.helical_synthesis import SynthesisRequest, synthesise
-from symkin.helical_synthesis.search import _check_candidate, _compiled
+from symkin.mechanisms.helical.synthesis import SynthesisRequest, synthesise
+from symkin.mechanisms.helical.synthesis.search import _check_candidate, _compiled
 
 SMALL = dict(scheme="AI", ratio=4, tolerance="0.03", satellites=3, normal_modules=(2, 3), teeth_min=17,
              teeth_max=50, top=None)
@@ -69,7 +69,7 @@ def main(repeats: int = 5) -> None:
     first = time.perf_counter()
     import subprocess  # the first search in a fresh process also derives and compiles the laws
 
-    subprocess.run([sys.executable, "-c", "from symkin.helical_synthesis import synthesise; "
+    subprocess.run([sys.executable, "-c", "from symkin.mechanisms.helical.synthesis import synthesise; "
                     f"synthesise(**{EXAMPLE!r})"], check=True)
     first = time.perf_counter() - first
     times = [timed(synthesise, example)[0] for _ in range(repeats)]

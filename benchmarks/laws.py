@@ -6,7 +6,7 @@ omega_H(t) = omega (1 - e^2)/(1 - 2 e cos(m omega t) + e^2)) substituted into
 s = 2 l cos(theta_2 - theta_H) and differentiated by SymPy: the naive route whose float
 forms lose digits (the extremes table), and, with the branch corrected, the independent
 50-digit reference.  ``slider_acceleration`` is the engine's own derived law
-(symkin.cardan with symkin.drives.EllipticalGears), the one the throughput table times.
+(symkin.mechanisms.cardan with symkin.drives.EllipticalGears), the one the throughput table times.
 """
 
 from __future__ import annotations
@@ -57,10 +57,10 @@ def slider_laws() -> tuple[sp.Expr, sp.Expr, sp.Expr]:
 
 
 def slider_acceleration() -> sp.Expr:
-    """a_s as the engine derives it: symkin.cardan.CardanSlider under symkin.drives.EllipticalGears
+    """a_s as the engine derives it: symkin.mechanisms.cardan.CardanSlider under symkin.drives.EllipticalGears
     (the benchmarks' reference is built independently, from the papers guide, by
     :func:`slider_laws_continuous`)."""
-    from symkin.cardan import CardanSlider
+    from symkin.mechanisms.cardan import CardanSlider
     from symkin.drives import EllipticalGears
 
     slider = CardanSlider.build(L, drive=EllipticalGears(W, E, M), guide_angle=THETA2, carrier_angle=THETA0)

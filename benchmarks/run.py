@@ -198,7 +198,7 @@ def methods_for(case: dict) -> dict:
 
 
 def _with_out(f):
-    """Call ``f`` writing into a buffer kept between calls (as Scene.evaluate(reuse=True) does)."""
+    """Call ``f`` writing into a buffer kept between calls (as Study.evaluate(reuse=True) does)."""
     buffers: dict = {}
 
     def call(*values):
@@ -383,7 +383,7 @@ def scene_after_import() -> dict[str, float]:
     code = (
         "import time, symkin; t0 = time.perf_counter(); "
         "mech = symkin.schemes.two_row('AA', teeth=True); t1 = time.perf_counter(); "
-        "sc = symkin.Scene(mech, ratios=[('H', '1', '4')]); "
+        "sc = symkin.Study(mech, ratios=[('H', '1', '4')]); "
         "sc.evaluate({'z_1': 100, 'z_2': 99, 'z_3': 100, 'z_4': 101}); t2 = time.perf_counter(); "
         "print(t1 - t0, t2 - t1)"
     )
@@ -403,7 +403,7 @@ def reproduce_time() -> float:
 def write_plot(rows: list[dict], n: int, folder: Path) -> None:
     from matplotlib.figure import Figure
 
-    from symkin.plotting import save
+    from symkin.viz.figures import save
 
     laws = list(dict.fromkeys(r["law"] for r in rows))
     fig = Figure(figsize=(11, 8.5))

@@ -19,7 +19,7 @@ import sympy as sp
 import symkin
 from symkin import schemes
 from symkin import symbols as S
-from symkin.report import Check, Comparison, Verdict, compare_exact, compare_rounded, compare_symbolic, slip
+from symkin.papers.checks import Check, Comparison, Verdict, compare_exact, compare_rounded, compare_symbolic, slip
 
 KEY = "alyushin2009"
 CITATION = (
@@ -253,16 +253,16 @@ FIGURE_TEETH = {"AI1": (20, 30, 80), "AI": (20, 30, 20, 70), "AA": (54, 45, 44, 
 def figures(folder: Path) -> list[Path]:
     """Trajectories of a planet particle on the pitch circle of rim 2 and one inside it,
     for each scheme, gear 4 fixed, over one carrier turn (see :func:`trajectories_figure`)."""
-    from symkin import plotting
+    from symkin.viz import figures
 
-    return plotting.save(trajectories_figure(), folder / "alyushin2009_trajectories")
+    return figures.save(trajectories_figure(), folder / "alyushin2009_trajectories")
 
 
 def trajectories_figure():
     """The figure of :func:`figures`, as a matplotlib Figure."""
     from matplotlib.figure import Figure
 
-    from symkin import plotting
+    from symkin.viz import figures
 
     fig = Figure(figsize=(9, 9))
     for n, k in enumerate(SCHEMES, 1):
@@ -270,8 +270,8 @@ def trajectories_figure():
         ax = fig.add_subplot(2, 2, n)
         motion = m.motion({"4": 0, "H": 1})
         rim2 = m.gear("2").radius
-        plotting.draw_pitch_circles(ax, m)
-        plotting.draw_trajectories(
+        figures.draw_pitch_circles(ax, m)
+        figures.draw_trajectories(
             ax,
             motion,
             [(PLANET[k], (-rim2, 0)), (PLANET[k], (-rim2 / 2, 0))],

@@ -2,10 +2,10 @@
 
 The n-stage train is built with the engine (:func:`symkin.schemes.common_ring_train`);
 its total ratio, each stage's ratio and the transfer of each stage's angular error to
-the output carrier are derived from it (:mod:`symkin.lostmotion`).  The stage
+the output carrier are derived from it (:mod:`symkin.mechanisms.multistage.lostmotion`).  The stage
 enumeration derives coaxiality, assembly and neighbour conditions from the single-row
-AI scheme (:mod:`symkin.stages`).  The continuous optimum and the discrete designs come
-from :mod:`symkin.ratiosplit`.  The published forms and numbers below are transcribed
+AI scheme (:mod:`symkin.mechanisms.multistage.stages`).  The continuous optimum and the discrete designs come
+from :mod:`symkin.mechanisms.multistage.split`.  The published forms and numbers below are transcribed
 from the paper (OCR in shared/papers) and are only compared against.
 """
 
@@ -17,16 +17,16 @@ import sympy as sp
 
 from symkin import schemes
 from symkin import symbols as S
-from symkin.lostmotion import (
+from symkin.mechanisms.multistage.lostmotion import (
     StageErrorModel,
     backlash_symbol,
     diameter_symbol,
     lost_motion,
-    ratio_symbol,
+    stage_ratio_symbol,
 )
-from symkin.ratiosplit import best_designs, optimise_split
-from symkin.report import Check, compare_exact, compare_rounded, compare_symbolic, slip
-from symkin.stages import enumerate_stages, stage_laws
+from symkin.mechanisms.multistage.split import best_designs, optimise_split
+from symkin.papers.checks import Check, compare_exact, compare_rounded, compare_symbolic, slip
+from symkin.mechanisms.multistage.stages import enumerate_stages, stage_laws
 
 KEY = "khai2014"
 CITATION = (
@@ -55,27 +55,27 @@ a, b = sp.symbols("a b", real=True)  # the paper's abi_1, abi_2
 
 def _published_1(n: int) -> sp.Expr:
     """(1): sum_i Delta phi_Hi / (u_(i+1) ... u_n), Delta phi_Hi = Phi_i / (d_(3i-2) u_i)."""
-    u = [ratio_symbol(i) for i in range(1, n + 1)]
+    u = [stage_ratio_symbol(i) for i in range(1, n + 1)]
     carrier = [backlash_symbol(i) / (diameter_symbol(i) * u[i - 1]) for i in range(1, n + 1)]
     return sp.Add(*(carrier[i - 1] / sp.Mul(*u[i:]) for i in range(1, n + 1)))
 
 
 def _published_2_first(n: int) -> sp.Expr:
     """(2), first line: Phi_1/(d_1 u_1 ... u_n) + Phi_2/(d_4 u_2 ... u_n) + ... + Phi_n/(d_(3n-2) u_n)."""
-    u = [ratio_symbol(i) for i in range(1, n + 1)]
+    u = [stage_ratio_symbol(i) for i in range(1, n + 1)]
     return sp.Add(*(backlash_symbol(i) / (diameter_symbol(i) * sp.Mul(*u[i - 1:])) for i in range(1, n + 1)))
 
 
 def _published_2_expanded(n: int) -> sp.Expr:
     """(2), second line: (1/u_S)(Phi_1/d_1 + Phi_2/d_4 u_1 + ... + Phi_n/d_(3n-2) u_1 ... u_(n-1))."""
-    u = [ratio_symbol(i) for i in range(1, n + 1)]
+    u = [stage_ratio_symbol(i) for i in range(1, n + 1)]
     inner = sp.Add(*(backlash_symbol(i) / diameter_symbol(i) * sp.Mul(*u[: i - 1]) for i in range(1, n + 1)))
     return inner / sp.Mul(*u)
 
 
 def _published_2_closed(n: int, upper: str) -> sp.Expr:
     """(2), closed sum: (1/u_S)(Phi_1/d_1 + sum_(i=2)^n Phi_i/d_(3i-2) prod_(j=1)^(upper) u_j)."""
-    u = [ratio_symbol(i) for i in range(1, n + 1)]
+    u = [stage_ratio_symbol(i) for i in range(1, n + 1)]
     top = (lambda i: i) if upper == "i" else (lambda i: i - 1)
     inner = backlash_symbol(1) / diameter_symbol(1) + sp.Add(
         *(backlash_symbol(i) / diameter_symbol(i) * sp.Mul(*u[: top(i)]) for i in range(2, n + 1))
@@ -85,7 +85,7 @@ def _published_2_closed(n: int, upper: str) -> sp.Expr:
 
 def _published_fig4_FF(Fd: list) -> sp.Expr:
     """Fig. 4, step 6: FF(u) = (1/U_S)(Fd1 + Fd2 u1 + Fd3 u1 u2 + Fd4 u1 u2 u3)."""
-    u1, u2, u3, u4 = (ratio_symbol(i) for i in range(1, 5))
+    u1, u2, u3, u4 = (stage_ratio_symbol(i) for i in range(1, 5))
     U_S = sp.Symbol("U_Sigma", positive=True)
     return (Fd[0] + Fd[1] * u1 + Fd[2] * u1 * u2 + Fd[3] * u1 * u2 * u3) / U_S, U_S
 
@@ -281,7 +281,7 @@ def _model_checks() -> list[Check]:
     slope = sp.Rational(LINE_J_END - LINE_J0, LINE_A_END)
     out.append(_check("(7) slope", "(7): slope (120 - 50)/180 of the two-point line", slope, PUBLISHED_SLOPE,
                       compare_rounded(slope, PUBLISHED_SLOPE)))
-    # (6) and (8) are GOST formulas the paper quotes: symkin.lostmotion holds them as given inputs
+    # (6) and (8) are GOST formulas the paper quotes: symkin.mechanisms.multistage.lostmotion holds them as given inputs
     # (transcribed, not derived).  What can be checked is the paper's printing: a length formula
     # must scale with its lengths, and (8) without bearing clearances must reduce to (6).
     lam = sp.Symbol("lambda", positive=True)
@@ -299,7 +299,7 @@ def _model_checks() -> list[Check]:
     reduced8 = printed8.subs({g1: 0, g2: 0}).subs(sp.Rational(7, 10) * (e1 + e2), j)
     gap = sp.simplify(reduced8 - printed6)
     out.append(_check(
-        "(8)", "(8) as printed scales as a length (GOST 21098-82, transcribed in symkin.lostmotion, not derived)",
+        "(8)", "(8) as printed scales as a length (GOST 21098-82, transcribed in symkin.mechanisms.multistage.lostmotion, not derived)",
         defect8, 0, compare_exact(defect8, 0),
     ))
     evidence = (
@@ -350,8 +350,8 @@ def notes() -> list[str]:
 
 
 def figures(folder: Path) -> list[Path]:
-    from symkin.plotting import save
-    from symkin.splitplot import split_figure, stage_model_figure
+    from symkin.viz.figures import save
+    from symkin.viz.split import split_figure, stage_model_figure
 
     paths = []
     fig = stage_model_figure(

@@ -3,7 +3,7 @@
 Everything on the "derived" side comes from symkin: the planet statics
 (:mod:`symkin.statics`), the ratio, coaxiality and assembly conditions of the engine,
 the tooth-number equations solved from them, the existence regions and the synthesis
-(:mod:`symkin.helical_synthesis`).  The published forms below are transcribed from the
+(:mod:`symkin.mechanisms.helical.synthesis`).  The published forms below are transcribed from the
 paper (OCR in shared/papers), for comparison only; where the OCR is damaged, both the
 form as printed and the reconstruction are kept, and the reconstruction is justified by
 the derivation.
@@ -22,11 +22,11 @@ from pathlib import Path
 
 import sympy as sp
 
-from symkin import helical_synthesis as HS
+from symkin.mechanisms.helical import synthesis as HS
 from symkin import schemes
 from symkin import symbols as S
-from symkin.helical_synthesis import DELTA, K, LAMBDA, P, Q, RATIO, X, Z
-from symkin.report import Check, Comparison, Verdict, compare_symbolic, slip
+from symkin.mechanisms.helical.synthesis import DELTA, K, LAMBDA, P, Q, RATIO, X, Z
+from symkin.papers.checks import Check, Comparison, Verdict, compare_symbolic, slip
 from symkin.statics import balancing_hands, planet_forces, planet_statics
 
 KEY = "kladova2010"
@@ -397,7 +397,7 @@ def _region_figure(folder: Path) -> list[Path]:
     import numpy as np
     from matplotlib.figure import Figure
 
-    from symkin import plotting
+    from symkin.viz import figures
 
     fig = Figure(figsize=(13, 4.6), layout="constrained")
     limits = {"AI": (1, 25), "AA": (-6, 2.2), "II": (-1.6, 1.1)}
@@ -437,13 +437,13 @@ def _region_figure(folder: Path) -> list[Path]:
         ax.grid(alpha=0.3)
     fig.suptitle("Kladova et al. 2010, Table 1 derived: ratios realisable with balanced helical planets "
                  "(ratio, coaxiality, neighbour condition on pitch circles)", fontsize=10)
-    return plotting.save(fig, folder / "kladova2010_existence_regions")
+    return figures.save(fig, folder / "kladova2010_existence_regions")
 
 
 def _synthesis_figure(folder: Path) -> list[Path]:
     from matplotlib.figure import Figure
 
-    from symkin import plotting
+    from symkin.viz import figures
 
     full = synthesis_example()
     fig = Figure(figsize=(10, 4.2))
@@ -468,7 +468,7 @@ def _synthesis_figure(folder: Path) -> list[Path]:
     for ax in (ax1, ax2):
         ax.grid(alpha=0.3)
     fig.suptitle("Synthesis: unshifted helical meshes, m_n12 = 2 mm, m_n34 = 2.5 mm, Z in [17, 110]", fontsize=10)
-    return plotting.save(fig, folder / "kladova2010_synthesis")
+    return figures.save(fig, folder / "kladova2010_synthesis")
 
 
 def notes() -> list[str]:
@@ -486,5 +486,5 @@ def notes() -> list[str]:
         "Table 1's column heads read 'xx <= 1' / 'xx >= 1' in the OCR; the derivation shows the columns are "
         "d_w2/d_w3 <= 1 and >= 1 (which rim is larger decides the neighbour condition).",
         "The synthesis uses unshifted (zero) meshes: for each tooth set the two helix angles follow from balance and "
-        "coaxiality; profile shift is modelled (symkin.helical) but not searched.",
+        "coaxiality; profile shift is modelled (symkin.mechanisms.helical) but not searched.",
     ]

@@ -1,6 +1,6 @@
 """Luo, Li, Feng & Hua (2018), Cardan-circle mechanism driven through elliptical gears, reproduced.
 
-The mechanism is built with symkin (:func:`symkin.schemes.cardan`, :class:`symkin.cardan.CardanSlider`):
+The mechanism is built with symkin (:func:`symkin.schemes.cardan`, :class:`symkin.mechanisms.cardan.CardanSlider`):
 the planet's turn relative to the carrier comes from the engine's contact condition,
 the slider's law from the vector loop (eqs. 17-20, :mod:`symkin.vectorloop`), the
 conditions for straight-line motion from the loop's harmonics, and the elliptical drive
@@ -19,11 +19,11 @@ import numpy as np
 import sympy as sp
 from sympy.calculus.util import maximum, minimum
 
-from symkin import cardan
+from symkin.mechanisms import cardan
 from symkin import symbols as S
-from symkin.cardan import CardanSlider, l, l_1, l_H, s, theta_1, theta_2, theta_H, theta_H0
+from symkin.mechanisms.cardan import CardanSlider, l, l_1, l_H, s, theta_1, theta_2, theta_H, theta_H0
 from symkin.drives import AngleLaw, ConstantSpeed, EllipticalGears
-from symkin.report import Check, Comparison, Verdict, compare_exact, compare_rounded, compare_symbolic, slip
+from symkin.papers.checks import Check, Comparison, Verdict, compare_exact, compare_rounded, compare_symbolic, slip
 
 KEY = "luo2018"
 CITATION = (
@@ -473,7 +473,7 @@ def figures(folder: Path) -> list[Path]:
 def _paths_figure(folder: Path) -> list[Path]:
     from matplotlib.figure import Figure
 
-    from symkin import plotting
+    from symkin.viz import figures
 
     cases = [
         ("z = 20/40, pin on the pitch circle", dict(teeth=(20, 40))),
@@ -485,7 +485,7 @@ def _paths_figure(folder: Path) -> list[Path]:
     for n, (title, kw) in enumerate(cases, 1):
         slider = CardanSlider.build(1, drive=1, **kw)
         ax = fig.add_subplot(2, 2, n)
-        plotting.draw_pitch_circles(ax, slider.mechanism)
+        figures.draw_pitch_circles(ax, slider.mechanism)
         _, x, y = slider.pin.trajectory(float(2 * sp.pi), samples=721)
         ax.plot(x, y, lw=1.3, label="pin O (superposition)")
         ax.plot(x[:1], y[:1], "o", ms=3)
@@ -495,13 +495,13 @@ def _paths_figure(folder: Path) -> list[Path]:
         ax.legend(fontsize=7, loc="lower left")
         ax.tick_params(labelsize=7)
     fig.suptitle("Luo et al. 2018: what the pin traces (l_H = 1, one carrier turn)")
-    return plotting.save(fig, folder / "luo2018_paths")
+    return figures.save(fig, folder / "luo2018_paths")
 
 
 def _table1_figure(folder: Path) -> list[Path]:
     from matplotlib.figure import Figure
 
-    from symkin import plotting
+    from symkin.viz import figures
 
     slider = table1_slider()
     ts = np.linspace(0, float(slider.period()), 501)
@@ -515,13 +515,13 @@ def _table1_figure(folder: Path) -> list[Path]:
         ax.tick_params(labelsize=7)
     ax.set_xlabel("t [s]", fontsize=8)
     fig.suptitle("Luo et al. 2018, fig. 4 / Table 1: l = 20 mm, omega_H = 0.8 pi rad/s (period 2.5 s)", fontsize=10)
-    return plotting.save(fig, folder / "luo2018_fig4_constant_speed")
+    return figures.save(fig, folder / "luo2018_fig4_constant_speed")
 
 
 def _sweep_figures(folder: Path) -> list[Path]:
     from matplotlib.figure import Figure
 
-    from symkin import plotting
+    from symkin.viz import figures
 
     data = curves()
     names = {"a": "e", "b": "m", "c": r"$\theta_{H0}$"}
@@ -544,14 +544,14 @@ def _sweep_figures(folder: Path) -> list[Path]:
             "l = 20 mm, input 0.8 pi rad/s, theta_2 = 0, pin installed for the guide",
             fontsize=10,
         )
-        out += plotting.save(fig, folder / f"luo2018_fig{fig_no}_{quantity}")
+        out += figures.save(fig, folder / f"luo2018_fig{fig_no}_{quantity}")
     return out
 
 
 def _branch_figure(folder: Path) -> list[Path]:
     from matplotlib.figure import Figure
 
-    from symkin import plotting
+    from symkin.viz import figures
 
     values = {omega: TABLE1_OMEGA, e: BASE_E, m: 2, theta_H0: 0}
     ts = np.linspace(0, 2.5, 1001)
@@ -566,7 +566,7 @@ def _branch_figure(folder: Path) -> list[Path]:
     ax.grid(lw=0.3)
     ax.legend(fontsize=8)
     ax.set_title("carrier angle through elliptical gears, e = 2/5, m = 2, input 0.8 pi rad/s", fontsize=9)
-    return plotting.save(fig, folder / "luo2018_carrier_angle_branches")
+    return figures.save(fig, folder / "luo2018_carrier_angle_branches")
 
 
 def notes() -> list[str]:

@@ -9,6 +9,20 @@ compiles them into fast numeric functions.
     >>> aa = symkin.schemes.two_row("AA", teeth=(100, 100, 101, 99))
     >>> aa.ratio("H", "1", fixed="4").rhs
     101/2
+
+The package, from the bottom up (``docs/architecture.md`` gives the path of data):
+
+- the engine: :mod:`~symkin.model` (gears, links, meshes), :mod:`~symkin.superposition`
+  and :mod:`~symkin.particles` (eqs. 4-6), :mod:`~symkin.kinematics` (contact conditions,
+  speeds, ratios), :mod:`~symkin.vectorloop`, :mod:`~symkin.drives`, with
+  :mod:`~symkin.laws`, :mod:`~symkin.symbols` and :mod:`~symkin.errors`;
+- :mod:`~symkin.schemes`: the catalogue of ready-made schemes;
+- :mod:`~symkin.numeric`: the one place laws become numbers; :mod:`~symkin.printing`:
+  LaTeX; :mod:`~symkin.study`: derive, compile and evaluate what a request needs;
+- :mod:`~symkin.statics`, and the families in :mod:`~symkin.mechanisms` (Cardan,
+  multistage, helical);
+- :mod:`~symkin.viz` (figures, animation), :mod:`~symkin.papers` (checks, reports) and
+  :mod:`~symkin.cli` (the ``symkin`` command).
 """
 
 from __future__ import annotations
@@ -16,18 +30,22 @@ from __future__ import annotations
 import importlib
 from typing import TYPE_CHECKING, Any
 
-from .errors import *  # noqa: F403  (every error and warning class)
-from .errors import __all__ as _ERRORS
+from symkin import _deprecated
+from symkin._version import __version__
+from symkin.errors import *  # noqa: F403  (every error and warning class)
+from symkin.errors import __all__ as _ERRORS
 
 if TYPE_CHECKING:  # what the lazy attributes below are, for type checkers and IDEs
-    from . import cardan, drives, lostmotion, ratiosplit, schemes, stages, symbols, vectorloop
-    from .kinematics import Speeds, ratio, solve_speeds
-    from .laws import Law
-    from .model import FRAME, Gear, Link, Mechanism, Mesh
-    from .numeric import NumericFunction, compile
-    from .numeric.scene import Scene
-    from .particles import FrameMotion, Motion, Particle
-    from .printing import latex
+    from symkin import drives, mechanisms, numeric, schemes, statics, symbols, vectorloop, viz
+    from symkin.kinematics import Speeds, ratio, solve_speeds
+    from symkin.laws import Law
+    from symkin.model import FRAME, Gear, Link, Mechanism, Mesh
+    from symkin.numeric import NumericFunction, compile
+    from symkin.particles import FrameMotion, Motion, Particle
+    from symkin.printing import latex
+    from symkin.study import Study
+
+_deprecated.install()  # the module paths of symkin 0.1 keep importing for one release
 
 #: Names of the package loaded on first use (module __getattr__), so that ``import symkin``
 #: costs little more than importing its errors: name -> (module, attribute).
@@ -43,7 +61,7 @@ _LAZY: dict[str, tuple[str, str]] = {
     "Mesh": ("model", "Mesh"),
     "NumericFunction": ("numeric", "NumericFunction"),
     "compile": ("numeric", "compile"),
-    "Scene": ("numeric.scene", "Scene"),
+    "Study": ("study", "Study"),
     "FrameMotion": ("particles", "FrameMotion"),
     "Motion": ("particles", "Motion"),
     "Particle": ("particles", "Particle"),
@@ -52,11 +70,11 @@ _LAZY: dict[str, tuple[str, str]] = {
 
 #: Subpackages and modules reachable as ``symkin.NAME`` without importing them first.
 _SUBMODULES = frozenset({
-    "animation", "atomic", "budget", "cardan", "cli", "derivations", "drives", "helical", "helical_synthesis",
-    "jsonout", "kinematics", "latex_report", "laws", "lostmotion", "model", "numeric", "parsing", "particles",
-    "plotting", "printing", "ratiosplit", "report", "reproduce", "schemes", "splitplot", "stages", "statics",
-    "superposition", "symbols", "texbuild", "vectorloop",
+    "cli", "drives", "errors", "kinematics", "laws", "mechanisms", "model", "numeric", "papers", "particles",
+    "printing", "schemes", "statics", "study", "superposition", "symbols", "vectorloop", "viz",
 })
+#: Modules of symkin 0.1 that moved (see :mod:`symkin._deprecated`), as ``symkin.NAME``.
+_MOVED = frozenset(name.split(".")[1] for name in _deprecated.MODULES if name.count(".") == 1)
 
 
 def __getattr__(name: str) -> Any:
@@ -65,16 +83,18 @@ def __getattr__(name: str) -> Any:
         value = getattr(importlib.import_module(f"{__name__}.{module}"), attribute)
         globals()[name] = value
         return value
-    if name in _SUBMODULES:
+    if name in _SUBMODULES or name in _MOVED:
         return importlib.import_module(f"{__name__}.{name}")
+    if f"{__name__}.{name}" in _deprecated.NAMES:
+        return _deprecated.renamed(f"{__name__}.{name}", _deprecated.NAMES[f"{__name__}.{name}"])
+    if name == "derivations":  # the papers, installed beside the library (never imported by it)
+        return importlib.import_module(f"{__name__}.derivations")
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def __dir__() -> list[str]:
     return sorted(set(globals()) | set(_LAZY) | _SUBMODULES)
 
-
-__version__ = "0.1.0"
 
 __all__ = [
     "FRAME",
@@ -88,18 +108,19 @@ __all__ = [
     "Particle",
     "FrameMotion",
     "NumericFunction",
-    "Scene",
+    "Study",
     "ratio",
     "solve_speeds",
     "latex",
     "compile",
     "schemes",
     "drives",
-    "cardan",
     "vectorloop",
-    "stages",
-    "lostmotion",
-    "ratiosplit",
+    "mechanisms",
+    "statics",
+    "numeric",
+    "viz",
     "symbols",
+    "__version__",
     *_ERRORS,
 ]

@@ -19,9 +19,9 @@ from typing import Any
 
 import sympy as sp
 
-from . import symbols as S
-from .parsing import as_expr
-from .errors import InputError, UnsupportedError
+from symkin import symbols as S
+from symkin._util.parsing import as_expr
+from symkin.errors import InputError, UnsupportedError
 
 __all__ = ["Drive", "ConstantSpeed", "AngleLaw", "SpeedLaw", "EllipticalGears", "as_drive"]
 

@@ -22,18 +22,18 @@ from typing import Any, Iterator, Mapping, Sequence
 
 import sympy as sp
 
-from . import symbols as S
-from .errors import (
+from symkin import symbols as S
+from symkin.errors import (
     InputError,
     ModelError,
     OverdeterminedError,
     SingularConfigurationError,
     UnderdeterminedError,
 )
-from .laws import Law
-from .parsing import as_expr
-from .model import FRAME, LinkKind, Mechanism, Mesh
-from .superposition import vec, velocity
+from symkin.laws import Law
+from symkin._util.parsing import as_expr
+from symkin.model import FRAME, LinkKind, Mechanism, Mesh
+from symkin.superposition import vec, velocity
 
 __all__ = ["contact_condition", "kinematic_system", "KinematicSystem", "solve_speeds", "Speeds", "ratio"]
 

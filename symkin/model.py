@@ -32,10 +32,10 @@ from typing import Any, Iterable, Mapping, Sequence
 
 import sympy as sp
 
-from . import symbols as S
-from .budget import simplify_within
-from .errors import CoaxialityWarning, ModelError, warn_user
-from .parsing import as_expr
+from symkin import symbols as S
+from symkin._util.budget import simplify_within
+from symkin.errors import CoaxialityWarning, ModelError, warn_user
+from symkin._util.parsing import as_expr
 
 __all__ = ["FRAME", "LinkKind", "Gear", "Link", "Mesh", "Mechanism", "as_length", "as_teeth"]
 
@@ -527,13 +527,13 @@ class Mechanism:
     @property
     def dof(self) -> int:
         """Degrees of freedom: moving links minus independent contact conditions."""
-        from .kinematics import kinematic_system
+        from symkin.kinematics import kinematic_system
 
         return kinematic_system(self).dof
 
     def contact_conditions(self) -> tuple[sp.Eq, ...]:
         """One equation per mesh: equal velocities of both gears at the pitch point (eq. 5)."""
-        from .kinematics import kinematic_system
+        from symkin.kinematics import kinematic_system
 
         return kinematic_system(self).equations
 
@@ -542,7 +542,7 @@ class Mechanism:
 
         See :func:`symkin.kinematics.solve_speeds`.
         """
-        from .kinematics import solve_speeds
+        from symkin.kinematics import solve_speeds
 
         return solve_speeds(self, known)
 
@@ -551,13 +551,13 @@ class Mechanism:
 
         See :func:`symkin.kinematics.ratio`.
         """
-        from .kinematics import ratio
+        from symkin.kinematics import ratio
 
         return ratio(self, driver, driven, fixed)
 
     def motion(self, inputs: Mapping[str, Any], frame: Any = None) -> "Any":
         """The motion of every link for given input drives; see :class:`symkin.particles.Motion`."""
-        from .particles import Motion
+        from symkin.particles import Motion
 
         return Motion.build(self, inputs, frame)
 

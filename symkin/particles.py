@@ -27,13 +27,14 @@ from typing import Any, Mapping, Sequence
 import numpy as np
 import sympy as sp
 
-from . import symbols as S
-from .drives import Drive, as_drive
-from .errors import InputError
-from .kinematics import check_known_links, solve_speeds
-from .parsing import as_expr, as_float, substitute
-from .model import FRAME, LinkKind, Mechanism
-from .superposition import acceleration, position, rotation, vec, velocity
+from symkin import symbols as S
+from symkin.drives import Drive, as_drive
+from symkin.errors import InputError
+from symkin.kinematics import check_known_links, solve_speeds
+from symkin._util.parsing import as_expr, as_float, as_values, substitute
+from symkin.numeric.sampling import on_grid, time_grid
+from symkin.model import FRAME, LinkKind, Mechanism
+from symkin.superposition import acceleration, position, rotation, vec, velocity
 
 __all__ = ["FrameMotion", "Motion", "Particle"]
 
@@ -152,6 +153,41 @@ class Motion:
             self._cache[key] = Particle(self, link_name, xy)
         return self._cache[key]
 
+    def turn_time(self, turns: Any = 1, link: str | None = None, values: Mapping[Any, Any] | None = None) -> float:
+        """The time ``link`` takes to make ``turns`` turns at its (constant) speed.
+
+        Without ``link``: the carrier H when it moves, otherwise the fastest link.
+
+        >>> from symkin import schemes
+        >>> motion = schemes.single_row_AI(radii=(1, 1, 3)).motion({"4": 0, "H": 2})
+        >>> round(motion.turn_time(1), 6)
+        3.141593
+        """
+        turns = as_float(turns, what="the number of turns", positive=True)
+        subs = as_values(values)
+
+        def speed(name: str) -> sp.Expr:
+            return substitute(sp.sympify(self.omega(name)), subs)
+
+        def constant(name: str) -> float:
+            w = speed(name)
+            if S.t in w.free_symbols or not w.is_number:
+                raise InputError(f"link {name} has no constant numeric speed ({w}); give the time span instead of turns")
+            return abs(float(w))
+
+        if link is None:
+            moving = {n: constant(n) for n in self.mechanism.link_names if not speed(n).has(S.t)}
+            if moving.get("H", 0) > 0:
+                link = "H"
+            elif moving and max(moving.values()) > 0:
+                link = max(moving, key=lambda n: moving[n])
+            else:
+                raise InputError("no link turns at a constant non-zero speed; give the time span instead of turns")
+        w = constant(self.mechanism.link(link).name)
+        if w == 0:
+            raise InputError(f"link {link} does not turn; count turns of a moving link or give the time span")
+        return float(2 * np.pi * turns / w)
+
 
 
 
@@ -201,23 +237,39 @@ class Particle:
         )
 
     def trajectory(
-        self, t_end: float, *, t_start: float = 0.0, samples: int = 721, values: Mapping[Any, Any] | None = None
+        self, t_end: Any, *, t_start: Any = 0.0, samples: int = 721, values: Mapping[Any, Any] | None = None
     ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Sampled path: arrays (t, x, y) on ``samples`` equal steps from ``t_start`` to ``t_end``.
 
         ``values`` gives numbers for every symbol other than t (radii, speeds, ...).
+
+        >>> from symkin import schemes
+        >>> p = schemes.single_row_AI(radii=(1, 1, 3)).motion({"4": 0, "H": 1}).particle("2", (1, 0))
+        >>> t, x, y = p.trajectory(3.14159265358979, samples=3)
+        >>> round(float(x[-1]), 9)   # half a carrier turn later the point touches the ring
+        -3.0
         """
-        t_start = as_float(t_start, what="the start time")
-        t_end = as_float(t_end, what="the end time")
-        if t_end <= t_start:
-            raise InputError(f"the time span must be increasing, got {t_start} to {t_end}")
-        if not isinstance(samples, int) or isinstance(samples, bool) or samples < 2:
-            raise InputError(f"samples must be an integer of at least 2, got {samples!r}")
-        xy = substitute(self.position, values)
-        free = xy.free_symbols - {S.t}
-        if free:
-            raise InputError(f"give values for {', '.join(sorted(map(str, free)))} to sample the trajectory")
-        f = sp.lambdify(S.t, list(xy), modules="numpy", cse=True)
-        t = np.linspace(t_start, t_end, samples)
-        x, y = (np.broadcast_to(np.asarray(c, dtype=float), t.shape) for c in f(t))
-        return t, np.array(x), np.array(y)
+        t = time_grid(t_end, t_start=t_start, samples=samples)
+        x, y = on_grid(list(self.position), t, values, what="sample the trajectory")
+        return t, x, y
+
+    def sample(
+        self, t_end: Any, *, t_start: Any = 0.0, samples: int = 721, values: Mapping[Any, Any] | None = None
+    ) -> dict[str, np.ndarray]:
+        """Position, velocity and acceleration on ``samples`` equal steps of [t_start, t_end].
+
+        Returns arrays ``t, x, y, vx, vy, speed, ax, ay, acceleration`` (magnitudes for
+        speed and acceleration).  ``values`` gives numbers for every symbol other than t.
+
+        >>> from symkin import schemes
+        >>> p = schemes.single_row_AI(radii=(1, 1, 3)).motion({"4": 0, "H": 1}).particle("2", (2, 1))
+        >>> data = p.sample(6.0, samples=5)
+        >>> # axis velocity (0, 2) plus omega_2 = -2 turning the offset (0, 1): V = (2, 2)
+        >>> round(float(data["speed"][0]), 12)
+        2.828427124746
+        """
+        t = time_grid(t_end, t_start=t_start, samples=samples)
+        exprs = [c for vec in (self.position, self.velocity, self.acceleration) for c in vec]
+        x, y, vx, vy, ax, ay = on_grid(exprs, t, values, what="sample the particle")
+        return {"t": t, "x": x, "y": y, "vx": vx, "vy": vy, "speed": np.hypot(vx, vy),
+                "ax": ax, "ay": ay, "acceleration": np.hypot(ax, ay)}

@@ -28,8 +28,8 @@ from typing import Any, Iterable
 import sympy as sp
 from sympy.printing.latex import LatexPrinter
 
-from .errors import InputError
-from .laws import Law
+from symkin.errors import InputError
+from symkin.laws import Law
 
 __all__ = ["SymkinLatexPrinter", "latex", "latex_lines", "estimated_width", "escape_text"]
 
@@ -284,7 +284,7 @@ def latex(
 
 def _strict(obj: Any) -> sp.Basic:
     if isinstance(obj, str):
-        raise InputError("latex() prints laws and SymPy expressions, not strings; parse text with symkin.parsing.parse_expression")
+        raise InputError("latex() prints laws and SymPy expressions, not strings; parse text with symkin._util.parsing.parse_expression")
     try:
         return sp.sympify(obj, strict=True)
     except (sp.SympifyError, TypeError):

@@ -18,8 +18,8 @@ from __future__ import annotations
 
 from typing import Any, Callable, Sequence
 
-from .errors import ModelError
-from .model import Gear, Link, Mechanism
+from symkin.errors import ModelError
+from symkin.model import Gear, Link, Mechanism
 
 __all__ = ["single_row_AI", "two_row", "common_ring_train", "cardan", "scheme", "SCHEMES", "TWO_ROW"]
 
@@ -36,7 +36,7 @@ def _gears(names: Sequence[str], internal: Sequence[bool], radii: Any, teeth: An
         return [Gear(g, r, internal=i) for g, r, i in zip(names, values, internal)]
     if teeth is None or teeth is False:
         return [Gear.symbolic(g, internal=i) for g, i in zip(names, internal)]
-    from . import symbols as S
+    from symkin import symbols as S
 
     values = [S.teeth(g) for g in names] if teeth is True else _sequence(teeth, n, "teeth", names)
     return [Gear.from_teeth(g, z, internal=i, module=module) for g, z, i in zip(names, values, internal)]
@@ -146,7 +146,7 @@ def cardan(*, radii: Any = None, teeth: Any = None, module: Any = None, carrier_
     The Cardan-circle mechanism of the 2018 paper when gear 3 is twice gear 1 (then every
     point of the planet's pitch circle moves on a straight line).  ``teeth``/``radii``
     give two values: gears 1 and 3; ``carrier_angle`` is the carrier's angle at t = 0.
-    The slider and its vector loop are in :mod:`symkin.cardan`.
+    The slider and its vector loop are in :mod:`symkin.mechanisms.cardan`.
 
     >>> m = cardan(teeth=(20, 40), module=2)
     >>> m.arm("1"), m.ratio("1", "H", fixed="0").rhs

@@ -36,9 +36,9 @@ from typing import Any, Mapping
 
 import sympy as sp
 
-from .budget import simplify_within
-from .errors import InputError, SingularConfigurationError, UnsupportedError
-from .parsing import as_expr
+from symkin._util.budget import simplify_within
+from symkin.errors import InputError, SingularConfigurationError, UnsupportedError
+from symkin._util.parsing import as_expr
 
 __all__ = ["LinkVector", "VectorLoop", "LoopSolution", "harmonics", "solve_linear"]
 

@@ -22,7 +22,7 @@ def no_coaxiality_warning():
 def pdflatex():
     """The pdflatex executable; skipped with a clear message when absent locally, a failure in CI
     (.ci/run installs TeX Live's base packages)."""
-    from symkin.texbuild import find_pdflatex
+    from symkin.papers.texbuild import find_pdflatex
 
     exe = find_pdflatex()
     if exe is None:

@@ -12,16 +12,15 @@ import sympy as sp
 import symkin
 from symkin import SymkinError, schemes
 from symkin import symbols as S
-from symkin.cardan import CardanSlider
+from symkin.mechanisms.cardan import CardanSlider
 from symkin.drives import AngleLaw, ConstantSpeed, EllipticalGears
-from symkin.helical import helical_gear, lead, pitch_radius, working_pitch_radius
-from symkin.helical_synthesis import SynthesisRequest, existence_interval
-from symkin.lostmotion import StageErrorModel
+from symkin.mechanisms.helical import helical_gear, lead, pitch_radius, working_pitch_radius
+from symkin.mechanisms.helical.synthesis import SynthesisRequest, existence_interval
+from symkin.mechanisms.multistage.lostmotion import StageErrorModel
 from symkin.model import Gear, Link, Mechanism
-from symkin.parsing import parse_expression, parse_integer, parse_number
-from symkin.plotting import sample, turn_time
-from symkin.ratiosplit import SplitProblem
-from symkin.stages import enumerate_stages
+from symkin._util.parsing import parse_expression, parse_integer, parse_number
+from symkin.mechanisms.multistage.split import SplitProblem
+from symkin.mechanisms.multistage.stages import enumerate_stages
 
 MARKER = "PWNED_API"
 INJECTION = f"__import__('os').system('touch {MARKER}')"
@@ -53,8 +52,8 @@ ENTRY_POINTS = {
     "Mechanism.speeds value": (lambda w: AA.speeds({"1": w, "4": 0}), dict(w=100)),
     "Mechanism.motion": (lambda inputs: AA.motion(inputs), dict(inputs={"1": 1, "4": 0})),
     "Motion.particle": (lambda link, point: MOTION.particle(link, point), dict(link="2", point=(1, 0))),
-    "plotting.sample": (lambda t_end, samples: sample(PARTICLE, t_end, samples=samples), dict(t_end=1.0, samples=5)),
-    "plotting.turn_time": (lambda turns, link: turn_time(MOTION, turns, link=link), dict(turns=1, link="H")),
+    "Particle.sample": (lambda t_end, samples: PARTICLE.sample(t_end, samples=samples), dict(t_end=1.0, samples=5)),
+    "Motion.turn_time": (lambda turns, link: MOTION.turn_time(turns, link=link), dict(turns=1, link="H")),
     "compile": (lambda laws, args: symkin.compile(laws, args), dict(laws=AA.ratio("H", "1", fixed="4"), args=None)),
     "latex": (lambda obj: symkin.latex(obj), dict(obj=AA.ratio("H", "1", fixed="4"))),
     "ConstantSpeed": (lambda omega: ConstantSpeed(omega), dict(omega=1)),

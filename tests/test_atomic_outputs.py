@@ -8,7 +8,7 @@ from matplotlib import animation
 from matplotlib.figure import Figure
 
 from symkin.cli import main
-from symkin.plotting import save
+from symkin.viz.figures import save
 
 AI1 = ["AI1", "--teeth", "20,30,80", "--omega", "4=0", "--omega", "H=1"]
 #: command line, files it writes (relative to the working folder), the writer to break

@@ -9,9 +9,9 @@ import pytest
 import sympy as sp
 
 from symkin import SimplificationBudgetWarning
-from symkin.budget import simplify_within
-from symkin.cardan import CardanSlider
-from symkin.parsing import parse_expression
+from symkin._util.budget import simplify_within
+from symkin.mechanisms.cardan import CardanSlider
+from symkin._util.parsing import parse_expression
 
 #: A number whose simplification takes about a minute with SymPy 1.14 (trigsimp of the expanded power).
 SLOW = (sp.sin(1) + sp.cos(1) + sp.tan(1) + sp.sqrt(3)) ** 30 / (2 * sp.pi)
@@ -97,7 +97,7 @@ def test_off_the_main_thread_the_time_budget_applies_too():
 
 
 def test_without_the_watchdog_the_call_tracer_keeps_the_budget(monkeypatch):
-    from symkin import budget
+    from symkin._util import budget
 
     monkeypatch.setattr(budget, "_set_async_exc", lambda: None)  # as on a Python without it
     out, seconds, caught = _in_a_thread(lambda: simplify_within(SLOW, seconds=0.5, what="the slow number"))
@@ -105,7 +105,7 @@ def test_without_the_watchdog_the_call_tracer_keeps_the_budget(monkeypatch):
 
 
 def test_the_tracer_is_restored_after_a_budgeted_simplification(monkeypatch):
-    from symkin import budget
+    from symkin._util import budget
 
     monkeypatch.setattr(budget, "_set_async_exc", lambda: None)
     import sys

@@ -4,9 +4,10 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from symkin import InputError, ModelError, cardan
+from symkin import InputError, ModelError
+from symkin.mechanisms import cardan
 from symkin import symbols as S
-from symkin.cardan import CardanSlider, l, theta_2, theta_H0, theta_10
+from symkin.mechanisms.cardan import CardanSlider, l, theta_2, theta_H0, theta_10
 from symkin.drives import AngleLaw, ConstantSpeed, EllipticalGears
 
 t = S.t

@@ -8,7 +8,7 @@ import pytest
 import sympy as sp
 
 from symkin.errors import InputError, ModelError
-from symkin.parsing import as_integer, as_rational, as_real
+from symkin._util.parsing import as_integer, as_rational, as_real
 
 
 # ---- exact numbers: a float is the decimal it prints as, never a guessed surd
@@ -54,7 +54,7 @@ def test_as_integer_and_as_real():
 
 
 def test_existence_interval_of_a_float_is_that_of_its_decimal_not_of_sqrt2_over_2():
-    from symkin.helical_synthesis import existence_interval
+    from symkin.mechanisms.helical.synthesis import existence_interval
 
     decimal = existence_interval("II", 3, 0.7071067811865476)
     assert decimal == existence_interval("II", 3, sp.Rational(7071067811865476, 10**16))
@@ -64,11 +64,11 @@ def test_existence_interval_of_a_float_is_that_of_its_decimal_not_of_sqrt2_over_
 
 
 def test_floats_given_to_every_gate_are_their_decimals():
-    from symkin.helical import HelicalTrain
-    from symkin.helical_synthesis import SynthesisRequest
-    from symkin.lostmotion import StageErrorModel
-    from symkin.ratiosplit import SplitProblem
-    from symkin.stages import enumerate_stages
+    from symkin.mechanisms.helical import HelicalTrain
+    from symkin.mechanisms.helical.synthesis import SynthesisRequest
+    from symkin.mechanisms.multistage.lostmotion import StageErrorModel
+    from symkin.mechanisms.multistage.split import SplitProblem
+    from symkin.mechanisms.multistage.stages import enumerate_stages
 
     assert StageErrorModel.linear(0.854, 0.858).expr == sp.Rational(854, 1000) + sp.Rational(858, 1000) * sp.Symbol("u", positive=True)
     p = SplitProblem.build(100.5, 2, lower=2.25, upper=11, model=StageErrorModel.linear(1, 1))
@@ -82,8 +82,8 @@ def test_floats_given_to_every_gate_are_their_decimals():
 
 # ---- the "why" of the active bounds is said only when it is true
 def test_why_sentence_matches_the_active_set():
-    from symkin.lostmotion import StageErrorModel
-    from symkin.ratiosplit import optimise_split
+    from symkin.mechanisms.multistage.lostmotion import StageErrorModel
+    from symkin.mechanisms.multistage.split import optimise_split
 
     both_free = optimise_split(100, 2, lower=2, upper=20, model=StageErrorModel.from_expression("sin(u) + 2"))
     assert both_free.active == ("free", "free")
@@ -101,10 +101,10 @@ def test_why_sentence_matches_the_active_set():
 # ---- a derived law is a Law wherever it is returned as such; conditions stay Eq
 def test_laws_are_laws_and_conditions_are_equations():
     from symkin import schemes, symbols as S
-    from symkin.cardan import line_conditions
-    from symkin.helical_synthesis import RATIO, ratio_law
+    from symkin.mechanisms.cardan import line_conditions
+    from symkin.mechanisms.helical.synthesis import RATIO, ratio_law
     from symkin.laws import Law
-    from symkin.stages import stage_laws
+    from symkin.mechanisms.multistage.stages import stage_laws
 
     mech = schemes.two_row("II", teeth=True)
     direct = mech.ratio("1", "H", fixed="4")
@@ -122,7 +122,7 @@ def test_laws_are_laws_and_conditions_are_equations():
 def test_helical_train_ratio_is_the_mechanisms_ratio():
     from fractions import Fraction
 
-    from symkin.helical import HelicalTrain
+    from symkin.mechanisms.helical import HelicalTrain
 
     train = HelicalTrain("AI", (18, 80, 20, 108), (2, sp.Rational(5, 2)), (0.49, 0.15))
     assert train.ratio == Fraction(25) == 1 + Fraction(80 * 108, 18 * 20)  # 1 + z2 z4/(z1 z3)
@@ -134,7 +134,7 @@ def test_scene_values_accept_names_and_symbols():
     import symkin
     from symkin import schemes, symbols as S
 
-    scene = symkin.Scene(schemes.two_row("AI"), ratios=[("1", "H", "4")])
+    scene = symkin.Study(schemes.two_row("AI"), ratios=[("1", "H", "4")])
     by_name = scene.evaluate({"r_1": 1, "r_2": 2, "r_3": 1, "r_4": 4})
     by_symbol = scene.evaluate({S.radius("1"): 1, S.radius("2"): 2, S.radius("3"): 1, S.radius("4"): 4})
     assert list(by_name.values()) == list(by_symbol.values()) == [9.0]  # 1 + r2 r4/(r1 r3)
@@ -147,7 +147,7 @@ def test_import_symkin_loads_no_sympy_and_every_name_resolves():
 
     code = ("import sys, symkin; assert 'sympy' not in sys.modules, 'sympy loaded'; "
             "assert all(getattr(symkin, n) is not None for n in symkin.__all__); "
-            "assert symkin.numeric.dask_map and symkin.helical_synthesis.synthesise and symkin.Gear.__module__ == 'symkin.model'; "
+            "assert symkin.numeric.dask_map and symkin.mechanisms.helical.synthesis.synthesise and symkin.Gear.__module__ == 'symkin.model'; "
             "print(symkin.schemes.two_row('AA', teeth=(100, 100, 101, 99)).ratio('H', '1', fixed='4').rhs)")
     proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
     assert proc.returncode == 0, proc.stderr
@@ -156,4 +156,4 @@ def test_import_symkin_loads_no_sympy_and_every_name_resolves():
 
     with pytest.raises(AttributeError):
         symkin.no_such_name
-    assert "Mechanism" in dir(symkin) and "ratiosplit" in dir(symkin)
+    assert "Mechanism" in dir(symkin) and "mechanisms" in dir(symkin) and "Study" in dir(symkin)

@@ -13,7 +13,7 @@ import pytest
 import sympy as sp
 
 from symkin import ModelError, schemes
-from symkin.helical import HelicalMesh, HelicalTrain, helical_gear, inverse_involute, involute, lead
+from symkin.mechanisms.helical import HelicalMesh, HelicalTrain, helical_gear, inverse_involute, involute, lead
 from symkin.statics import balancing_hands, mesh_hand_relation, planet_forces, planet_statics
 
 RNG = random.Random(2010)
@@ -222,7 +222,7 @@ def test_hands_from_the_helix_tangency():
 
 def test_statics_ratio_is_the_engines_ratio_for_coaxial_trains():
     """Virtual work: carrier torque per input torque is i_1H^(4), exactly the engine's ratio."""
-    from symkin.helical_synthesis import synthesise
+    from symkin.mechanisms.helical.synthesis import synthesise
 
     res = synthesise(scheme="II", ratio="1/50", tolerance="0.05", satellites=3, normal_modules=(2, "2.5"),
                      teeth_max=100, top=None)

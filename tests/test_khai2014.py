@@ -7,7 +7,7 @@ import sympy as sp
 
 from symkin.cli import main
 from symkin.derivations import khai2014
-from symkin.reproduce import run
+from symkin.papers.reproduce import run
 
 
 @pytest.fixture(scope="module")

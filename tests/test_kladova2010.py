@@ -5,7 +5,7 @@ import json
 import sympy as sp
 
 from symkin.derivations import kladova2010
-from symkin.reproduce import run
+from symkin.papers.reproduce import run
 
 
 def test_every_kladova2010_check_is_reproduced():
@@ -25,8 +25,8 @@ def test_every_kladova2010_check_is_reproduced():
 
 def test_published_forms_that_are_damaged_really_differ_from_the_derivation():
     """A slip must not hide a match: each printed form differs from the derived one."""
-    from symkin import helical_synthesis as HS
-    from symkin.helical_synthesis import Z
+    from symkin.mechanisms.helical import synthesis as HS
+    from symkin.mechanisms.helical.synthesis import Z
 
     z1, z2 = Z[1], Z[2]
     ai = HS.tooth_equations("AI").chain

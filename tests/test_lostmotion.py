@@ -8,7 +8,7 @@ import sympy as sp
 from symkin import schemes
 from symkin import symbols as S
 from symkin.errors import InputError
-from symkin.lostmotion import (
+from symkin.mechanisms.multistage.lostmotion import (
     StageErrorModel,
     lost_motion,
     max_lost_motion,

@@ -6,8 +6,8 @@ import pytest
 import sympy as sp
 
 from symkin.derivations import luo2018
-from symkin.report import Verdict, compare_rounded, compare_symbolic
-from symkin.reproduce import run
+from symkin.papers.checks import Verdict, compare_rounded, compare_symbolic
+from symkin.papers.reproduce import run
 
 
 @pytest.fixture(scope="module")

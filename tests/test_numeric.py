@@ -263,7 +263,7 @@ def test_elliptical_drive_angle_is_continuous_across_branch_points():
 
 
 def test_the_engines_elliptical_slider_compiles_to_the_reference_at_the_extremes():
-    cardan = pytest.importorskip("symkin.cardan")
+    cardan = pytest.importorskip("symkin.mechanisms.cardan")
     from symkin.drives import EllipticalGears
 
     slider = cardan.CardanSlider.build(L, drive=EllipticalGears(W, E, M), guide_angle=TH2, carrier_angle=TH0)
@@ -362,7 +362,7 @@ def test_a_ratio_only_scene_derives_no_particle_or_speed_laws(monkeypatch):
 
     monkeypatch.setattr(particles.Motion, "build", classmethod(refuse))
     mech = schemes.two_row("AA", teeth=True)
-    scene = symkin.Scene(mech, ratios=[("H", "1", "4")])
+    scene = symkin.Study(mech, ratios=[("H", "1", "4")])
     assert not any(str(k).startswith("('scene'") for k in mech._cache)  # nothing derived yet
     out = scene.evaluate({"z_1": 100, "z_2": 99, "z_3": 100, "z_4": 101})
     assert out["i_{H1}^{(4)}"] == 10000.0
@@ -371,19 +371,19 @@ def test_a_ratio_only_scene_derives_no_particle_or_speed_laws(monkeypatch):
     assert solved == {("4", "H")}
 
 
-def test_a_scene_compiles_once_and_caches_on_the_mechanism(monkeypatch):
-    import symkin.numeric as numeric
+def test_a_study_compiles_once_and_caches_on_the_mechanism(monkeypatch):
+    import symkin.study as study
 
     mech = schemes.two_row("AI")
     calls = []
-    real = numeric.compile
-    monkeypatch.setattr(numeric, "compile", lambda *a, **k: calls.append(1) or real(*a, **k))
+    real = study.compile
+    monkeypatch.setattr(study, "compile", lambda *a, **k: calls.append(1) or real(*a, **k))
     kw = dict(speeds=["H", "23"], particles=[("23", (S.radius("1"), 0), ("position", "acceleration"))], inputs={"1": W1, "4": 0})
-    a = symkin.Scene(mech, **kw)
+    a = symkin.Study(mech, **kw)
     values = {"omega_1": 2.0, "r_1": 1.0, "r_2": 2.0, "r_3": 1.0, "r_4": 4.0}
     t = np.linspace(0, 3, 50)
     first = a.evaluate(values, t=t)
-    second = symkin.Scene(mech, **kw).evaluate(values, t=t)
+    second = symkin.Study(mech, **kw).evaluate(values, t=t)
     assert len(calls) == 1
     # against the laws evaluated directly
     p = mech.motion({"1": W1, "4": 0}).particle("23", (S.radius("1"), 0))
@@ -395,7 +395,7 @@ def test_a_scene_compiles_once_and_caches_on_the_mechanism(monkeypatch):
 
 
 def test_a_scene_reuses_its_output_buffers_when_asked():
-    scene = symkin.Scene(schemes.two_row("AA", teeth=True), ratios=[("1", "H", "4")])
+    scene = symkin.Study(schemes.two_row("AA", teeth=True), ratios=[("1", "H", "4")])
     z = {"z_1": np.full(1000, 100), "z_2": 99, "z_3": 100, "z_4": np.arange(1000) + 50}
     a = scene.evaluate(z, reuse=True)["i_{1H}^{(4)}"]
     b = scene.evaluate(z, reuse=True)["i_{1H}^{(4)}"]

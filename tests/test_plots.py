@@ -9,8 +9,9 @@ import sympy as sp
 from PIL import Image
 
 from symkin import Gear, InputError, Link, Mechanism, ToolError, schemes
-from symkin import animation, plotting
-from symkin.animation import Scene, animate, frame_figure
+from symkin.viz import animation
+from symkin.viz import figures
+from symkin.viz.animation import Frames, animate, frame_figure
 from symkin.cli import main
 
 
@@ -24,7 +25,7 @@ def cardan(radius=1.0):
 
 def test_sampled_velocity_and_acceleration_are_finite_differences_of_the_path():
     motion = schemes.two_row("AI", teeth=(20, 30, 20, 70), module=1).motion({"1": 3, "4": -1})
-    data = plotting.sample(motion.particle("23", (7, 4), relative_to="pole"), 2.0, samples=4001)
+    data = motion.particle("23", (7, 4), relative_to="pole").sample(2.0, samples=4001)
     dt = data["t"][1] - data["t"][0]
     assert np.allclose(np.gradient(data["x"], dt)[2:-2], data["vx"][2:-2], rtol=0, atol=1e-3 * np.abs(data["vx"]).max())
     assert np.allclose(np.gradient(data["vy"], dt)[2:-2], data["ay"][2:-2], rtol=0, atol=1e-3 * np.abs(data["ay"]).max())
@@ -34,38 +35,38 @@ def test_sampled_velocity_and_acceleration_are_finite_differences_of_the_path():
 def test_turn_time_counts_carrier_turns():
     motion = schemes.two_row("AA", teeth=(54, 45, 44, 55), module=1).motion({"1": 1, "4": 0})
     # i_1H = -1/24: the carrier turns 24 times faster than gear 1
-    assert plotting.turn_time(motion, 2) == pytest.approx(2 * 2 * np.pi / 24)
+    assert motion.turn_time(2) == pytest.approx(2 * 2 * np.pi / 24)
     with pytest.raises(InputError, match="positive"):
-        plotting.turn_time(motion, 0)
+        motion.turn_time(0)
 
 
 def test_animation_geometry_is_the_cardan_mechanism():
-    scene = Scene.build(cardan().motion({"H": 1}), [("1", (1, 0)), ("1", (0.5, 0))], t_end=2 * np.pi, frames=50)
-    t = scene.t
-    on_circle, inside = scene.particle_xy
+    frames = Frames.build(cardan().motion({"H": 1}), [("1", (1, 0)), ("1", (0.5, 0))], t_end=2 * np.pi, frames=50)
+    t = frames.t
+    on_circle, inside = frames.particle_xy
     assert np.allclose(on_circle[:, 1], 0, atol=1e-12)                      # the Cardan straight line
     assert np.allclose(on_circle[:, 0], 2 * np.cos(t))                       # x = 2 r cos(omega_H t)
     assert np.allclose((inside[:, 0] / 1.5) ** 2 + (inside[:, 1] / 0.5) ** 2, 1)  # an ellipse, semi-axes r +- rho
-    names = [name for name, *_ in scene.links]
+    names = [name for name, *_ in frames.links]
     assert names == ["0", "H", "1"]                                          # the fixed ring is drawn
     planet = names.index("1")
-    assert np.allclose(scene.angle[planet], -t)                              # omega_1 = -omega_H (ring twice the planet)
-    assert np.allclose(np.hypot(*scene.axis_xy[planet].T), 1)                # the planet axis stays at the arm
+    assert np.allclose(frames.angle[planet], -t)                              # omega_1 = -omega_H (ring twice the planet)
+    assert np.allclose(np.hypot(*frames.axis_xy[planet].T), 1)                # the planet axis stays at the arm
 
 
 def test_a_gif_is_written_whole_with_every_frame(tmp_path):
-    scene = Scene.build(schemes.single_row_AI(radii=(1, 1, 3)).motion({"4": 0, "H": 1}), [("2", (1, 0))], t_end=6.3, frames=6)
-    out = animate(scene, tmp_path / "a.gif", fps=10, dpi=30)
+    frames = Frames.build(schemes.single_row_AI(radii=(1, 1, 3)).motion({"4": 0, "H": 1}), [("2", (1, 0))], t_end=6.3, frames=6)
+    out = animate(frames, tmp_path / "a.gif", fps=10, dpi=30)
     with Image.open(out) as im:
         assert im.format == "GIF" and im.n_frames == 6
     assert [p.name for p in tmp_path.iterdir()] == ["a.gif"]
     png = tmp_path / "frame.png"
-    frame_figure(scene, 3).savefig(png, dpi=40)
+    frame_figure(frames, 3).savefig(png, dpi=40)
     assert png.stat().st_size > 2000
 
 
 def test_a_failed_animation_leaves_no_partial_file_and_keeps_the_old_one(tmp_path, monkeypatch):
-    scene = Scene.build(cardan().motion({"H": 1}), [("1", (1, 0))], t_end=1.0, frames=4)
+    frames = Frames.build(cardan().motion({"H": 1}), [("1", (1, 0))], t_end=1.0, frames=4)
     out = tmp_path / "a.gif"
     out.write_bytes(b"old")
     from matplotlib.animation import FuncAnimation
@@ -75,17 +76,17 @@ def test_a_failed_animation_leaves_no_partial_file_and_keeps_the_old_one(tmp_pat
 
     monkeypatch.setattr(FuncAnimation, "save", broken)
     with pytest.raises(KeyboardInterrupt):
-        animate(scene, out, dpi=30)
+        animate(frames, out, dpi=30)
     assert out.read_bytes() == b"old" and [p.name for p in tmp_path.iterdir()] == ["a.gif"]
 
 
 def test_mp4_without_ffmpeg_is_a_clear_tool_error(tmp_path, monkeypatch):
     monkeypatch.setattr(animation, "ffmpeg_available", lambda: False)
-    scene = Scene.build(cardan().motion({"H": 1}), [], t_end=1.0, frames=2)
+    frames = Frames.build(cardan().motion({"H": 1}), [], t_end=1.0, frames=2)
     with pytest.raises(ToolError, match="ffmpeg was not found.*write a GIF instead"):
-        animate(scene, tmp_path / "a.mp4")
+        animate(frames, tmp_path / "a.mp4")
     with pytest.raises(InputError, match=r"\.gif or \.mp4"):
-        animate(scene, tmp_path / "a.avi")
+        animate(frames, tmp_path / "a.avi")
     assert not list(tmp_path.iterdir())
 
 

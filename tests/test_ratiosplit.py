@@ -10,9 +10,9 @@ import sympy as sp
 
 from symkin import schemes
 from symkin.errors import InputError
-from symkin.lostmotion import StageErrorModel
-from symkin.ratiosplit import SplitProblem, best_designs, optimise_split, profile
-from symkin.stages import enumerate_stages
+from symkin.mechanisms.multistage.lostmotion import StageErrorModel
+from symkin.mechanisms.multistage.split import SplitProblem, best_designs, optimise_split, profile
+from symkin.mechanisms.multistage.stages import enumerate_stages
 
 
 def objective_by_hand(u, F):

@@ -16,10 +16,10 @@ import sympy as sp
 from symkin import ToolError, schemes
 from symkin import symbols as S
 from symkin.cli import main
-from symkin.latex_report import equations_document
-from symkin.report import Check, compare_symbolic, slip
-from symkin.reproduce import run
-from symkin.texbuild import compile_pdf
+from symkin.papers.document import equations_document
+from symkin.papers.checks import Check, compare_symbolic, slip
+from symkin.papers.reproduce import run
+from symkin.papers.texbuild import compile_pdf
 
 
 def previous_report(folder: Path) -> Path:
@@ -84,10 +84,10 @@ def test_long_laws_break_over_lines_and_all_text_is_escaped(tmp_path, pdflatex):
 
 
 def test_a_document_pdflatex_rejects_is_a_tool_error_and_the_previous_report_stays(tmp_path, monkeypatch, pdflatex):
-    import symkin.latex_report
+    import symkin.papers.reproduce
 
     out = previous_report(tmp_path / "report")
-    monkeypatch.setattr(symkin.latex_report, "equations_document", lambda results, root=None: "\\documentclass{article}\\begin{document}\\undefinedmacro\\end{document}")
+    monkeypatch.setattr(symkin.papers.reproduce, "equations_document", lambda results, root=None: "\\documentclass{article}\\begin{document}\\undefinedmacro\\end{document}")
     with pytest.raises(ToolError, match="pdflatex could not compile equations.tex.*Undefined control sequence"):
         run(["alyushin2009"], out, quiet=True)
     assert_untouched(out)

@@ -5,7 +5,7 @@ import json
 import pytest
 
 from symkin.derivations import alyushin2009
-from symkin.reproduce import run, write_atomically
+from symkin.papers.reproduce import run, write_atomically
 
 
 def test_every_alyushin2009_check_is_reproduced():
@@ -22,7 +22,7 @@ def test_every_alyushin2009_check_is_reproduced():
 def test_a_wrong_published_form_is_reported_as_differs():
     import sympy as sp
 
-    from symkin.report import compare_symbolic
+    from symkin.papers.checks import compare_symbolic
 
     r1, r2, r3, r4 = sp.symbols("r_1 r_2 r_3 r_4", positive=True)
     assert not compare_symbolic(1 + r2 * r4 / (r1 * r3), 1 + r2 * r3 / (r1 * r4)).verdict.ok

@@ -5,7 +5,7 @@ import sympy as sp
 
 from symkin import InputError, schemes
 from symkin import symbols as S
-from symkin.parsing import as_values, substitute
+from symkin._util.parsing import as_values, substitute
 
 INJECTION = "__import__('os').system('touch PWNED') or 1"
 

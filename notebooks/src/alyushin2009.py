@@ -156,14 +156,14 @@ paper.trajectories_figure()
 # relative turn: its speed peaks at the sun's pitch-line speed, 10 x 10 = 100.
 
 # %%
-from symkin import plotting
+from symkin.viz import figures
 
 mech = schemes.two_row("AI", teeth=paper.FIGURE_TEETH["AI"], module=1)
 motion = mech.motion({"1": 10, "4": 0})
-t_end = plotting.turn_time(motion, 1)
-fig = plotting.kinematics_figure(motion, [("23", (15, 0)), ("23", (7.5, 0))], t_end, relative_to="pole",
+t_end = motion.turn_time(1)
+fig = figures.kinematics_figure(motion, [("23", (15, 0)), ("23", (7.5, 0))], t_end, relative_to="pole",
                                  labels=["rim 2 pitch circle", "half its radius"])
-data = plotting.sample(motion.particle("23", (15, 0), relative_to="pole"), t_end, samples=2001)
+data = motion.particle("23", (15, 0), relative_to="pole").sample(t_end, samples=2001)
 print(f"max speed {data['speed'].max():.4f}, min speed {data['speed'].min():.4f}")
 fig
 
@@ -174,7 +174,7 @@ fig
 # (LaTeX, PDF, figures, JSON). The same from Python:
 
 # %%
-from symkin.reproduce import PaperResult, format_table
+from symkin.papers.reproduce import PaperResult, format_table
 
 checks = paper.checks()
 print(format_table([PaperResult(paper.KEY, paper.CITATION, checks)]))

@@ -22,9 +22,9 @@ from IPython.display import Math, display
 import symkin
 from symkin import schemes
 from symkin.derivations import khai2014 as paper
-from symkin.lostmotion import StageErrorModel, lost_motion
-from symkin.ratiosplit import best_designs, optimise_split
-from symkin.stages import enumerate_stages
+from symkin.mechanisms.multistage.lostmotion import StageErrorModel, lost_motion
+from symkin.mechanisms.multistage.split import best_designs, optimise_split
+from symkin.mechanisms.multistage.stages import enumerate_stages
 
 print(paper.CITATION)
 
@@ -143,7 +143,7 @@ for tol in ("0.01", "0.05"):
 # others re-optimised), and the discrete designs within 5 % beside the continuous minimum.
 
 # %%
-from symkin.splitplot import split_figure
+from symkin.viz.split import split_figure
 
 split_figure(best, best_designs(6000, stages, 4, model=model, tolerance="0.05", top=5))
 
@@ -153,6 +153,6 @@ split_figure(best, best_designs(6000, stages, 4, model=model, tolerance="0.05", 
 # `symkin reproduce khai2014` prints this and writes the report folder.
 
 # %%
-from symkin.reproduce import PaperResult, format_table
+from symkin.papers.reproduce import PaperResult, format_table
 
 print(format_table([PaperResult(paper.KEY, paper.CITATION, list(checks.values()))]))

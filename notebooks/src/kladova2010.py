@@ -24,7 +24,7 @@ import sympy as sp
 from IPython.display import Math, display
 
 import symkin
-from symkin import helical_synthesis as HS
+from symkin.mechanisms.helical import synthesis as HS
 from symkin import schemes
 from symkin.derivations import kladova2010 as paper
 from symkin.statics import balancing_hands, planet_forces, planet_statics
@@ -196,6 +196,6 @@ print(f"best design {best.teeth}: axial force on rim 2 {f.force_2[2]:+.6f} N, on
 # ## 5. The verification table
 
 # %%
-from symkin.reproduce import PaperResult, format_table
+from symkin.papers.reproduce import PaperResult, format_table
 
 print(format_table([PaperResult(paper.KEY, paper.CITATION, list(checks.values()))]))

@@ -25,8 +25,10 @@ from IPython.display import Math, display
 from matplotlib.figure import Figure
 
 import symkin
-from symkin import cardan, plotting, symbols as S
-from symkin.cardan import CardanSlider
+from symkin import symbols as S
+from symkin.mechanisms import cardan
+from symkin.viz import figures
+from symkin.mechanisms.cardan import CardanSlider
 from symkin.derivations import luo2018 as paper
 from symkin.drives import EllipticalGears
 
@@ -96,7 +98,7 @@ for n, (title, kw) in enumerate(
     slider = CardanSlider.build(1, drive=1, **kw)
     _, x, y = slider.pin.trajectory(float(2 * sp.pi), samples=721)
     ax = fig.add_subplot(2, 2, n)
-    plotting.draw_pitch_circles(ax, slider.mechanism)
+    figures.draw_pitch_circles(ax, slider.mechanism)
     ax.plot(x, y, lw=1.3)
     ax.axhline(0, lw=0.6, ls=":", color="k")
     ax.set_aspect("equal")
@@ -183,6 +185,6 @@ fig
 # ## 6. The verification table
 
 # %%
-from symkin.reproduce import PaperResult, format_table
+from symkin.papers.reproduce import PaperResult, format_table
 
 print(format_table([PaperResult(paper.KEY, paper.CITATION, list(checks.values()))]))

@@ -139,11 +139,11 @@ for zs, i in list(zip(sets[:, chosen].T, ratios[chosen]))[:5]:
 # while the input makes 24 turns (one turn of the intermediate link M):
 
 # %%
-from symkin import plotting
+from symkin.viz import figures
 
 motion = numeric.motion({"H1": 1})
-t_end = plotting.turn_time(motion, 1, link="M")
-fig = plotting.trajectory_figure(numeric, {"H1": 1}, [("P2", (-22.5, 0)), ("P2", (0, 0))], t_end, relative_to="pole",
+t_end = motion.turn_time(1, link="M")
+fig = figures.trajectory_figure(numeric, {"H1": 1}, [("P2", (-22.5, 0)), ("P2", (0, 0))], t_end, relative_to="pole",
                                  labels=["rim 2b, outer point", "planet P2 axis"], title="two-stage AA reducer: one turn of M")
 fig
 
@@ -151,28 +151,28 @@ fig
 # Its speed and acceleration against time (eqs. 5 and 6 of the 2009 paper, link by link):
 
 # %%
-plotting.kinematics_figure(motion, [("P2", (-22.5, 0)), ("P2", (0, 0))], t_end, relative_to="pole",
+figures.kinematics_figure(motion, [("P2", (-22.5, 0)), ("P2", (0, 0))], t_end, relative_to="pole",
                            labels=["rim 2b, outer point", "planet P2 axis"])
 
 # %% [markdown]
 # ## 7. Animate it
 #
-# `symkin.animation` samples every link's axis and orientation from the derived laws and
+# `symkin.viz.animation` samples every link's axis and orientation from the derived laws and
 # draws the frames; `animate` writes a GIF (or an MP4 with ffmpeg), complete or not at all.
 # Here the first stage, during one turn of the input carrier, and three of its frames:
 
 # %%
 from matplotlib.figure import Figure
 
-from symkin.animation import Scene, animate, draw_frame
+from symkin.viz.animation import Frames, animate, draw_frame
 
-scene = Scene.build(motion, [("P1", (22.5, 0)), ("P2", (-22.5, 0))], t_end=2 * np.pi, frames=48,
+frames = Frames.build(motion, [("P1", (22.5, 0)), ("P2", (-22.5, 0))], t_end=2 * np.pi, frames=48,
                     labels=["rim 2a, outer point", "rim 2b, outer point"], title="two-stage AA reducer")
-path = animate(scene, "reducer.gif", fps=16, dpi=60)
+path = animate(frames, "reducer.gif", fps=16, dpi=60)
 print(path, path.stat().st_size > 10_000)
 fig = Figure(figsize=(12, 4))
 for k, n in enumerate((0, 16, 32)):
-    draw_frame(fig.add_subplot(1, 3, k + 1), scene, n)
+    draw_frame(fig.add_subplot(1, 3, k + 1), frames, n)
 fig
 
 # %% [markdown]

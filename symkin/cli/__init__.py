@@ -20,7 +20,7 @@ import sys
 import warnings
 from typing import NoReturn, Sequence
 
-from ..errors import SymkinError, SymkinWarning
+from symkin.errors import SymkinError, SymkinWarning
 
 __all__ = ["main", "COMMANDS", "ArgumentParser"]
 
@@ -48,7 +48,7 @@ class ArgumentParser(argparse.ArgumentParser):
 
 
 def build_parser() -> ArgumentParser:
-    from .. import __version__
+    from symkin._version import __version__
 
     parser = ArgumentParser(
         prog="symkin",

@@ -3,20 +3,18 @@
 from __future__ import annotations
 
 import argparse
-import math
 import warnings
 from typing import Any
 
-import numpy as np
-import sympy as sp
+from symkin._util.parsing import as_real, parse_expression, parse_integer
+from symkin.cli.common import add_command, add_teeth_argument, emit, teeth_list
+from symkin.drives import AngleLaw, ConstantSpeed, Drive, EllipticalGears
+from symkin.errors import InputError, SymkinWarning
+from symkin.mechanisms.cardan import CardanSlider
+from symkin.numeric.sampling import as_times
 
-from .. import symbols as S
-from ..budget import simplify_within
-from ..cardan import CardanSlider
-from ..drives import AngleLaw, ConstantSpeed, EllipticalGears
-from ..errors import InputError, SymkinWarning
-from ..parsing import as_real, parse_expression, parse_integer
-from .common import add_command, add_teeth_argument, emit, exact_json, teeth_list
+#: The most times ``--samples`` takes.
+MAX_SAMPLES = 100_000
 
 DESCRIPTION = (
     "Evaluate the Cardan-circle mechanism (carrier H, planet 1 rolling in the fixed ring 3, slider 2 pinned on the "
@@ -56,14 +54,14 @@ def register(sub: Any) -> None:
 
 
 # ---- values
-def _number(text: str, what: str, *, positive: bool = False) -> sp.Expr:
+def _number(text: str, what: str, *, positive: bool = False) -> Any:
     value = as_real(text, what=what)
     if positive and not value.is_positive:
         raise InputError(f"{what} must be positive, got {text!r}")
     return value
 
 
-def _drive(args: Any):
+def _drive(args: Any) -> Drive:
     kind = args.drive or ("elliptical" if args.eccentricity is not None else "law" if args.angle_law is not None else "constant")
     if kind != "elliptical" and (args.eccentricity is not None or args.order is not None):
         raise InputError(f"-e/--eccentricity and --order belong to the elliptical drive, not the {kind} drive")
@@ -74,55 +72,37 @@ def _drive(args: Any):
             raise InputError("the law drive needs --angle-law EXPR, the carrier angle theta_H(t)")
         if args.speed is not None:
             raise InputError("--speed does not apply to the law drive: the law gives the carrier's speed")
-        law = parse_expression(args.angle_law, names=("t",), what="--angle-law")
-        return AngleLaw(law), {"kind": "law", "angle_law_rad": str(law)}
+        return AngleLaw(parse_expression(args.angle_law, names=("t",), what="--angle-law"))
     if args.speed is None:
         raise InputError(f"the {kind} drive needs --speed W, the {'carrier' if kind == 'constant' else 'input gear'} "
                          "speed in rad/s")
     omega = _number(args.speed, "--speed", positive=True)
     if kind == "constant":
-        return ConstantSpeed(omega), {"kind": "constant", "speed_rad_s": exact_json(omega)}
+        return ConstantSpeed(omega)
     if args.eccentricity is None:
         raise InputError("the elliptical drive needs -e/--eccentricity E with 0 <= E < 1")
     e = _number(args.eccentricity, "--eccentricity")
     if not (e >= 0 and e < 1):
         raise InputError(f"--eccentricity must lie in [0, 1), got {args.eccentricity!r}; 0 gives circular gears")
-    m = _number(args.order, "--order", positive=True) if args.order is not None else sp.Integer(1)
-    return EllipticalGears(omega, e, m), {"kind": "elliptical", "speed_rad_s": exact_json(omega), "eccentricity": exact_json(e),
-                                          "order": exact_json(m)}
+    m = _number(args.order, "--order", positive=True) if args.order is not None else 1
+    return EllipticalGears(omega, e, m)
 
 
-def _times(args: Any, period: sp.Expr | None) -> np.ndarray:
+def _times(args: Any, slider: CardanSlider) -> Any:
     if args.times is not None:
         if args.t_end is not None:
             raise InputError("give either --times or --t-end/--samples, not both")
         parts = [p for p in args.times.split(",") if p.strip()]
         if not parts:
             raise InputError("--times is empty; give at least one time, e.g. --times 0,0.5,1")
-        values = [float(_number(p, f"time {i} in --times")) for i, p in enumerate(parts, 1)]
-        ts = np.array(values)
-        if np.any(np.diff(ts) <= 0):
-            raise InputError("--times must be strictly increasing")
-        return ts
-    start = _number(args.t_start, "--t-start")
-    if args.t_end is not None:
-        end = _number(args.t_end, "--t-end")
-    elif period is not None:
-        end = start + period
-    else:
-        raise InputError("this drive has no known period; give --t-end")
+        return as_times([float(_number(p, f"time {i} in --times")) for i, p in enumerate(parts, 1)])
     n = parse_integer(args.samples, what="--samples")
     if n < 1:
         raise InputError(f"--samples must be at least 1, got {n}")
-    if n > 100_000:
-        raise InputError(f"--samples is at most 100000, got {n}")
-    if n > 1 and not end > start:
-        raise InputError(f"--t-end ({end}) must be larger than --t-start ({start}): the time grid must increase")
-    return np.linspace(float(start), float(end), int(n))
-
-
-def _fmt(x: float) -> str:
-    return f"{x + 0.0:.10g}" if math.isfinite(x) else "nan"  # + 0.0: no "-0"
+    if n > MAX_SAMPLES:
+        raise InputError(f"--samples is at most {MAX_SAMPLES}, got {n}")
+    end = _number(args.t_end, "--t-end") if args.t_end is not None else None
+    return slider.times(t_start=_number(args.t_start, "--t-start"), t_end=end, samples=int(n))
 
 
 def run_cardan(args: Any) -> int:
@@ -136,73 +116,12 @@ def run_cardan(args: Any) -> int:
     z1, z3 = teeth_list(args.teeth, (2,))
     if z3 <= z1:
         raise InputError(f"the ring needs more teeth than the planet: got z1 = {z1}, z3 = {z3}")
-    drive, drive_data = _drive(args)
+    drive = _drive(args)
     pin_radius = _number(args.pin_radius, "--pin-radius", positive=True) if args.pin_radius is not None else None
     pin_angle = _number(args.pin_angle, "--pin-angle") if args.pin_angle is not None else None
-    guide = _number(args.guide_angle, "--guide-angle")
-    carrier = _number(args.carrier_angle, "--carrier-angle")
     slider = CardanSlider.build(length, drive=drive, teeth=(z1, z3), pin_radius=pin_radius, pin_angle=pin_angle,
-                                guide_angle=guide, carrier_angle=carrier)
-    period = slider.period()
-    ts = _times(args, period)
-    path = slider.path()
-    data = slider.evaluate(ts)
-    bad = [k for k in ("s", "v", "a", "x", "y") if not np.all(np.isfinite(data[k]))]
-    if bad:
-        raise InputError(f"the drive law gives non-finite {', '.join(bad)} on this time grid; check --angle-law and the times")
-    strokes = slider.stroke_times() if path.on_guide and _turns_forward(slider, ts) else None
-    columns = ["t", "s", "v", "a"] + ([] if path.on_guide else ["x", "y", "deviation"])
-    result = {
-        "mechanism": {
-            "length": exact_json(length),
-            "teeth": [int(z1), int(z3)],
-            "pin_radius": exact_json(slider.pin_radius),
-            "pin_on_pitch_circle": bool(simplify_within(slider.pin_radius - slider.mechanism.gear("1").radius,
-                                                        what="the pin radius") == 0),
-            "pin_angle_rad": exact_json(slider.pin_angle),
-            "guide_angle_rad": exact_json(guide),
-            "carrier_angle_rad": exact_json(carrier),
-        },
-        "drive": drive_data,
-        "path": {"kind": path.kind, "on_guide": path.on_guide, "description": path.description},
-        "period_s": exact_json(period),
-        "stroke_times": None if strokes is None else {"forward": strokes.forward, "return": strokes.back, "ratio": strokes.ratio},
-        "laws": {k: str(law.rhs) for k, law in zip("sva", slider.laws())},
-        "columns": {k: [float(x) for x in data[k]] for k in columns},
-    }
-    lines = [
-        f"Cardan mechanism: l_H = {length}, z1:z3 = {z1}:{z3}, pin radius {slider.pin_radius}, pin angle {slider.pin_angle}, "
-        f"guide angle {guide}, carrier angle {carrier}",
-        "drive: " + ", ".join(_drive_text(k, v) for k, v in drive_data.items() if k != "kind") + f" ({drive_data['kind']})",
-        f"path: {path.kind}: {path.description}",
-    ]
-    if not path.on_guide:
-        lines.append("note: no slider on the guide can follow this pin; s, v, a are the pin's components along the guide")
-    if period is not None:
-        lines.append(f"period: {period} = {_fmt(float(period))} s")
-    if strokes is not None:
-        lines.append(f"stroke times: forward {_fmt(strokes.forward)} s, return {_fmt(strokes.back)} s, ratio K = {_fmt(strokes.ratio)}")
-    lines.append(f"s(t) = {result['laws']['s']}")
-    lines.append("  ".join(f"{c:>16}" for c in columns))
-    for i in range(len(ts)):
-        lines.append("  ".join(f"{_fmt(float(data[c][i])):>16}" for c in columns))
-    emit(args, "\n".join(lines), result)
+                                guide_angle=_number(args.guide_angle, "--guide-angle"),
+                                carrier_angle=_number(args.carrier_angle, "--carrier-angle"))
+    table = slider.table(_times(args, slider))
+    emit(args, table.text(), table.to_json())
     return 0
-
-
-def _drive_text(key: str, value: Any) -> str:
-    """'speed_rad_s', {'exact': '4*pi/5', ...} -> 'speed 4*pi/5 rad/s'."""
-    text = value["exact"] if isinstance(value, dict) else str(value)
-    for suffix, unit in (("_rad_s", " rad/s"), ("_rad", " rad")):
-        if key.endswith(suffix):
-            return f"{key[: -len(suffix)].replace('_', ' ')} {text}{unit}"
-    return f"{key.replace('_', ' ')} {text}"
-
-
-def _turns_forward(slider: CardanSlider, ts: np.ndarray) -> bool:
-    """Stroke times need a carrier turning forward; a user's law may not."""
-    if not isinstance(slider.drive, AngleLaw):
-        return True
-    f = sp.lambdify(S.t, slider.drive.speed(S.t), "numpy")
-    grid = np.linspace(0.0, max(float(ts[-1]), 1e-9), 2001)
-    return bool(np.all(np.asarray(f(grid), dtype=float) > 0))

@@ -5,7 +5,7 @@ Conventions every command follows:
 
 - ``--json`` prints one JSON object on stdout; it always has a ``"warnings"`` list, and
   every exact number in it is ``{"exact": text, "float": number or null}``
-  (:func:`symkin.jsonout.exact_json`).  A failure with ``--json`` prints
+  (:func:`symkin._util.jsonout.exact_json`).  A failure with ``--json`` prints
   ``{"error": message, "exit": status}`` on stdout besides the one-line message on stderr.
 - ``--omega LINK=VALUE`` is a known angular velocity of a named link (rad/s);
   a plain speed has another name (``symkin cardan --speed``).
@@ -25,14 +25,14 @@ import sys
 from pathlib import Path
 from typing import Any, Callable
 
-import sympy as sp
-
-from ..errors import InputError
-from ..jsonout import exact_json
-from ..parsing import parse_expression, parse_integer
+from symkin.errors import InputError
+from symkin._util.jsonout import exact_json, float_text
+from symkin._util.progress import Progress
+from symkin._util.parsing import parse_expression, parse_integer
 
 __all__ = [
     "teeth_list",
+    "scheme_mechanism",
     "link_value",
     "exact_json",
     "emit",
@@ -43,7 +43,7 @@ __all__ = [
     "add_teeth_argument",
     "add_omega_argument",
     "add_out_argument",
-    "fmt_float",
+    "float_text",
     "figure_file",
     "Progress",
     "save_figure",
@@ -91,26 +91,6 @@ def add_out_argument(parser: Any, what: str, *, required: bool = True, default: 
                         help=what if folder else f"write FILE: {what}; the suffix chooses the format")
 
 
-class Progress:
-    """A one-line progress display on a terminal (stderr by default); silent elsewhere or when disabled."""
-
-    def __init__(self, enabled: bool = True, stream: Any = None) -> None:
-        self.stream = stream if stream is not None else sys.stderr
-        self.enabled = enabled and hasattr(self.stream, "isatty") and self.stream.isatty()
-        self.shown = False
-
-    def show(self, text: str) -> None:
-        if self.enabled:
-            self.shown = True
-            self.stream.write(f"\r\x1b[2K{text}")
-            self.stream.flush()
-
-    def close(self) -> None:
-        if self.shown:
-            self.stream.write("\r\x1b[2K")
-            self.stream.flush()
-
-
 def figure_file(text: str, option: str = "--out") -> Path:
     """The figure file an option names: a .png or .pdf in an existing folder.
 
@@ -129,12 +109,29 @@ def figure_file(text: str, option: str = "--out") -> Path:
 
 def save_figure(fig: Any, out: Path) -> list[Path]:
     """Save under a temporary name beside ``out``, then rename (never a half-written file)."""
-    from ..plotting import save
+    from symkin.viz.figures import save
 
     return save(fig, out, formats=(out.suffix.lstrip(".").lower(),))
 
 
-def teeth_list(text: str, counts: tuple[int, ...], what: str = "--teeth") -> list[sp.Integer]:
+def scheme_mechanism(scheme: str, teeth_text: str, module: Any = None) -> tuple[Any, list[Any]]:
+    """The mechanism of a ready-made scheme (``AI1``, ``AI``, ``AA``, ``II``) from ``--teeth``
+    (and ``--module``), and its tooth numbers."""
+    from symkin import schemes
+
+    if scheme not in schemes.SCHEMES:
+        raise InputError(f"unknown scheme {scheme!r}; choose one of {', '.join(schemes.SCHEMES)}")
+    counts = (3, 4) if scheme == "AI1" else (4,)
+    teeth = teeth_list(teeth_text, counts)
+    if scheme == "AI1" and len(teeth) == 4:
+        if teeth[1] != teeth[2]:
+            raise InputError("AI1 has one planet gear: give Z1,Z2,Z4 (or Z1,Z2,Z3,Z4 with Z2 = Z3)")
+        teeth = [teeth[0], teeth[1], teeth[3]]
+    options = {} if module is None else {"module": module}
+    return schemes.scheme(scheme, teeth=tuple(teeth), **options), teeth
+
+
+def teeth_list(text: str, counts: tuple[int, ...], what: str = "--teeth") -> list[Any]:
     """Comma-separated tooth numbers, exactly ``counts`` of them."""
     if not isinstance(text, str) or not text.strip():
         raise InputError(f"{what} is empty; give {' or '.join(map(str, counts))} comma-separated tooth numbers")
@@ -148,7 +145,7 @@ def teeth_list(text: str, counts: tuple[int, ...], what: str = "--teeth") -> lis
     return values
 
 
-def link_value(text: str, what: str = "--omega") -> tuple[str, sp.Expr]:
+def link_value(text: str, what: str = "--omega") -> tuple[str, Any]:
     """``LINK=VALUE``; VALUE is a number or a constant expression such as 2*pi."""
     if not isinstance(text, str) or "=" not in text:
         raise InputError(f"{what} takes LINK=VALUE (for example 1=100), got {text!r}")
@@ -157,15 +154,6 @@ def link_value(text: str, what: str = "--omega") -> tuple[str, sp.Expr]:
     if not link:
         raise InputError(f"{what} {text!r} names no link; write LINK=VALUE, for example 1=100")
     return link, parse_expression(value, what=f"{what} value for link {link}")
-
-
-def fmt_float(value: sp.Expr) -> str:
-    if not value.is_number:
-        return ""
-    try:
-        return f"{float(sp.N(value, 17)):.10g}"
-    except (TypeError, ValueError, OverflowError):
-        return str(sp.N(value, 10))
 
 
 def emit(args: Any, text: str, data: dict[str, Any]) -> None:

@@ -4,10 +4,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from .. import schemes
-from ..errors import InputError
-from ..printing import latex
-from .common import (
+from symkin.printing import latex
+from symkin.cli.common import (
     SCHEME_HELP,
     add_command,
     add_omega_argument,
@@ -15,9 +13,9 @@ from .common import (
     add_teeth_argument,
     emit,
     exact_json,
-    fmt_float,
+    float_text,
     link_value,
-    teeth_list,
+    scheme_mechanism,
 )
 
 __all__ = ["register", "SCHEME_HELP"]
@@ -49,20 +47,8 @@ def register(sub: Any) -> None:
     add_omega_argument(q)
 
 
-def _mechanism(scheme: str, teeth_text: str):
-    if scheme not in schemes.SCHEMES:
-        raise InputError(f"unknown scheme {scheme!r}; choose one of {', '.join(schemes.SCHEMES)}")
-    counts = (3, 4) if scheme == "AI1" else (4,)
-    teeth = teeth_list(teeth_text, counts)
-    if scheme == "AI1" and len(teeth) == 4:
-        if teeth[1] != teeth[2]:
-            raise InputError("AI1 has one planet gear: give Z1,Z2,Z4 (or Z1,Z2,Z3,Z4 with Z2 = Z3)")
-        teeth = [teeth[0], teeth[1], teeth[3]]
-    return schemes.scheme(scheme, teeth=tuple(teeth)), teeth
-
-
 def run_ratio(args: Any) -> int:
-    mech, teeth = _mechanism(args.scheme, args.teeth)
+    mech, teeth = scheme_mechanism(args.scheme, args.teeth)
     law = mech.ratio(args.driver, args.driven, fixed=args.fixed)
     a, b, c = (mech.link(x).name for x in (args.driver, args.driven, args.fixed))
     value = law.rhs
@@ -77,7 +63,7 @@ def run_ratio(args: Any) -> int:
         "coaxial": not mech.coaxiality_defects(),
     }
     text = f"{args.scheme} z = {', '.join(map(str, teeth))}\ni_{a}{b}^({c}) = omega_{a}/omega_{b} = {value}"
-    f = fmt_float(value)
+    f = float_text(value)
     if f and f != str(value):
         text += f" = {f}"
     emit(args, text, data)
@@ -89,13 +75,13 @@ def run_speeds(args: Any) -> int:
     for item in args.omega:
         link, value = link_value(item)
         known[link] = value
-    mech, teeth = _mechanism(args.scheme, args.teeth)
+    mech, teeth = scheme_mechanism(args.scheme, args.teeth)
     speeds = mech.speeds(known)
     given = {mech.link(k).name for k in known}
     rows, data_links = [], {}
     for name, value in speeds.items():
         tag = "given" if name in given else "derived"
-        f = fmt_float(value)
+        f = float_text(value)
         rows.append(f"omega_{name:<3} = {value}" + (f" = {f}" if f and f != str(value) else "") + f"   ({tag})")
         data_links[name] = {**exact_json(value), "given": name in given}
     data = {

@@ -5,10 +5,10 @@ from __future__ import annotations
 
 from typing import Any
 
-from ..errors import InputError
-from ..parsing import parse_integer, parse_number
-from ..jsonout import exact_json
-from .common import Progress, add_command, add_quiet_flag, emit, figure_file, save_figure
+from symkin.errors import InputError
+from symkin._util.parsing import parse_integer, parse_number
+from symkin._util.jsonout import exact_json
+from symkin.cli.common import Progress, add_command, add_quiet_flag, emit, figure_file, save_figure
 
 #: More stages than this take long to derive symbolically (about 5 s at 8 stages).
 MAX_STAGES = 8
@@ -62,7 +62,7 @@ def _stage_arguments(p: Any, required: bool) -> None:
 
 
 def _stage_set(args: Any):
-    from ..stages import enumerate_stages
+    from symkin.mechanisms.multistage.stages import enumerate_stages
 
     ring = parse_integer(args.ring, what="--ring")
     k = parse_integer(args.satellites, what="--satellites")
@@ -104,7 +104,7 @@ def run_stages(args: Any) -> int:
 
 
 def _model(args: Any):
-    from ..lostmotion import StageErrorModel
+    from symkin.mechanisms.multistage.lostmotion import StageErrorModel
 
     if args.model and args.backlash_line:
         raise InputError("give either --model or --backlash-line, not both")
@@ -124,7 +124,7 @@ def _model(args: Any):
 
 
 def run_split(args: Any) -> int:
-    from ..ratiosplit import SplitProblem, best_designs, solve_continuous
+    from symkin.mechanisms.multistage.split import SplitProblem, best_designs, solve_continuous
 
     n = parse_integer(args.stages, what="--stages")
     if not 1 <= n <= MAX_STAGES:
@@ -156,7 +156,7 @@ def run_split(args: Any) -> int:
             progress.close()
     plots: list[str] = []
     if plot is not None:
-        from ..splitplot import split_figure
+        from symkin.viz.split import split_figure
 
         plots = [str(p) for p in save_figure(split_figure(best, discrete), plot)]
     data = {

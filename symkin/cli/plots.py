@@ -11,12 +11,9 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-import sympy as sp
-
-from ..errors import InputError
-from ..model import LinkKind
-from ..parsing import parse_expression, parse_integer, parse_number
-from .common import (
+from symkin.errors import InputError
+from symkin._util.parsing import parse_expression, parse_integer, parse_number
+from symkin.cli.common import (
     add_command,
     add_omega_argument,
     add_out_argument,
@@ -26,8 +23,8 @@ from .common import (
     figure_file,
     link_value,
     save_figure,
+    scheme_mechanism,
 )
-from .gears import _mechanism
 
 __all__ = ["register"]
 
@@ -83,7 +80,7 @@ def register(sub: Any) -> None:
 
 
 # --------------------------------------------------------------------------- parsing
-def _point(text: str, mech: Any) -> tuple[str, tuple[sp.Expr, sp.Expr]]:
+def _point(text: str, mech: Any) -> tuple[str, tuple[Any, Any]]:
     if not isinstance(text, str) or ":" not in text:
         raise InputError(f"--point takes LINK:a,b (for example 23:-15,0), got {text!r}")
     link, _, coords = text.partition(":")
@@ -99,16 +96,6 @@ def _point(text: str, mech: Any) -> tuple[str, tuple[sp.Expr, sp.Expr]]:
     return link, values  # type: ignore[return-value]
 
 
-def _default_points(mech: Any) -> list[tuple[str, tuple[sp.Expr, sp.Expr]]]:
-    planets = [L for L in mech.moving_links if L.kind is LinkKind.PLANET and L.gears]
-    if not planets:
-        raise InputError("this scheme has no planet; name the particles with --point LINK:a,b")
-    planet = planets[0]
-    r = planet.gears[0].radius
-    # start on the far side from the main axis (where the planet touches a ring, or away from the sun)
-    return [(planet.name, (r, sp.Integer(0))), (planet.name, (r / 2, sp.Integer(0)))]
-
-
 def _setup(args: Any) -> tuple[Any, Any, list, float, list[str]]:
     known: dict[str, Any] = {}
     for item in args.omega:
@@ -119,27 +106,20 @@ def _setup(args: Any) -> tuple[Any, Any, list, float, list[str]]:
     module = parse_number(args.module, what="--module")
     if module <= 0:
         raise InputError(f"--module must be positive, got {args.module}")
-    mech, teeth = _scheme(args.scheme, args.teeth, module)
+    mech, teeth = scheme_mechanism(args.scheme, args.teeth, module)
     motion = mech.motion(known)
-    points = [_point(p, mech) for p in args.point] or _default_points(mech)
-    from ..plotting import turn_time
+    from symkin.viz.figures import default_particles
 
+    points = [_point(p, mech) for p in args.point] or default_particles(mech)
     if args.t_end is not None:
         t_end = parse_number(args.t_end, what="--t-end")
         if t_end <= 0:
             raise InputError(f"--t-end must be positive, got {args.t_end}")
         t_end = float(t_end)
     else:
-        t_end = turn_time(motion, _turns(args))
+        t_end = motion.turn_time(_turns(args))
     labels = [f"link {mech.link(l).name} at ({_fmt(a)}, {_fmt(b)}) from its axis" for l, (a, b) in points]
     return mech, motion, points, t_end, labels
-
-
-def _scheme(name: str, teeth_text: str, module: sp.Rational) -> tuple[Any, list]:
-    from .. import schemes
-
-    mech, teeth = _mechanism(name, teeth_text)
-    return schemes.scheme(name, teeth=tuple(teeth), module=module), teeth
 
 
 def _whole(text: str, what: str, low: int, high: int) -> int:
@@ -158,7 +138,7 @@ def _turns(args: Any) -> float:
     return float(turns)
 
 
-def _fmt(v: sp.Expr) -> str:
+def _fmt(v: Any) -> str:
     return f"{float(v):g}"
 
 
@@ -178,7 +158,7 @@ def _report(args: Any, kind: str, out: Path, mech: Any, points: list, t_end: flo
 def run_trajectory(args: Any) -> int:
     from matplotlib.figure import Figure
 
-    from ..plotting import draw_pitch_circles, draw_trajectories
+    from symkin.viz.figures import draw_pitch_circles, draw_trajectories
 
     out = figure_file(args.out)
     mech, motion, points, t_end, labels = _setup(args)
@@ -195,7 +175,7 @@ def run_trajectory(args: Any) -> int:
 
 
 def run_curves(args: Any) -> int:
-    from ..plotting import kinematics_figure
+    from symkin.viz.figures import kinematics_figure
 
     out = figure_file(args.out)
     mech, motion, points, t_end, labels = _setup(args)
@@ -207,7 +187,7 @@ def run_curves(args: Any) -> int:
 
 
 def run_animate(args: Any) -> int:
-    from ..animation import MAX_DPI, MAX_FPS, WRITERS, Scene, animate
+    from symkin.viz.animation import MAX_DPI, MAX_FPS, WRITERS, Frames, animate
 
     out = Path(args.out)
     if out.suffix.lower() not in WRITERS:
@@ -219,8 +199,8 @@ def run_animate(args: Any) -> int:
     if frames is None:
         turns = _turns(args) if args.t_end is None else 1.0
         frames = max(2, min(2000, int(round(4 * fps * turns))))
-    scene = Scene.build(motion, points, t_end=t_end, frames=frames, labels=labels,
-                        title=f"{args.scheme}, z = {args.teeth}")
-    animate(scene, out, fps=fps, dpi=dpi)
+    sampled = Frames.build(motion, points, t_end=t_end, frames=frames, labels=labels,
+                           title=f"{args.scheme}, z = {args.teeth}")
+    animate(sampled, out, fps=fps, dpi=dpi)
     _report(args, "animation", out, mech, points, t_end, {"frames": frames, "fps": fps})
     return 0

@@ -33,13 +33,13 @@ from typing import Any, Mapping, Sequence
 
 import sympy as sp
 
-from ..errors import InputError
-from ..laws import Law
-from .backends import BACKENDS, Plan, numba_available, warn_no_numba
-from .function import NonFiniteInputWarning, NumericFunction
-from .stable import RULE_NOTES, stable_form
+from symkin.errors import InputError
+from symkin.laws import Law
+from symkin.numeric.backends import BACKENDS, Plan, numba_available, warn_no_numba
+from symkin.numeric.function import NonFiniteInputWarning, NumericFunction
+from symkin.numeric.stable import RULE_NOTES, stable_form
 
-__all__ = ["compile", "NumericFunction", "NonFiniteInputWarning", "BACKENDS", "Scene", "dask_map"]
+__all__ = ["compile", "NumericFunction", "NonFiniteInputWarning", "BACKENDS", "dask_map"]
 
 #: Points per chunk of the NumPy backend (temporaries of 128 KiB stay in cache and are reused).
 DEFAULT_CHUNK = 1 << 14
@@ -134,8 +134,10 @@ def compile(
     threads : int, optional
         Threads for large calls: numba default all (Numba's setting); numpy default 1
         (chunks are shared among this many threads; NumPy releases the GIL).
-    on_pole : {"warn", "raise"}
-        At a pole, float backends return inf/nan with a PoleWarning, or raise PoleError.
+    on_pole : {"warn", "raise", "return"}
+        At a pole, float backends return inf/nan with a PoleWarning, raise PoleError, or
+        (``"return"``) return inf/nan without a word, for a caller that tests the
+        outputs itself (a sieve discarding such points).
 
     Returns
     -------
@@ -206,10 +208,11 @@ def _hashable(v: Any) -> Any:
 
 def __getattr__(name: str) -> Any:  # dask_map loads its module on first use
     if name == "dask_map":
-        from .parallel import dask_map
+        from symkin.numeric.parallel import dask_map
 
         return dask_map
-    raise AttributeError(name)
+    if name == "Scene":  # moved out of numeric (numeric knows no mechanism): symkin.Study
+        from symkin._deprecated import renamed
 
-
-from .scene import Scene  # noqa: E402  (imports compile from this module)
+        return renamed("symkin.numeric.Scene", ("symkin.study:Study", "symkin.Study"))
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

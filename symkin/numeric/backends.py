@@ -30,10 +30,10 @@ from typing import Any, Callable, Sequence
 import numpy as np
 import sympy as sp
 
-from ..errors import InputError, PoleError, PrecisionWarning, UnsupportedError
-from . import runtime
-from .codegen import ExactPrinter, FloatPrinter, kernel_source
-from .stable import ExactRatio, plain_form
+from symkin.errors import InputError, PoleError, PrecisionWarning, UnsupportedError
+from symkin.numeric import runtime
+from symkin.numeric.codegen import ExactPrinter, FloatPrinter, kernel_source
+from symkin.numeric.stable import ExactRatio, plain_form
 
 __all__ = ["Plan", "BACKENDS", "NumpyBackend", "NumbaBackend", "MpmathBackend", "ExactBackend", "numba_available"]
 
@@ -539,7 +539,7 @@ def _to_mpf(v: Any, name: str) -> Any:
     if isinstance(v, sp.Rational):
         return mpmath.mpf(int(v.p)) / int(v.q)
     if isinstance(v, str):
-        from ..parsing import parse_number
+        from symkin._util.parsing import parse_number
 
         r = parse_number(v, what=name)
         return mpmath.mpf(int(r.p)) / int(r.q)
@@ -584,6 +584,12 @@ class MpmathBackend:
         with mpmath.workdps(self.plan.digits or 50):
             return _pointwise(self.plan, self.func, values, _to_mpf, lambda v: v)
 
+    def evaluate_scalar(self, values: Sequence[Any]) -> list[Any]:
+        import mpmath
+
+        with mpmath.workdps(self.plan.digits or 50):
+            return _point(self.plan, self.func, values, _to_mpf, lambda v: v)
+
 
 # --------------------------------------------------------------------------- exact
 def _to_fraction(v: Any, name: str) -> Any:
@@ -596,7 +602,7 @@ def _to_fraction(v: Any, name: str) -> Any:
     if isinstance(v, sp.Rational):
         return Fraction(int(v.p), int(v.q))
     if isinstance(v, str):
-        from ..parsing import parse_number
+        from symkin._util.parsing import parse_number
 
         r = parse_number(v, what=name)
         return Fraction(int(r.p), int(r.q))
@@ -632,6 +638,9 @@ class ExactBackend:
     ) -> tuple[tuple[int, ...], list[np.ndarray], bool]:
         return _pointwise(self.plan, self.func, values, _to_fraction, Fraction)
 
+    def evaluate_scalar(self, values: Sequence[Any]) -> list[Any]:
+        return _point(self.plan, self.func, values, _to_fraction, Fraction)
+
 
 def _pointwise(
     plan: Plan, func: Any, values: Sequence[Any], convert: Any, result: Any
@@ -649,6 +658,16 @@ def _pointwise(
         for r, v in zip(results, out):
             r[idx] = result(v)
     return shape, [r.reshape(-1) for r in results], False
+
+
+def _point(plan: Plan, func: Any, values: Sequence[Any], convert: Any, result: Any) -> list[Any]:
+    """One point: scalars in, one value per law out (the arbitrary-precision backends)."""
+    point = [convert(v, s.name) for v, s in zip(values, plan.args)]
+    try:
+        out = func(*point)
+    except ZeroDivisionError:
+        raise PoleError(_pole_message(plan, [s.name for s in plan.args], point)) from None
+    return [result(v) for v in out]
 
 
 def _pole_message(plan: Plan, names: Sequence[str], point: Sequence[Any]) -> str:

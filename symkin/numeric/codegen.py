@@ -20,7 +20,7 @@ import sympy as sp
 from sympy.printing.numpy import NumPyPrinter
 from sympy.printing.pycode import PythonCodePrinter
 
-from .stable import ExactRatio, Group, ProductDifference, ReducedPhase
+from symkin.numeric.stable import ExactRatio, Group, ProductDifference, ReducedPhase
 
 __all__ = ["FloatPrinter", "ExactPrinter", "kernel_source", "abs_bound"]
 

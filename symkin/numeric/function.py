@@ -16,13 +16,19 @@ from typing import Any, Sequence
 
 import numpy as np
 
-from ..errors import InputError, NonFiniteInputWarning, PoleError, PoleWarning
+from symkin.errors import InputError, NonFiniteInputWarning, PoleError, PoleWarning
 
 __all__ = ["NumericFunction", "NonFiniteInputWarning"]  # the warning lives in symkin.errors
 
 
 
 _REBUILT: dict[Any, "NumericFunction"] = {}
+
+#: What a float function does where an output is not finite: warn (PoleWarning or
+#: NonFiniteInputWarning), raise PoleError, or return the inf/nan values for a caller that
+#: tests them itself (a sieve that discards such points).
+ON_POLE = ("warn", "raise", "return")
+_ARRAYS = (list, tuple, np.ndarray)
 
 
 class NumericFunction:
@@ -73,9 +79,13 @@ class NumericFunction:
         self.backend = backend
         self.precision = plan.precision if backend not in ("mpmath",) else f"{plan.digits} digits"
         self.notes = tuple(notes)
-        if on_pole not in ("warn", "raise"):
-            raise InputError(f"on_pole must be 'warn' or 'raise', got {on_pole!r}")
+        if on_pole not in ON_POLE:
+            raise InputError(f"on_pole must be one of {', '.join(map(repr, ON_POLE))}, got {on_pole!r}")
         self.on_pole = on_pole
+        # the exact and mpmath backends evaluate point by point: a call with scalars goes
+        # straight to the generated function, without arrays
+        scalar = getattr(evaluator, "evaluate_scalar", None)
+        self._scalar = None if scalar is None else (lambda values: _single(scalar(values)))
         lines = [
             f"Compiled {', '.join(self.outputs)} ({self.backend}, {self.precision}).",
             "",
@@ -117,8 +127,10 @@ class NumericFunction:
             raise InputError(f"this function takes {len(self.args)} arguments ({', '.join(self.args)}), got {len(values)}")
         if isinstance(out, np.ndarray):
             out = [out]
+        if out is None and self._scalar is not None and not any(isinstance(v, _ARRAYS) for v in values):
+            return self._scalar(values)
         shape, results, flagged = self._evaluator.evaluate(values, out)
-        if flagged:
+        if flagged and self.on_pole != "return":
             self._check_poles(values, shape, results)
         if out is not None:
             shaped = [o for o in out]
@@ -157,6 +169,10 @@ class NumericFunction:
             if self.on_pole == "raise":
                 raise PoleError(msg + "; choose inputs away from it")
             warnings.warn(msg + "; those points hold inf or nan", PoleWarning, stacklevel=3)
+
+
+def _single(results: Sequence[Any]) -> Any:
+    return results[0] if len(results) == 1 else tuple(results)
 
 
 def _reported(v: Any, shape: tuple[int, ...]) -> np.ndarray:

@@ -18,7 +18,7 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import InputError, UnsupportedError
+from symkin.errors import InputError, UnsupportedError
 
 __all__ = ["dask_map"]
 

@@ -1,0 +1,202 @@
+"""Bounded symbolic work: simplification with a size and a time budget.
+
+SymPy's ``simplify`` can take minutes, or practically forever, on a large expression,
+and the size of many expressions symkin simplifies depends on what a user typed (an
+angle such as ``(sin(1) + cos(1) + tan(1) + sqrt(3))**30``, a custom mechanism).
+:func:`simplify_within` refuses expressions above an operation count, stops the
+simplification when its time is up, and then returns the expression as it was, with a
+:class:`~symkin.errors.SimplificationBudgetWarning`: the law stays exact, only less tidy.
+
+The time limit uses the interval timer (SIGALRM) of the main thread, which interrupts
+SymPy's pure-Python work wherever it is, at no cost per call; an outer timer (a test
+harness's, say) is kept and re-armed.  Off the main thread (a Dask worker, a Jupyter
+background thread, a web server's request thread), or where the platform has no interval
+timer, signals cannot be used: there a watchdog thread raises the same exception in the
+working thread when the time is up (CPython's ``PyThreadState_SetAsyncExc``), again at no
+cost per call.  Where that is not available (another Python implementation) a call
+tracer (:func:`sys.settrace`, for the calling thread only) looks at the clock every few
+hundred Python calls; it about doubles the time of the simplification
+(``benchmarks/bench_budget.py``) and suspends a debugger's tracer in that thread while
+it runs.  Work inside one C call (a large integer product, say) is not interrupted by any
+route.
+
+    >>> import sympy as sp
+    >>> x = sp.Symbol("x")
+    >>> simplify_within(sp.sin(x)**2 + sp.cos(x)**2)
+    1
+    >>> import warnings
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     big = sum(x**k for k in range(300))
+    ...     simplify_within(big, max_ops=100) is big
+    True
+    >>> caught[0].category.__name__
+    'SimplificationBudgetWarning'
+"""
+
+from __future__ import annotations
+
+import signal
+import sys
+import threading
+import time
+import warnings
+from contextlib import contextmanager
+from typing import Any, Callable, Iterator
+
+import sympy as sp
+
+from symkin.errors import SimplificationBudgetWarning
+
+__all__ = ["simplify_within", "SECONDS", "MAX_OPS"]
+
+#: Default time budget of one simplification, seconds.
+SECONDS = 2.0
+#: Default size budget: expressions with more operations than this are not simplified.
+MAX_OPS = 4000
+
+
+class _OutOfTime(BaseException):
+    """Raised by the timer inside SymPy (not an Exception, so no ``except Exception`` there eats it)."""
+
+
+def simplify_within(
+    expr: Any,
+    seconds: float | None = SECONDS,
+    max_ops: int | None = MAX_OPS,
+    *,
+    simplifier: Callable[[Any], Any] = sp.simplify,
+    what: str = "an expression",
+) -> Any:
+    """``simplifier(expr)`` if it fits the budget, else ``expr`` unchanged with a warning.
+
+    Parameters
+    ----------
+    expr : sympy expression (or anything ``simplifier`` takes)
+    seconds : float or None
+        Time budget; None for no time limit.
+    max_ops : int or None
+        Largest :func:`sympy.count_ops` of an expression that is simplified at all.
+    simplifier : callable
+        ``sympy.simplify`` by default; ``sympy.trigsimp``, ``sympy.nsimplify`` or any
+        one-argument function may be given.
+    what : str
+        What the expression is, for the warning.
+
+    Returns
+    -------
+    The simplified expression, or ``expr`` itself when the budget ran out.
+
+    Examples
+    --------
+    >>> x = sp.Symbol("x")
+    >>> simplify_within((x**2 - 1) / (x - 1), seconds=1)
+    x + 1
+    """
+    if max_ops is not None:
+        ops = sp.count_ops(expr)
+        if ops > max_ops:
+            warnings.warn(
+                f"{what} has {ops} operations, more than the {max_ops} symkin simplifies; it is kept as derived "
+                "(exact, not simplified)",
+                SimplificationBudgetWarning,
+                stacklevel=2,
+            )
+            return expr
+    if seconds is None:
+        return simplifier(expr)
+    try:
+        with _time_limit(seconds):
+            return simplifier(expr)
+    except _OutOfTime:
+        warnings.warn(
+            f"simplifying {what} took longer than {seconds:g} s; it is kept as derived (exact, not simplified)",
+            SimplificationBudgetWarning,
+            stacklevel=2,
+        )
+        return expr
+
+
+#: The tracer off the main thread looks at the clock once in this many Python calls.
+_CALLS_PER_CHECK = 256
+
+
+@contextmanager
+def _time_limit(seconds: float) -> Iterator[None]:
+    if threading.current_thread() is not threading.main_thread() or not hasattr(signal, "setitimer"):
+        limit = _watchdog_time_limit if _set_async_exc() is not None else _traced_time_limit
+        with limit(seconds):
+            yield
+        return
+
+    def expire(signum: int, frame: Any) -> None:
+        raise _OutOfTime
+
+    outer_left, outer_interval = signal.getitimer(signal.ITIMER_REAL)
+    start = time.monotonic()
+    previous = signal.signal(signal.SIGALRM, expire)
+    signal.setitimer(signal.ITIMER_REAL, min(seconds, outer_left) if outer_left > 0 else seconds)
+    try:
+        yield
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, previous)
+        if outer_left > 0:  # re-arm the outer timer with what is left of it (at least a moment)
+            left = outer_left - (time.monotonic() - start)
+            signal.setitimer(signal.ITIMER_REAL, max(left, 1e-6), outer_interval)
+
+
+def _set_async_exc() -> Any:
+    """CPython's PyThreadState_SetAsyncExc, or None where there is none."""
+    try:
+        import ctypes
+
+        return ctypes.pythonapi.PyThreadState_SetAsyncExc
+    except (ImportError, AttributeError):  # pragma: no cover - not CPython
+        return None
+
+
+@contextmanager
+def _watchdog_time_limit(seconds: float) -> Iterator[None]:
+    """A time limit without signals: a timer thread raises _OutOfTime in this thread when the time is up."""
+    import ctypes
+
+    target = threading.get_ident()
+    lock = threading.Lock()
+    done = False
+
+    def expire() -> None:
+        with lock:
+            if not done:
+                _set_async_exc()(ctypes.c_ulong(target), ctypes.py_object(_OutOfTime))
+
+    timer = threading.Timer(seconds, expire)
+    timer.daemon = True
+    timer.start()
+    try:
+        yield
+    finally:
+        with lock:
+            done = True
+        timer.cancel()
+
+
+@contextmanager
+def _traced_time_limit(seconds: float) -> Iterator[None]:
+    """A time limit without signals: a call tracer of this thread raises when the time is up."""
+    deadline = time.monotonic() + seconds
+    calls = 0
+
+    def tracer(frame: Any, event: str, arg: Any) -> None:
+        nonlocal calls
+        calls += 1
+        if calls % _CALLS_PER_CHECK == 0 and time.monotonic() > deadline:
+            raise _OutOfTime
+        return None  # no line tracing: only calls are counted
+
+    previous = sys.gettrace()
+    sys.settrace(tracer)
+    try:
+        yield
+    finally:
+        sys.settrace(previous)

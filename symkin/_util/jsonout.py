@@ -1,0 +1,79 @@
+"""The JSON shape of an exact number, shared by every ``to_json`` and the CLI.
+
+An exact value (a tooth ratio, a total, a period of ``2*pi/omega``) is written as
+``{"exact": text, "float": number or null}``: the text is exact and can be read back
+with :func:`symkin._util.parsing.parse_expression`; the float is for plotting and sorting, and
+``null`` where the value has none (a symbol, an infinity), so the JSON stays strict.
+
+    >>> from fractions import Fraction
+    >>> exact_json(Fraction(22, 7))
+    {'exact': '22/7', 'float': 3.142857142857143}
+    >>> import sympy as sp
+    >>> exact_json(2 * sp.pi / 5)
+    {'exact': '2*pi/5', 'float': 1.2566370614359172}
+    >>> exact_json(None) is None
+    True
+"""
+
+from __future__ import annotations
+
+import math
+from fractions import Fraction
+from typing import Any, Iterable
+
+import sympy as sp
+
+__all__ = ["exact_json", "exact_json_list", "float_text"]
+
+
+def exact_json(value: Any) -> dict[str, Any] | None:
+    """``{"exact": str(value), "float": float or None}``; None stays None.
+
+    Integers, :class:`fractions.Fraction`, SymPy numbers and constant expressions are
+    accepted; a float is written as it is (its own exact value is its decimal).
+    """
+    if value is None:
+        return None
+    number: float | None = None
+    if isinstance(value, Fraction):
+        text = str(value)
+        try:
+            number = value.numerator / value.denominator
+        except OverflowError:
+            number = None
+    elif isinstance(value, (int, float)) and not isinstance(value, bool):
+        text, number = repr(value), float(value)
+    else:
+        expr = sp.sympify(value, strict=True)
+        text = str(expr)
+        if getattr(expr, "is_number", False):
+            try:
+                number = float(sp.N(expr, 17))
+            except (TypeError, ValueError, OverflowError):
+                number = None
+    return {"exact": text, "float": number if number is not None and math.isfinite(number) else None}
+
+
+def exact_json_list(values: Iterable[Any] | None) -> list[dict[str, Any] | None] | None:
+    """:func:`exact_json` of each value; None stays None.
+
+    >>> exact_json_list([1, Fraction(1, 2)])
+    [{'exact': '1', 'float': 1.0}, {'exact': '1/2', 'float': 0.5}]
+    """
+    return None if values is None else [exact_json(v) for v in values]
+
+
+def float_text(value: Any) -> str:
+    """The float beside an exact number, as text for a reader (10 significant digits);
+    empty for a value that is not a number.
+
+    >>> float_text(sp.Rational(101, 2)), float_text(sp.Symbol("x"))
+    ('50.5', '')
+    """
+    expr = sp.sympify(value, strict=True)
+    if not expr.is_number:
+        return ""
+    try:
+        return f"{float(sp.N(expr, 17)):.10g}"
+    except (TypeError, ValueError, OverflowError):
+        return str(sp.N(expr, 10))

@@ -1,0 +1,245 @@
+"""What a designer asks of the synthesis, and what it answers: request, design and result types.
+
+    >>> SynthesisRequest(scheme="AI", ratio="25", tolerance="0.02").ratio_window
+    (Fraction(49, 2), Fraction(51, 2))
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from fractions import Fraction
+from typing import Any
+
+from symkin.errors import InputError
+from symkin.mechanisms.helical import HelicalTrain, hand_name
+from symkin._util.jsonout import exact_json, exact_json_list
+from symkin._util.parsing import as_integer, as_rational
+from symkin.mechanisms.helical.synthesis.conditions import _scheme
+
+__all__ = ["SynthesisRequest", "HelicalDesign", "SynthesisResult"]
+
+
+def _fraction(value: Any, what: str) -> Fraction:
+    """An exact number from a user value (text is parsed safely, never evaluated)."""
+    r = as_rational(value, what=what)
+    return Fraction(int(r.p), int(r.q))
+
+
+def _whole(value: Any, what: str) -> int:
+    return int(as_integer(value, what=what))
+
+
+@dataclass(frozen=True)
+class SynthesisRequest:
+    """What a designer asks for; every field is checked on construction.
+
+    Parameters
+    ----------
+    scheme : {"AI", "AA", "II"}
+    ratio : number
+        Target i_1H^(4) = omega_1 / omega_H with gear 4 fixed (exact: "1/50" is 1/50).
+    tolerance : number
+        Admissible relative ratio error |i - target| / |target| (0.02 = 2 %).
+    satellites : int
+        Number k of equally spaced planets.
+    normal_modules : (number, number)
+        m_n12 and m_n34 (mm).
+    beta_min_deg, beta_max_deg : number
+        Limits on both helix angles, inside (0, 45) degrees.
+    teeth_min, teeth_max : int
+        Limits on every tooth number.
+    alpha_n_deg : number
+        Normal pressure angle (degrees).
+    addendum : number
+        Addendum coefficient h_a* (tip circles in the neighbour condition).
+    min_ring_difference : int
+        Least tooth difference between an internal gear and its planet rim (interference).
+    top : int or None
+        How many designs to list (all when None).
+    """
+
+    scheme: str
+    ratio: Any
+    tolerance: Any = Fraction(1, 100)
+    satellites: Any = 3
+    normal_modules: tuple[Any, Any] = (2, 2)
+    beta_min_deg: Any = 8
+    beta_max_deg: Any = 30
+    teeth_min: Any = 17
+    teeth_max: Any = 150
+    alpha_n_deg: Any = 20
+    addendum: Any = 1
+    min_ring_difference: Any = 8
+    top: Any = 20
+
+    MAX_SPAN = 600  # tooth numbers per gear searched; the work grows as the cube
+
+    def __post_init__(self) -> None:
+        def put(name: str, value: Any) -> None:
+            object.__setattr__(self, name, value)
+
+        _scheme(self.scheme)
+        put("ratio", _fraction(self.ratio, "the target ratio"))
+        if self.ratio == 0:
+            raise InputError("the target ratio i_1H^(4) must not be 0 (the carrier would not turn); give a non-zero ratio")
+        put("tolerance", _fraction(self.tolerance, "the ratio tolerance"))
+        if self.tolerance < 0:
+            raise InputError(f"the ratio tolerance must be >= 0 (a relative error), got {self.tolerance}")
+        k = _whole(self.satellites, "the number of satellites")
+        if k < 1:
+            raise InputError(f"the number of satellites must be at least 1, got {k}")
+        put("satellites", k)
+        try:
+            m12, m34 = self.normal_modules
+        except (TypeError, ValueError):
+            raise InputError("give two normal modules, m_n12 and m_n34") from None
+        mods = (_fraction(m12, "the normal module m_n12"), _fraction(m34, "the normal module m_n34"))
+        for name, m in zip(("m_n12", "m_n34"), mods):
+            if m <= 0:
+                raise InputError(f"the normal module {name} must be positive, got {m}")
+        put("normal_modules", mods)
+        lo, hi = _fraction(self.beta_min_deg, "beta-min"), _fraction(self.beta_max_deg, "beta-max")
+        for name, b in (("beta-min", lo), ("beta-max", hi)):
+            if not 0 < b < 45:
+                raise InputError(f"{name} must lie strictly between 0 and 45 degrees, got {float(b):g}")
+        if lo >= hi:
+            raise InputError(f"beta-min ({float(lo):g} deg) must be less than beta-max ({float(hi):g} deg): these limits exclude every design")
+        put("beta_min_deg", lo)
+        put("beta_max_deg", hi)
+        zmin, zmax = _whole(self.teeth_min, "zmin"), _whole(self.teeth_max, "zmax")
+        if zmin < 1:
+            raise InputError(f"zmin must be at least 1, got {zmin}")
+        if zmin > zmax:
+            raise InputError(f"zmin ({zmin}) is larger than zmax ({zmax}): these limits exclude every design")
+        if zmax - zmin + 1 > self.MAX_SPAN:
+            raise InputError(
+                f"zmin..zmax spans {zmax - zmin + 1} tooth numbers; at most {self.MAX_SPAN} are searched, narrow the range"
+            )
+        put("teeth_min", zmin)
+        put("teeth_max", zmax)
+        a_n = _fraction(self.alpha_n_deg, "the normal pressure angle")
+        if not 0 < a_n < 45:
+            raise InputError(f"the normal pressure angle must lie between 0 and 45 degrees, got {float(a_n):g}")
+        put("alpha_n_deg", a_n)
+        ha = _fraction(self.addendum, "the addendum coefficient")
+        if ha < 0:
+            raise InputError(f"the addendum coefficient must be >= 0, got {ha}")
+        put("addendum", ha)
+        dmin = _whole(self.min_ring_difference, "the least ring-planet tooth difference")
+        if dmin < 1:
+            raise InputError(f"the least ring-planet tooth difference must be at least 1, got {dmin}")
+        put("min_ring_difference", dmin)
+        if self.top is not None:
+            top = _whole(self.top, "top")
+            if top < 1:
+                raise InputError(f"top must be at least 1, got {top}")
+            put("top", top)
+
+    @property
+    def ratio_window(self) -> tuple[Fraction, Fraction]:
+        """The admissible ratios, exact: target -+ tolerance |target|."""
+        half = self.tolerance * abs(self.ratio)
+        return self.ratio - half, self.ratio + half
+
+    def to_json(self) -> dict[str, Any]:
+        return {
+            "scheme": self.scheme,
+            "ratio": exact_json(self.ratio),
+            "tolerance": exact_json(self.tolerance),
+            "satellites": self.satellites,
+            "normal_modules_mm": exact_json_list(self.normal_modules),
+            "beta_min_deg": exact_json(self.beta_min_deg),
+            "beta_max_deg": exact_json(self.beta_max_deg),
+            "teeth": [self.teeth_min, self.teeth_max],
+            "alpha_n_deg": exact_json(self.alpha_n_deg),
+            "addendum": exact_json(self.addendum),
+            "min_ring_difference": self.min_ring_difference,
+            "top": self.top,
+        }
+
+
+@dataclass(frozen=True)
+class HelicalDesign:
+    """One synthesised train: integers, helix angles, and how well it meets the target.
+
+    Attributes
+    ----------
+    train : HelicalTrain
+        Teeth, modules, helix angles (radians), balancing hands, satellites.
+    ratio : Fraction
+        i_1H^(4), exact.
+    relative_error : Fraction
+        |ratio - target| / |target|, exact.
+    assembly : (int, int)
+        The integers (P, Q) of the assembly condition.
+    helix_free : bool
+        True when the rims have equal leads and both meshes equal centre distances at any
+        helix angle (then the angles are set to beta-min).
+    """
+
+    train: HelicalTrain
+    ratio: Fraction
+    relative_error: Fraction
+    assembly: tuple[int, int]
+    helix_free: bool = False
+
+    @property
+    def teeth(self) -> tuple[int, int, int, int]:
+        return self.train.teeth
+
+    @property
+    def betas_deg(self) -> tuple[float, float]:
+        return math.degrees(self.train.betas[0]), math.degrees(self.train.betas[1])
+
+    @property
+    def centre_distance(self) -> float:
+        return self.train.centre_distances[0]
+
+    @property
+    def envelope_diameter(self) -> float:
+        return self.train.envelope_diameter
+
+    def to_json(self) -> dict[str, Any]:
+        t = self.train
+        return {
+            "teeth": list(t.teeth),
+            "ratio": exact_json(self.ratio),
+            "relative_error": exact_json(self.relative_error),
+            "beta12_deg": self.betas_deg[0],
+            "beta34_deg": self.betas_deg[1],
+            "helix_free": self.helix_free,
+            "hands": [hand_name(h) for h in t.hands],
+            "P": self.assembly[0],
+            "Q": self.assembly[1],
+            "centre_distance_mm": self.centre_distance,
+            "d_w2/d_w3": t.working_diameter_ratio,
+            "envelope_diameter_mm": self.envelope_diameter,
+            "neighbour_margin_mm": t.neighbour_margin if math.isfinite(t.neighbour_margin) else None,
+        }
+
+
+@dataclass(frozen=True)
+class SynthesisResult:
+    """The designs found, best first, and how many tooth sets passed each condition.
+
+    ``reason`` says why nothing was found (empty when designs were found).
+    """
+
+    request: SynthesisRequest
+    designs: tuple[HelicalDesign, ...]
+    found: int
+    stages: tuple[tuple[str, int], ...]
+    reason: str
+    seconds: float
+
+    def to_json(self) -> dict[str, Any]:
+        return {
+            "request": self.request.to_json(),
+            "found": self.found,
+            "listed": len(self.designs),
+            "stages": [{"condition": name, "tooth_sets": n} for name, n in self.stages],
+            "reason": self.reason,
+            "designs": [d.to_json() for d in self.designs],
+        }
+

@@ -1,0 +1,206 @@
+"""Reproduce the papers: derive, compare, and write a report folder atomically.
+
+The report is built in a temporary folder beside the target and renamed into place
+only when complete, so an interrupted or failing run leaves the previous report intact.
+
+    >>> from symkin.papers.reproduce import paper_names
+    >>> "alyushin2009" in paper_names()
+    True
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import sys
+import tempfile
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Callable, Iterable, TextIO
+
+from symkin._util.atomic import write_atomically
+from symkin._util.progress import Progress
+from symkin.errors import InputError
+from symkin.papers.checks import Check
+from symkin.papers.document import equations_document
+from symkin.papers.texbuild import compile_pdf, find_pdflatex
+from symkin.papers.registry import load, paper_names
+
+__all__ = ["paper_names", "load", "PaperResult", "run", "check_target", "write_atomically", "format_table"]
+
+
+
+
+@dataclass
+class PaperResult:
+    key: str
+    citation: str
+    checks: list[Check]
+    figures: list[Path] = field(default_factory=list)
+    notes: list[str] = field(default_factory=list)
+    seconds: float = 0.0
+
+    @property
+    def ok(self) -> bool:
+        return all(c.verdict.ok for c in self.checks)
+
+
+def run(
+    names: Iterable[str],
+    out: Path,
+    *,
+    progress: TextIO | None = None,
+    quiet: bool = False,
+    pdf: bool = True,
+) -> list[PaperResult]:
+    """Derive and check each paper and write the report folder ``out``.
+
+    Writes ``report.json``, ``report.txt``, ``equations.tex`` (all derived equations
+    beside the published ones), ``equations.pdf`` (compiled with pdflatex when ``pdf``
+    and pdflatex is installed; see :data:`symkin.papers.texbuild.MISSING`) and ``figures/``
+    (PNG and PDF); see :func:`write_atomically` for the guarantee on ``out``.
+
+    Raises
+    ------
+    InputError
+        ``out`` cannot be written, or an unknown paper is named.
+    ToolError
+        pdflatex is installed but fails on the document (``out`` is left as it was).
+    """
+    names = list(names)
+    modules = [load(n) for n in names]
+    check_target(out)
+    pdflatex = find_pdflatex() if pdf else None
+    results: list[PaperResult] = []
+
+    def build(tmp: Path) -> None:
+        bar = Progress(2 * len(modules) + 1 + (pdflatex is not None), stream=progress, enabled=not quiet, lines=True)
+        figures_dir = tmp / "figures"
+        figures_dir.mkdir()
+        for name, mod in zip(names, modules):
+            start = time.perf_counter()
+            bar.step(f"{name}: deriving and comparing")
+            checks = list(mod.checks())
+            bar.step(f"{name}: drawing figures")
+            figures = list(mod.figures(figures_dir))
+            notes = list(getattr(mod, "notes", lambda: [])())
+            results.append(
+                PaperResult(name, mod.CITATION, checks, figures, notes, time.perf_counter() - start)
+            )
+        bar.step("writing report.json, report.txt, equations.tex")
+        data = report_json(results, tmp)
+        data["equations"] = {"tex": "equations.tex", "pdf": "equations.pdf" if pdflatex else None}
+        (tmp / "report.json").write_text(json.dumps(data, indent=2, ensure_ascii=False))
+        (tmp / "report.txt").write_text(format_table(results))
+        (tmp / "equations.tex").write_text(equations_document(results, root=tmp))
+        if pdflatex is not None:
+            bar.step("compiling equations.pdf with pdflatex")
+            compile_pdf(tmp / "equations.tex", pdflatex=pdflatex)
+        for hook in _POST_BUILD:
+            hook(tmp, results)
+        bar.close()
+
+    write_atomically(out, build)
+    return results
+
+
+#: Functions called with (folder, results) after the report files are written, before
+#: the folder is renamed into place.
+_POST_BUILD: list[Callable[[Path, list[PaperResult]], None]] = []
+
+
+def report_json(results: list[PaperResult], root: Path) -> dict[str, Any]:
+    from symkin._version import __version__
+
+    checks = [c for r in results for c in r.checks]
+    return {
+        "symkin_version": __version__,
+        "summary": {
+            "checks": len(checks),
+            "ok": sum(c.verdict.ok for c in checks),
+            "differs": sum(not c.verdict.ok for c in checks),
+            "by_verdict": {v: sum(c.verdict.value == v for c in checks) for v in sorted({c.verdict.value for c in checks})},
+        },
+        "papers": {
+            r.key: {
+                "citation": r.citation,
+                "ok": r.ok,
+                "seconds": round(r.seconds, 3),
+                "checks": [c.to_json() for c in r.checks],
+                "figures": [str(p.relative_to(root)) for p in r.figures],
+                "notes": r.notes,
+            }
+            for r in results
+        },
+    }
+
+
+def check_target(out: Path) -> None:
+    """Refuse a report folder symkin must not replace: a file, the current folder or one
+    holding it, or a non-empty folder that is not a previous symkin report.
+
+    >>> check_target(Path("/"))
+    Traceback (most recent call last):
+    ...
+    symkin.errors.InputError: --out / holds the current folder; choose a new folder such as ./symkin-out
+    """
+    out = Path(out)
+    target = out.resolve()
+    if target.exists() and not target.is_dir():
+        raise InputError(f"--out {out} is a file, not a folder; choose another --out")
+    if target == Path.cwd().resolve() or target in Path.cwd().resolve().parents:
+        raise InputError(f"--out {out} holds the current folder; choose a new folder such as ./symkin-out")
+    parent = target.parent
+    if not parent.exists():
+        raise InputError(f"cannot write {out}: its parent folder {parent} does not exist; create it or choose another --out")
+    if not parent.is_dir():
+        raise InputError(f"cannot write {out}: {parent} is a file, not a folder; choose another --out")
+    if target.is_dir() and any(target.iterdir()) and not _is_report(target):
+        raise InputError(
+            f"--out {out} is a folder that is not a symkin report and symkin replaces the whole folder; "
+            "choose a new or empty folder"
+        )
+
+
+def _is_report(folder: Path) -> bool:
+    try:
+        data = json.loads((folder / "report.json").read_text())
+    except (OSError, ValueError):
+        return False
+    return isinstance(data, dict) and "symkin_version" in data
+
+
+def _short(text: str, width: int) -> str:
+    text = " ".join(str(text).split())
+    return text if len(text) <= width else text[: width - 3] + "..."
+
+
+def format_table(results: list[PaperResult]) -> str:
+    """The verification table: paper, equation, derived, published, verdict."""
+    rows = [("paper", "result", "derived", "published", "verdict")]
+    for r in results:
+        for c in r.checks:
+            rows.append((r.key, c.label, _short(_plain(c.derived), 38), _short(_plain(c.published), 38), c.verdict.value))
+    widths = [max(len(row[i]) for row in rows) for i in range(5)]
+    lines = ["  ".join(cell.ljust(w) for cell, w in zip(row, widths)).rstrip() for row in rows]
+    lines.insert(1, "  ".join("-" * w for w in widths))
+    checks = [c for r in results for c in r.checks]
+    bad = [c for c in checks if not c.verdict.ok]
+    lines.append("")
+    lines.append(
+        f"{len(checks)} checks: {len(checks) - len(bad)} reproduced"
+        + (f", {len(bad)} differ: " + ", ".join(f"{c.paper} {c.label}" for c in bad) if bad else "")
+    )
+    for r in results:
+        slips = [c for c in r.checks if c.verdict.value.startswith("paper slip") or c.verdict.value.startswith("match (")]
+        for c in slips:
+            lines.append(f"  {r.key} {c.label}: {c.verdict.value}: {c.comparison.detail}")
+    return "\n".join(lines) + "\n"
+
+
+def _plain(value: Any) -> str:
+    if isinstance(value, (list, tuple)):
+        return "; ".join(_plain(v) for v in value)
+    return str(value)

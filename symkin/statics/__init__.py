@@ -1,0 +1,24 @@
+"""Statics: torques and tooth forces, derived from the model where they can be.
+
+:mod:`.planet` holds the statics of a stepped planet: its torque balance and helical
+axial forces derived from the mesh geometry (:func:`planet_statics`), the hands that
+cancel the axial forces (:func:`balancing_hands`, :func:`mesh_hand_relation`), and an
+independent numeric computation of the 3-D tooth forces (:func:`planet_forces`).
+
+    >>> from symkin import schemes
+    >>> planet_statics(schemes.two_row("AI")).condition
+    Eq(tan(beta_w2)/tan(beta_w3), r_2/r_3)
+"""
+
+from __future__ import annotations
+
+from symkin.statics.planet import (
+    PlanetForces,
+    PlanetStatics,
+    balancing_hands,
+    mesh_hand_relation,
+    planet_forces,
+    planet_statics,
+)
+
+__all__ = ["PlanetStatics", "planet_statics", "mesh_hand_relation", "balancing_hands", "PlanetForces", "planet_forces"]

@@ -1,0 +1,306 @@
+"""Animation of a mechanism: carrier, gears turning, particles tracing their paths.
+
+Everything drawn comes from the derived laws: each link's axis is a particle of its
+carrier (eq. 4) and its orientation is read from a second particle of the link, so a
+moving frame (a drill head on a manipulator) animates too.  Frames are drawn with
+matplotlib's object API and written as GIF (Pillow, always available) or MP4 (needs
+ffmpeg); the file is written under a temporary name and renamed when complete.
+
+    >>> from symkin import schemes
+    >>> from symkin.viz.animation import Frames
+    >>> mech = schemes.single_row_AI(radii=(1, 1, 3))
+    >>> frames = Frames.build(mech.motion({"4": 0, "H": 1}), [("2", (1, 0))], t_end=6.3, frames=4)
+    >>> frames.particle_xy.shape   # particles, frames, (x, y)
+    (1, 4, 2)
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, Mapping, Sequence
+
+import numpy as np
+import sympy as sp
+from matplotlib.figure import Figure
+from matplotlib.lines import Line2D
+
+from symkin import symbols as S
+from symkin._util.atomic import replacing
+from symkin.errors import InputError, ToolError
+from symkin.model import FRAME, LinkKind
+from symkin._util.parsing import as_values, substitute
+from symkin.numeric.sampling import on_grid, time_grid
+
+__all__ = ["Frames", "draw_frame", "frame_figure", "animate", "WRITERS", "ffmpeg_available"]
+
+#: File suffix -> matplotlib writer name.
+WRITERS = {".gif": "pillow", ".mp4": "ffmpeg"}
+#: Largest frame rate and resolution :func:`animate` accepts.
+MAX_FPS, MAX_DPI = 1000, 1000
+
+_COLOURS = ("#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#8c564b", "#17becf", "#7f7f7f", "#bcbd22")
+_PATH_COLOURS = ("#ff7f0e", "#000000", "#e377c2", "#2ca02c", "#d62728")
+
+
+def ffmpeg_available() -> bool:
+    """Whether matplotlib can write MP4 (an ffmpeg executable is installed)."""
+    from matplotlib import animation
+
+    return bool(animation.writers.is_available("ffmpeg"))
+
+
+@dataclass(frozen=True)
+class Frames:
+    """Numeric samples of a mechanism's motion, ready to draw.
+
+    Attributes
+    ----------
+    t : array (frames,)
+    links : tuple of (link name, kind, gears as (name, radius, internal), carrier name)
+        Every link drawn: the frame when it holds gears (a fixed ring), carriers, gears.
+    axis_xy : array (links, frames, 2)
+        Where each link's axis is.
+    angle : array (links, frames)
+        Each link's orientation (0 at t = 0 for a still frame).
+    main_xy : array (frames, 2)
+        The main axis (moves only with the frame).
+    particle_xy : array (particles, frames, 2)
+    labels : tuple of str
+    title : str
+    """
+
+    t: np.ndarray
+    links: tuple[tuple[str, str, tuple[tuple[str, float, bool], ...], str | None], ...]
+    axis_xy: np.ndarray
+    angle: np.ndarray
+    main_xy: np.ndarray
+    particle_xy: np.ndarray
+    labels: tuple[str, ...]
+    title: str
+
+    @classmethod
+    def build(
+        cls,
+        motion: Any,
+        particles: Sequence[tuple[str, Sequence[Any]]] = (),
+        *,
+        t_end: float,
+        frames: int = 120,
+        relative_to: str = "pole",
+        values: Mapping[Any, Any] | None = None,
+        labels: Sequence[str] | None = None,
+        title: str | None = None,
+    ) -> "Frames":
+        """Sample ``motion`` at ``frames`` equal steps of [0, t_end].
+
+        ``particles`` are (link, (a, b)) pairs, by default relative to the link's axis at
+        t = 0 (``relative_to="pole"``); ``values`` gives numbers for every symbol but t.
+        """
+        t = time_grid(t_end, samples=frames)
+        subs = as_values(values)
+        mech = motion.mechanism
+        exprs: list[sp.Expr] = []
+        origin = motion.particle(FRAME, (0, 0), relative_to="pole")
+        exprs += list(origin.position)
+        links = []
+        for link in mech.links:
+            gears = tuple((g.name, _number(g.radius, subs, f"pitch radius of gear {g.name}"), g.internal) for g in link.gears)
+            if not gears and (link.kind is LinkKind.FRAME or not _carries(mech, link.name)):
+                continue
+            axis = motion.particle(link.name, (0, 0), relative_to="pole")
+            marker = motion.particle(link.name, (1, 0), relative_to="pole")
+            exprs += list(axis.position) + list(marker.position)
+            links.append((link.name, link.kind.value, gears, link.carrier))
+        for link, point in particles:
+            exprs += list(motion.particle(link, point, relative_to=relative_to).position)
+        columns = np.array(on_grid(exprs, t, subs, what="animate the mechanism"))
+        main_xy = columns[0:2].T
+        n = len(links)
+        block = columns[2 : 2 + 4 * n].reshape(n, 4, frames)
+        axis_xy = np.stack([block[:, 0], block[:, 1]], axis=-1)
+        angle = np.unwrap(np.arctan2(block[:, 3] - block[:, 1], block[:, 2] - block[:, 0]), axis=-1)
+        rest = columns[2 + 4 * n :].reshape(len(particles), 2, frames)
+        particle_xy = np.stack([rest[:, 0], rest[:, 1]], axis=-1)
+        names = tuple(labels) if labels else tuple(f"link {l}, point {tuple(p)}" for l, p in particles)
+        return cls(t, tuple(links), axis_xy, angle, main_xy, particle_xy, names, title or mech.name or "mechanism")
+
+    def limits(self) -> tuple[float, float, float, float]:
+        """Axis limits that hold every gear and path over the whole motion."""
+        pts = [self.main_xy]
+        for i, (_, _, gears, _) in enumerate(self.links):
+            reach = max((r for _, r, _ in gears), default=0.0) * (1.15 if any(g[2] for g in gears) else 1.0)
+            c = self.axis_xy[i]
+            pts += [c + [reach, reach], c - [reach, reach]]
+        pts += [p for p in self.particle_xy]
+        allpts = np.concatenate(pts)
+        lo, hi = allpts.min(axis=0), allpts.max(axis=0)
+        pad = 0.06 * max(hi - lo) + 1e-9
+        cx, cy = (lo + hi) / 2
+        half = max(hi - lo) / 2 + pad
+        return cx - half, cx + half, cy - half, cy + half
+
+
+def _number(expr: Any, subs: Mapping[Any, Any], what: str) -> float:
+    value = substitute(sp.sympify(expr), subs)
+    if not value.is_number:
+        raise InputError(f"give values for {', '.join(sorted(map(str, value.free_symbols)))} ({what}) to animate")
+    return float(value)
+
+
+def _carries(mech: Any, name: str) -> bool:
+    return any(L.kind is LinkKind.PLANET and L.carrier == name for L in mech.links)
+
+
+# --------------------------------------------------------------------------- drawing
+class _Artists:
+    """The matplotlib artists of one animation, updated frame by frame."""
+
+    def __init__(self, ax: Any, frames: Frames, trail: bool = True):
+        self.frames, self.trail = frames, trail
+        self.gear_lines: list[tuple[int, float, bool, Line2D, Line2D]] = []
+        self.arms: list[tuple[int, int, Line2D]] = []
+        index = {name: i for i, (name, *_rest) in enumerate(frames.links)}
+        for i, (name, kind, gears, carrier) in enumerate(frames.links):
+            colour = _COLOURS[i % len(_COLOURS)]
+            for gname, radius, internal in gears:
+                (circle,) = ax.plot([], [], color=colour, lw=1.6 if internal else 1.2)
+                (marks,) = ax.plot([], [], color=colour, lw=0.9)
+                self.gear_lines.append((i, radius, internal, circle, marks))
+            if kind == "planet" and carrier is not None:
+                (arm,) = ax.plot([], [], color="0.25", lw=3.2, solid_capstyle="round", zorder=4)
+                self.arms.append((index.get(carrier, -1), i, arm))
+        self.paths = []
+        self.dots = []
+        for k, label in enumerate(frames.labels):
+            colour = _PATH_COLOURS[k % len(_PATH_COLOURS)]
+            (path,) = ax.plot([], [], color=colour, lw=1.3, label=label, zorder=5)
+            (dot,) = ax.plot([], [], "o", color=colour, ms=5, zorder=6)
+            self.paths.append(path)
+            self.dots.append(dot)
+        (self.hub,) = ax.plot([], [], "o", color="0.1", ms=4, zorder=6)
+        self.clock = ax.text(0.02, 0.97, "", transform=ax.transAxes, va="top", fontsize=8)
+
+    def update(self, n: int) -> list[Any]:
+        sc = self.frames
+        theta = np.linspace(0, 2 * np.pi, 121)
+        for i, radius, internal, circle, marks in self.gear_lines:
+            cx, cy = sc.axis_xy[i, n]
+            circle.set_data(cx + radius * np.cos(theta), cy + radius * np.sin(theta))
+            phi = sc.angle[i, n]
+            if internal:  # short teeth marks outside the ring show its rotation
+                k = np.arange(12) * 2 * np.pi / 12 + phi
+                r0, r1 = radius, radius * 1.1
+            else:  # three spokes from the axis show the gear's rotation
+                k = np.arange(3) * 2 * np.pi / 3 + phi
+                r0, r1 = 0.0, radius
+            xs = np.column_stack([cx + r0 * np.cos(k), cx + r1 * np.cos(k), np.full_like(k, np.nan)]).ravel()
+            ys = np.column_stack([cy + r0 * np.sin(k), cy + r1 * np.sin(k), np.full_like(k, np.nan)]).ravel()
+            marks.set_data(xs, ys)
+        for c, p, arm in self.arms:
+            start = sc.axis_xy[c, n] if c >= 0 else sc.main_xy[n]
+            arm.set_data([start[0], sc.axis_xy[p, n, 0]], [start[1], sc.axis_xy[p, n, 1]])
+        for k, (path, dot) in enumerate(zip(self.paths, self.dots)):
+            xy = sc.particle_xy[k, : n + 1] if self.trail else sc.particle_xy[k]
+            path.set_data(xy[:, 0], xy[:, 1])
+            dot.set_data([sc.particle_xy[k, n, 0]], [sc.particle_xy[k, n, 1]])
+        self.hub.set_data([sc.main_xy[n, 0]], [sc.main_xy[n, 1]])
+        self.clock.set_text(f"t = {sc.t[n]:.3g}")
+        return [a for *_, a, b in self.gear_lines] + [b for *_, b in self.gear_lines] + [a for *_, a in self.arms] + self.paths + self.dots
+
+
+def draw_frame(ax: Any, frames: Frames, n: int, *, trail: bool = True) -> None:
+    """Draw frame ``n`` of ``frames`` on ``ax`` (the path traced so far with ``trail``)."""
+    _setup(ax, frames)
+    artists = _Artists(ax, frames, trail)
+    artists.update(n)
+    if frames.labels:
+        ax.legend(fontsize=7, loc="lower right")
+
+
+def _setup(ax: Any, frames: Frames) -> None:
+    x0, x1, y0, y1 = frames.limits()
+    ax.set_xlim(x0, x1)
+    ax.set_ylim(y0, y1)
+    ax.set_aspect("equal")
+    ax.tick_params(labelsize=7)
+    ax.set_title(frames.title, fontsize=9)
+
+
+def frame_figure(frames: Frames, n: int, *, trail: bool = True, size: float = 5.0) -> Figure:
+    """One frame as a figure (to look at, or to save as a PNG).
+
+    >>> from symkin import schemes
+    >>> frames = Frames.build(schemes.single_row_AI(radii=(1, 1, 3)).motion({"4": 0, "H": 1}),
+    ...                     [("2", (1, 0))], t_end=6.3, frames=3)
+    >>> len(frame_figure(frames, 2).axes[0].lines) > 4
+    True
+    """
+    fig = Figure(figsize=(size, size))
+    draw_frame(fig.add_subplot(), frames, n, trail=trail)
+    return fig
+
+
+def animate(
+    frames: Frames,
+    out: str | os.PathLike[str],
+    *,
+    fps: int = 20,
+    dpi: int = 80,
+    size: float = 5.0,
+) -> Path:
+    """Write the animation of ``frames`` to ``out`` (``.gif``, or ``.mp4`` with ffmpeg).
+
+    The file appears only when complete: frames go to a temporary file beside ``out``
+    that is renamed at the end; on any error or interrupt the temporary file is removed
+    and an existing ``out`` is left as it was.
+
+    Raises
+    ------
+    InputError
+        An unknown suffix, a folder that does not exist, bad fps or dpi.
+    ToolError
+        MP4 asked for but ffmpeg is not installed.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> from symkin import schemes
+    >>> frames = Frames.build(schemes.single_row_AI(radii=(1, 1, 3)).motion({"4": 0, "H": 1}),
+    ...                     [("2", (1, 0))], t_end=6.3, frames=3)
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     path = animate(frames, pathlib.Path(d) / "ai1.gif", dpi=30)
+    ...     path.read_bytes()[:6]
+    b'GIF89a'
+    """
+    from matplotlib import animation
+
+    out = Path(out)
+    suffix = out.suffix.lower()
+    if suffix not in WRITERS:
+        raise InputError(f"cannot write {out.name}: give a file ending in {' or '.join(WRITERS)}")
+    for name, value, low, high in (("fps", fps, 1, MAX_FPS), ("dpi", dpi, 10, MAX_DPI)):
+        if not isinstance(value, int) or isinstance(value, bool) or not low <= value <= high:
+            raise InputError(f"{name} must be an integer from {low} to {high}, got {value!r}")
+    if suffix == ".mp4" and not ffmpeg_available():
+        raise ToolError(
+            "ffmpeg was not found, so an MP4 cannot be written; write a GIF instead (a file ending in .gif) "
+            "or install ffmpeg (Debian/Ubuntu: sudo apt-get install ffmpeg)"
+        )
+    fig = Figure(figsize=(size, size))
+    ax = fig.add_subplot()
+    _setup(ax, frames)
+    artists = _Artists(ax, frames, trail=True)
+    if frames.labels:
+        artists.update(0)
+        ax.legend(fontsize=7, loc="lower right")
+    anim = animation.FuncAnimation(fig, artists.update, frames=len(frames.t), blit=False)
+    writer = animation.writers[WRITERS[suffix]](fps=fps)
+    try:
+        with replacing(out) as (tmp,):
+            anim.save(str(tmp), writer=writer, dpi=dpi)
+    except BaseException:
+        anim._draw_was_started = True  # no "deleted without rendering" warning on top of the error
+        raise
+    return out

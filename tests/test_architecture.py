@@ -1,0 +1,171 @@
+"""The layout of the package holds: imports run down the layers, no cycles, one numeric path.
+
+docs/architecture.md draws the layers; this test reads every import of symkin/ (module
+level and inside functions) from the source and checks:
+
+- every import goes to the same layer or a lower one, except the one deliberate
+  convenience layer (the model's methods calling the kinematics and particles, imported
+  inside those methods);
+- the modules import each other without a cycle (module level and function level alike,
+  less that one documented exception);
+- laws become numbers only in symkin/numeric (no lambdify, no exec of generated code
+  elsewhere);
+- no module of the library imports the papers (derivations/), and the command-line
+  modules do no symbolic work of their own (no module-level SymPy import).
+"""
+
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parent.parent
+PACKAGE = ROOT / "symkin"
+
+#: Layers from the bottom up: a module may import its own layer or a lower one.
+LAYERS: list[tuple[str, ...]] = [
+    ("symkin._version", "symkin.errors", "symkin.symbols", "symkin.laws"),
+    ("symkin._util", "symkin._deprecated"),
+    ("symkin.numeric", "symkin.printing", "symkin.superposition"),
+    ("symkin.model",),
+    ("symkin.kinematics", "symkin.particles", "symkin.drives", "symkin.vectorloop"),
+    ("symkin.schemes",),
+    ("symkin.study", "symkin.statics"),
+    ("symkin.mechanisms",),
+    ("symkin.viz",),
+    ("symkin.papers",),
+    ("symkin.cli",),
+    ("symkin", "symkin.__main__"),
+]
+
+#: The deliberate convenience layer: Mechanism.speeds/ratio/motion call the kinematics
+#: and the particle laws (like sympy's Point.v2pt_theory), imported inside those methods.
+CONVENIENCE = {("symkin.model", "symkin.kinematics"), ("symkin.model", "symkin.particles")}
+
+
+def _module(path: Path) -> str:
+    parts = list(path.relative_to(ROOT).with_suffix("").parts)
+    if parts[-1] == "__init__":
+        parts.pop()
+    return ".".join(parts)
+
+
+MODULES = {_module(p): p for p in sorted(PACKAGE.rglob("*.py"))}
+
+
+def _layer(module: str) -> int:
+    best, rank = -1, None
+    for k, prefixes in enumerate(LAYERS):
+        for prefix in prefixes:
+            if (module == prefix or module.startswith(prefix + ".")) and len(prefix) > best:
+                best, rank = len(prefix), k
+    assert rank is not None, f"{module} is in no layer of tests/test_architecture.py: add it to LAYERS"
+    return rank
+
+
+def _target(name: str) -> str | None:
+    """The module of symkin an imported name lands in (a module, or the package holding it)."""
+    while name and name not in MODULES:
+        name = name.rpartition(".")[0]
+    return name or None
+
+
+def _imports(module: str) -> list[tuple[str, int, bool]]:
+    """(imported module of symkin, line, inside a function) for every import in ``module``."""
+    path = MODULES[module]
+    tree = ast.parse(path.read_text(), str(path))
+    package = module if path.name == "__init__.py" else module.rpartition(".")[0]
+    found = []
+    type_checking = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.If) and "TYPE_CHECKING" in ast.dump(node.test):
+            type_checking |= {id(n) for n in ast.walk(node)}
+    functions = {id(n) for f in ast.walk(tree) if isinstance(f, (ast.FunctionDef, ast.AsyncFunctionDef))
+                 for n in ast.walk(f)}
+    for node in ast.walk(tree):
+        if id(node) in type_checking:
+            continue
+        names: list[str] = []
+        if isinstance(node, ast.Import):
+            names = [a.name for a in node.names]
+        elif isinstance(node, ast.ImportFrom):
+            base = node.module or ""
+            if node.level:
+                anchor = package.split(".")[: len(package.split(".")) - (node.level - 1)]
+                base = ".".join(anchor + ([base] if base else []))
+            names = [f"{base}.{a.name}" if f"{base}.{a.name}" in MODULES else base for a in node.names]
+        for name in names:
+            target = _target(name) if name.startswith("symkin") else None
+            if target and target != module:
+                found.append((target, node.lineno, id(node) in functions))
+    return found
+
+
+EDGES = {m: _imports(m) for m in MODULES}
+
+
+def test_every_import_runs_down_the_layers():
+    upward = [
+        f"{m}:{line} imports {target} ({'inside a function' if inner else 'at module level'})"
+        for m, edges in EDGES.items() for target, line, inner in edges
+        if _layer(target) > _layer(m) and (m, target) not in CONVENIENCE
+    ]
+    assert not upward, "imports that run up the layers:\n" + "\n".join(upward)
+
+
+def test_the_convenience_layer_is_imported_inside_methods_only():
+    for m, edges in EDGES.items():
+        for target, line, inner in edges:
+            if (m, target) in CONVENIENCE:
+                assert inner, f"{m}:{line} imports {target} at module level: the convenience layer imports inside methods"
+
+
+def test_no_import_cycles():
+    graph = {m: {t for t, _, _ in edges if (m, t) not in CONVENIENCE} for m, edges in EDGES.items()}
+    # a package's __init__ that re-exports its modules is not a cycle with them
+    graph = {m: {t for t in ts if not (t.startswith(m + ".") and MODULES[m].name == "__init__.py")} for m, ts in graph.items()}
+    state: dict[str, int] = {}
+    stack: list[str] = []
+
+    def visit(m: str) -> None:
+        state[m] = 1
+        stack.append(m)
+        for t in sorted(graph[m]):
+            if state.get(t) == 1:
+                cycle = stack[stack.index(t):] + [t]
+                pytest.fail("import cycle: " + " -> ".join(cycle))
+            if t not in state:
+                visit(t)
+        stack.pop()
+        state[m] = 2
+
+    for m in sorted(graph):
+        if m not in state:
+            visit(m)
+
+
+@pytest.mark.parametrize("needle", ["lambdify(", "exec(compile("])
+def test_laws_become_numbers_in_symkin_numeric_only(needle):
+    outside = [f"{m} ({p.relative_to(ROOT)})" for m, p in MODULES.items()
+               if not m.startswith("symkin.numeric") and needle in p.read_text()]
+    assert not outside, f"{needle} outside symkin/numeric: " + ", ".join(outside)
+
+
+def test_the_library_never_imports_the_papers():
+    for m, p in MODULES.items():
+        text = p.read_text()
+        assert "symkin.derivations" not in {t for t, _, _ in EDGES[m]}, m
+        assert "import_module(\"symkin.derivations" not in text and "derivations." not in text.replace("symkin.derivations", ""), m
+
+
+def test_command_line_modules_import_no_sympy_at_module_level():
+    for m, p in MODULES.items():
+        if not m.startswith("symkin.cli"):
+            continue
+        tree = ast.parse(p.read_text())
+        for node in tree.body:
+            if isinstance(node, (ast.Import, ast.ImportFrom)):
+                names = [a.name for a in node.names] if isinstance(node, ast.Import) else [node.module or ""]
+                assert not any(n.split(".")[0] == "sympy" for n in names), f"{m}:{node.lineno} imports SymPy"
