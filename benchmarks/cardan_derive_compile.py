@@ -15,8 +15,8 @@ import time
 import numpy as np
 import sympy as sp
 
-from symkin.mechanisms.cardan import CardanSlider, line_conditions
 from symkin.drives import ConstantSpeed, EllipticalGears
+from symkin.mechanisms.cardan import CardanSlider, line_conditions
 
 OMEGA = sp.Rational(4, 5) * sp.pi
 DRIVES = {

@@ -60,8 +60,8 @@ def slider_acceleration() -> sp.Expr:
     """a_s as the engine derives it: symkin.mechanisms.cardan.CardanSlider under symkin.drives.EllipticalGears
     (the benchmarks' reference is built independently, from the papers guide, by
     :func:`slider_laws_continuous`)."""
-    from symkin.mechanisms.cardan import CardanSlider
     from symkin.drives import EllipticalGears
+    from symkin.mechanisms.cardan import CardanSlider
 
     slider = CardanSlider.build(L, drive=EllipticalGears(W, E, M), guide_angle=THETA2, carrier_angle=THETA0)
     return slider.acceleration

@@ -19,7 +19,15 @@ import sympy as sp
 import symkin
 from symkin import schemes
 from symkin import symbols as S
-from symkin.papers.checks import Check, Comparison, Verdict, compare_exact, compare_rounded, compare_symbolic, slip
+from symkin.papers.checks import (
+    Check,
+    Comparison,
+    Verdict,
+    compare_exact,
+    compare_rounded,
+    compare_symbolic,
+    slip,
+)
 
 KEY = "alyushin2009"
 CITATION = (

@@ -25,8 +25,14 @@ from symkin.mechanisms.multistage.lostmotion import (
     stage_ratio_symbol,
 )
 from symkin.mechanisms.multistage.split import best_designs, optimise_split
-from symkin.papers.checks import Check, compare_exact, compare_rounded, compare_symbolic, slip
 from symkin.mechanisms.multistage.stages import enumerate_stages, stage_laws
+from symkin.papers.checks import (
+    Check,
+    compare_exact,
+    compare_rounded,
+    compare_symbolic,
+    slip,
+)
 
 KEY = "khai2014"
 CITATION = (

@@ -22,10 +22,10 @@ from pathlib import Path
 
 import sympy as sp
 
-from symkin.mechanisms.helical import synthesis as HS
 from symkin import schemes
 from symkin import symbols as S
-from symkin.mechanisms.helical.synthesis import DELTA, K, LAMBDA, P, Q, RATIO, X, Z
+from symkin.mechanisms.helical import synthesis as HS
+from symkin.mechanisms.helical.synthesis import DELTA, LAMBDA, RATIO, K, P, Q, X, Z
 from symkin.papers.checks import Check, Comparison, Verdict, compare_symbolic, slip
 from symkin.statics import balancing_hands, planet_forces, planet_statics
 

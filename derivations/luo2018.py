@@ -19,11 +19,29 @@ import numpy as np
 import sympy as sp
 from sympy.calculus.util import maximum, minimum
 
-from symkin.mechanisms import cardan
 from symkin import symbols as S
-from symkin.mechanisms.cardan import CardanSlider, l, l_1, l_H, s, theta_1, theta_2, theta_H, theta_H0
 from symkin.drives import AngleLaw, ConstantSpeed, EllipticalGears
-from symkin.papers.checks import Check, Comparison, Verdict, compare_exact, compare_rounded, compare_symbolic, slip
+from symkin.mechanisms import cardan
+from symkin.mechanisms.cardan import (
+    CardanSlider,
+    l,
+    l_1,
+    l_H,
+    s,
+    theta_1,
+    theta_2,
+    theta_H,
+    theta_H0,
+)
+from symkin.papers.checks import (
+    Check,
+    Comparison,
+    Verdict,
+    compare_exact,
+    compare_rounded,
+    compare_symbolic,
+    slip,
+)
 
 KEY = "luo2018"
 CITATION = (

@@ -65,9 +65,8 @@ def notebook_from_source(path: Path) -> nbformat.NotebookNode:
 
 def execute(nb: nbformat.NotebookNode, cwd: Path, timeout: int = 600) -> nbformat.NotebookNode:
     """Run every cell of ``nb`` in a fresh kernel, in folder ``cwd``; raises on a failing cell."""
-    from nbclient import NotebookClient
-
     from jupyter_client.manager import KernelManager
+    from nbclient import NotebookClient
 
     # the kernel talks over local socket files, not TCP ports
     km = KernelManager(kernel_name="python3", transport="ipc", ip=str(cwd / "kernel"))

@@ -36,7 +36,16 @@ from symkin.errors import *  # noqa: F403  (every error and warning class)
 from symkin.errors import __all__ as _ERRORS
 
 if TYPE_CHECKING:  # what the lazy attributes below are, for type checkers and IDEs
-    from symkin import drives, mechanisms, numeric, schemes, statics, symbols, vectorloop, viz
+    from symkin import (
+        drives,
+        mechanisms,
+        numeric,
+        schemes,
+        statics,
+        symbols,
+        vectorloop,
+        viz,
+    )
     from symkin.kinematics import Speeds, ratio, solve_speeds
     from symkin.laws import Law
     from symkin.model import FRAME, Gear, Link, Mechanism, Mesh

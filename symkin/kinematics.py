@@ -23,15 +23,14 @@ from typing import Any, Iterator, Mapping, Sequence
 import sympy as sp
 
 from symkin import symbols as S
+from symkin._util.parsing import as_expr
 from symkin.errors import (
     InputError,
-    ModelError,
     OverdeterminedError,
     SingularConfigurationError,
     UnderdeterminedError,
 )
 from symkin.laws import Law
-from symkin._util.parsing import as_expr
 from symkin.model import FRAME, LinkKind, Mechanism, Mesh
 from symkin.superposition import vec, velocity
 

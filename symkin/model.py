@@ -25,7 +25,6 @@ from +z.
 from __future__ import annotations
 
 import enum
-import warnings
 from dataclasses import dataclass, field
 from functools import cached_property
 from typing import Any, Iterable, Mapping, Sequence
@@ -34,8 +33,8 @@ import sympy as sp
 
 from symkin import symbols as S
 from symkin._util.budget import simplify_within
-from symkin.errors import CoaxialityWarning, ModelError, warn_user
 from symkin._util.parsing import as_expr
+from symkin.errors import CoaxialityWarning, ModelError, warn_user
 
 __all__ = ["FRAME", "LinkKind", "Gear", "Link", "Mesh", "Mechanism", "as_length", "as_teeth"]
 

@@ -28,12 +28,12 @@ import numpy as np
 import sympy as sp
 
 from symkin import symbols as S
+from symkin._util.parsing import as_expr, as_float, as_values, substitute
 from symkin.drives import Drive, as_drive
 from symkin.errors import InputError
 from symkin.kinematics import check_known_links, solve_speeds
-from symkin._util.parsing import as_expr, as_float, as_values, substitute
-from symkin.numeric.sampling import on_grid, time_grid
 from symkin.model import FRAME, LinkKind, Mechanism
+from symkin.numeric.sampling import on_grid, time_grid
 from symkin.superposition import acceleration, position, rotation, vec, velocity
 
 __all__ = ["FrameMotion", "Motion", "Particle"]

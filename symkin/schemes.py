@@ -18,6 +18,7 @@ from __future__ import annotations
 
 from typing import Any, Callable, Sequence
 
+from symkin import symbols as S
 from symkin.errors import ModelError
 from symkin.model import Gear, Link, Mechanism
 
@@ -36,8 +37,6 @@ def _gears(names: Sequence[str], internal: Sequence[bool], radii: Any, teeth: An
         return [Gear(g, r, internal=i) for g, r, i in zip(names, values, internal)]
     if teeth is None or teeth is False:
         return [Gear.symbolic(g, internal=i) for g, i in zip(names, internal)]
-    from symkin import symbols as S
-
     values = [S.teeth(g) for g in names] if teeth is True else _sequence(teeth, n, "teeth", names)
     return [Gear.from_teeth(g, z, internal=i, module=module) for g, z, i in zip(names, values, internal)]
 

@@ -31,8 +31,8 @@ import sympy as sp
 
 from symkin import symbols as S
 from symkin.errors import InputError
-from symkin.laws import Law
 from symkin.kinematics import kinematic_system
+from symkin.laws import Law
 from symkin.model import Mechanism
 from symkin.numeric import DEFAULT_CHUNK, compile
 

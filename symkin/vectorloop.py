@@ -37,8 +37,8 @@ from typing import Any, Mapping
 import sympy as sp
 
 from symkin._util.budget import simplify_within
-from symkin.errors import InputError, SingularConfigurationError, UnsupportedError
 from symkin._util.parsing import as_expr
+from symkin.errors import InputError, SingularConfigurationError, UnsupportedError
 
 __all__ = ["LinkVector", "VectorLoop", "LoopSolution", "harmonics", "solve_linear"]
 

@@ -12,15 +12,20 @@ import sympy as sp
 import symkin
 from symkin import SymkinError, schemes
 from symkin import symbols as S
-from symkin.mechanisms.cardan import CardanSlider
+from symkin._util.parsing import parse_expression, parse_integer, parse_number
 from symkin.drives import AngleLaw, ConstantSpeed, EllipticalGears
-from symkin.mechanisms.helical import helical_gear, lead, pitch_radius, working_pitch_radius
+from symkin.mechanisms.cardan import CardanSlider
+from symkin.mechanisms.helical import (
+    helical_gear,
+    lead,
+    pitch_radius,
+    working_pitch_radius,
+)
 from symkin.mechanisms.helical.synthesis import SynthesisRequest, existence_interval
 from symkin.mechanisms.multistage.lostmotion import StageErrorModel
-from symkin.model import Gear, Link, Mechanism
-from symkin._util.parsing import parse_expression, parse_integer, parse_number
 from symkin.mechanisms.multistage.split import SplitProblem
 from symkin.mechanisms.multistage.stages import enumerate_stages
+from symkin.model import Gear, Link, Mechanism
 
 MARKER = "PWNED_API"
 INJECTION = f"__import__('os').system('touch {MARKER}')"

@@ -5,10 +5,10 @@ import pytest
 import sympy as sp
 
 from symkin import InputError, ModelError
-from symkin.mechanisms import cardan
 from symkin import symbols as S
-from symkin.mechanisms.cardan import CardanSlider, l, theta_2, theta_H0, theta_10
 from symkin.drives import AngleLaw, ConstantSpeed, EllipticalGears
+from symkin.mechanisms import cardan
+from symkin.mechanisms.cardan import CardanSlider, l, theta_2, theta_10, theta_H0
 
 t = S.t
 w = S.omega("H")

@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from symkin.errors import InputError, ModelError
 from symkin._util.parsing import as_integer, as_rational, as_real
+from symkin.errors import InputError, ModelError
 
 
 # ---- exact numbers: a float is the decimal it prints as, never a guessed surd
@@ -100,10 +100,11 @@ def test_why_sentence_matches_the_active_set():
 
 # ---- a derived law is a Law wherever it is returned as such; conditions stay Eq
 def test_laws_are_laws_and_conditions_are_equations():
-    from symkin import schemes, symbols as S
+    from symkin import schemes
+    from symkin import symbols as S
+    from symkin.laws import Law
     from symkin.mechanisms.cardan import line_conditions
     from symkin.mechanisms.helical.synthesis import RATIO, ratio_law
-    from symkin.laws import Law
     from symkin.mechanisms.multistage.stages import stage_laws
 
     mech = schemes.two_row("II", teeth=True)
@@ -132,7 +133,8 @@ def test_helical_train_ratio_is_the_mechanisms_ratio():
 
 def test_scene_values_accept_names_and_symbols():
     import symkin
-    from symkin import schemes, symbols as S
+    from symkin import schemes
+    from symkin import symbols as S
 
     scene = symkin.Study(schemes.two_row("AI"), ratios=[("1", "H", "4")])
     by_name = scene.evaluate({"r_1": 1, "r_2": 2, "r_3": 1, "r_4": 4})

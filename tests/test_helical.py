@@ -13,8 +13,20 @@ import pytest
 import sympy as sp
 
 from symkin import ModelError, schemes
-from symkin.mechanisms.helical import HelicalMesh, HelicalTrain, helical_gear, inverse_involute, involute, lead
-from symkin.statics import balancing_hands, mesh_hand_relation, planet_forces, planet_statics
+from symkin.mechanisms.helical import (
+    HelicalMesh,
+    HelicalTrain,
+    helical_gear,
+    inverse_involute,
+    involute,
+    lead,
+)
+from symkin.statics import (
+    balancing_hands,
+    mesh_hand_relation,
+    planet_forces,
+    planet_statics,
+)
 
 RNG = random.Random(2010)
 SCHEMES = ("AI", "AA", "II")
@@ -103,7 +115,7 @@ def test_lead_is_the_same_on_every_cylinder():
 
 
 @pytest.mark.parametrize("bad, message", [
-    (dict(teeth_external=0), "positive whole"),
+    (dict(teeth_external=0), "at least 1"),
     (dict(normal_module=-2), "positive"),
     (dict(beta=math.radians(95)), "helix angle"),
     (dict(internal=True, teeth_mate=15), "internal gear"),

@@ -11,9 +11,19 @@ import pytest
 import sympy as sp
 
 from symkin import InputError
-from symkin.mechanisms.helical import synthesis as HS
 from symkin.mechanisms.helical import HelicalTrain
-from symkin.mechanisms.helical.synthesis import DELTA, K, P, Q, RATIO, X, Z, SynthesisRequest, synthesise
+from symkin.mechanisms.helical import synthesis as HS
+from symkin.mechanisms.helical.synthesis import (
+    DELTA,
+    RATIO,
+    K,
+    P,
+    Q,
+    SynthesisRequest,
+    X,
+    Z,
+    synthesise,
+)
 from symkin.statics import planet_forces
 
 SCHEMES = ("AI", "AA", "II")

@@ -11,8 +11,8 @@ from pathlib import Path
 
 import pytest
 import sympy as sp
-
 from hostile import COMMANDS, HOSTILE, MARKER, Outcome, cases, run, verdict
+
 from symkin.cli import build_parser
 
 

@@ -4,9 +4,9 @@ import json
 
 import pytest
 import sympy as sp
+from symkin.derivations import khai2014
 
 from symkin.cli import main
-from symkin.derivations import khai2014
 from symkin.papers.reproduce import run
 
 

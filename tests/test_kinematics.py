@@ -8,10 +8,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from symkin import (
+    InputError,
     OverdeterminedError,
     SingularConfigurationError,
     UnderdeterminedError,
-    InputError,
     schemes,
 )
 from symkin import symbols as S

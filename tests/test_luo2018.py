@@ -4,8 +4,8 @@ import json
 
 import pytest
 import sympy as sp
-
 from symkin.derivations import luo2018
+
 from symkin.papers.checks import Verdict, compare_rounded, compare_symbolic
 from symkin.papers.reproduce import run
 

@@ -14,8 +14,7 @@ import sympy as sp
 
 import symkin
 from symkin import schemes
-from symkin.numeric import NonFiniteInputWarning
-from symkin.numeric import backends
+from symkin.numeric import NonFiniteInputWarning, backends
 from symkin.numeric.backends import numba_available
 
 FLOAT_BACKENDS = ["numpy"] + (["numba"] if numba_available() else [])

@@ -9,10 +9,9 @@ import sympy as sp
 from PIL import Image
 
 from symkin import Gear, InputError, Link, Mechanism, ToolError, schemes
-from symkin.viz import animation
-from symkin.viz import figures
-from symkin.viz.animation import Frames, animate, frame_figure
 from symkin.cli import main
+from symkin.viz import animation, figures
+from symkin.viz.animation import Frames, animate, frame_figure
 
 
 def cardan(radius=1.0):

@@ -11,7 +11,12 @@ import sympy as sp
 from symkin import schemes
 from symkin.errors import InputError
 from symkin.mechanisms.multistage.lostmotion import StageErrorModel
-from symkin.mechanisms.multistage.split import SplitProblem, best_designs, optimise_split, profile
+from symkin.mechanisms.multistage.split import (
+    SplitProblem,
+    best_designs,
+    optimise_split,
+    profile,
+)
 from symkin.mechanisms.multistage.stages import enumerate_stages
 
 

@@ -16,8 +16,8 @@ import sympy as sp
 from symkin import ToolError, schemes
 from symkin import symbols as S
 from symkin.cli import main
-from symkin.papers.document import equations_document
 from symkin.papers.checks import Check, compare_symbolic, slip
+from symkin.papers.document import equations_document
 from symkin.papers.reproduce import run
 from symkin.papers.texbuild import compile_pdf
 

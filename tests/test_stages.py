@@ -7,7 +7,13 @@ import pytest
 import sympy as sp
 
 from symkin.errors import InputError
-from symkin.mechanisms.multistage.stages import check_stage, enumerate_stages, max_satellites, neighbours_clear, stage_laws
+from symkin.mechanisms.multistage.stages import (
+    check_stage,
+    enumerate_stages,
+    max_satellites,
+    neighbours_clear,
+    stage_laws,
+)
 
 
 def brute_force(ring, k, zmin, zmax, ha):

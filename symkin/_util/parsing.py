@@ -36,6 +36,7 @@ __all__ = [
     "as_float",
     "as_rational",
     "as_integer",
+    "as_fraction",
     "as_real",
     "parse_number",
     "parse_integer",
@@ -213,8 +214,17 @@ def _rational(value: Any, what: str, text: bool) -> sp.Rational:
     raise InputError(f"{what} must be a number, got {value!r}")
 
 
-def as_integer(value: Any, *, what: str = "value", text: bool = True, error: type[Exception] = InputError) -> sp.Integer:
-    """An exact integer: :func:`as_rational` that refuses fractions and floats (counts are not measured).
+def as_integer(
+    value: Any,
+    *,
+    what: str = "value",
+    text: bool = True,
+    error: type[Exception] = InputError,
+    minimum: int | None = None,
+    maximum: int | None = None,
+) -> sp.Integer:
+    """An exact integer: :func:`as_rational` that refuses fractions and floats (counts are
+    not measured), within ``[minimum, maximum]`` when they are given.
 
     >>> as_integer("12"), as_integer(3)
     (12, 3)
@@ -222,16 +232,36 @@ def as_integer(value: Any, *, what: str = "value", text: bool = True, error: typ
     Traceback (most recent call last):
     ...
     symkin.errors.InputError: the number of satellites must be a whole number, got 3.0
+    >>> as_integer(0, what="the number of satellites", minimum=1)
+    Traceback (most recent call last):
+    ...
+    symkin.errors.InputError: the number of satellites must be at least 1, got 0
     """
     if isinstance(value, (float, sp.Float)) or (isinstance(value, numbers.Real) and not isinstance(value, numbers.Rational)):
         raise error(f"{what} must be a whole number, got {value!r}")
     number = as_rational(value, what=what, text=text, error=error)
     if not number.is_Integer:
         raise error(f"{what} must be a whole number, got {value!r}")
+    if minimum is not None and maximum is not None and not minimum <= number <= maximum:
+        raise error(f"{what} must be between {minimum} and {maximum}, got {number}")
+    if minimum is not None and number < minimum:
+        raise error(f"{what} must be at least {minimum}, got {number}")
+    if maximum is not None and number > maximum:
+        raise error(f"{what} must be at most {maximum}, got {number}")
     return number
 
 
-def as_real(value: Any, *, what: str = "value", error: type[Exception] = InputError) -> sp.Expr:
+def as_fraction(value: Any, *, what: str = "value", error: type[Exception] = InputError) -> Fraction:
+    """:func:`as_rational` as a :class:`fractions.Fraction` (for exact arithmetic in loops).
+
+    >>> as_fraction("0.25")
+    Fraction(1, 4)
+    """
+    r = as_rational(value, what=what, error=error)
+    return Fraction(int(r.p), int(r.q))
+
+
+def as_real(value: Any, *, what: str = "value", error: type[Exception] = InputError, positive: bool = False) -> sp.Expr:
     """An exact finite real constant: :func:`as_rational` for numbers, and exact SymPy
     constants such as ``sqrt(2)/2`` or ``pi/6`` (given as SymPy objects or as text, parsed
     by :func:`parse_expression`) kept as they are.
@@ -248,9 +278,11 @@ def as_real(value: Any, *, what: str = "value", error: type[Exception] = InputEr
     elif isinstance(value, sp.Expr) and not isinstance(value, (sp.Rational, sp.Float)):
         expr = value
     else:
-        return as_rational(value, what=what, error=error)
+        expr = as_rational(value, what=what, error=error)
     if not expr.is_number or expr.has(sp.nan, sp.zoo, sp.oo, -sp.oo) or expr.is_extended_real is False or not expr.is_finite:
         raise error(f"{what} must be a finite real number, got {value!r}")
+    if positive and not expr.is_positive:
+        raise error(f"{what} must be positive, got {value!r}")
     return expr
 
 
@@ -460,21 +492,24 @@ def _is_named(values: Any) -> bool:
     return isinstance(values, dict) and all(isinstance(k, str) and isinstance(v, sp.Expr) for k, v in values.items())
 
 
-def as_float(value: Any, *, what: str, positive: bool = False) -> float:
+def as_float(value: Any, *, what: str, positive: bool = False, error: type[Exception] = InputError) -> float:
     """A finite float from a number, a constant expression or safe text (``"2*pi"``).
 
     >>> as_float("pi/2", what="time")
     1.5707963267948966
     """
-    expr = as_expr(value, what=what)
+    try:
+        expr = as_expr(value, what=what)
+    except InputError as err:
+        raise (err if error is InputError else error(str(err))) from None
     if not expr.is_number:
-        raise InputError(f"{what} must be a number, got {value!r}")
+        raise error(f"{what} must be a number, got {value!r}")
     try:
         number = float(expr)
     except (TypeError, ValueError, OverflowError):
-        raise InputError(f"{what} must be a real number, got {value!r}") from None
+        raise error(f"{what} must be a real number, got {value!r}") from None
     if not math.isfinite(number):
-        raise InputError(f"{what} must be a finite number, got {value!r}")
+        raise error(f"{what} must be a finite number, got {value!r}")
     if positive and not number > 0:
-        raise InputError(f"{what} must be positive, got {value!r}")
+        raise error(f"{what} must be positive, got {value!r}")
     return number

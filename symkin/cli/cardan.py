@@ -54,13 +54,6 @@ def register(sub: Any) -> None:
 
 
 # ---- values
-def _number(text: str, what: str, *, positive: bool = False) -> Any:
-    value = as_real(text, what=what)
-    if positive and not value.is_positive:
-        raise InputError(f"{what} must be positive, got {text!r}")
-    return value
-
-
 def _drive(args: Any) -> Drive:
     kind = args.drive or ("elliptical" if args.eccentricity is not None else "law" if args.angle_law is not None else "constant")
     if kind != "elliptical" and (args.eccentricity is not None or args.order is not None):
@@ -76,15 +69,15 @@ def _drive(args: Any) -> Drive:
     if args.speed is None:
         raise InputError(f"the {kind} drive needs --speed W, the {'carrier' if kind == 'constant' else 'input gear'} "
                          "speed in rad/s")
-    omega = _number(args.speed, "--speed", positive=True)
+    omega = as_real(args.speed, what="--speed", positive=True)
     if kind == "constant":
         return ConstantSpeed(omega)
     if args.eccentricity is None:
         raise InputError("the elliptical drive needs -e/--eccentricity E with 0 <= E < 1")
-    e = _number(args.eccentricity, "--eccentricity")
+    e = as_real(args.eccentricity, what="--eccentricity")
     if not (e >= 0 and e < 1):
         raise InputError(f"--eccentricity must lie in [0, 1), got {args.eccentricity!r}; 0 gives circular gears")
-    m = _number(args.order, "--order", positive=True) if args.order is not None else 1
+    m = as_real(args.order, what="--order", positive=True) if args.order is not None else 1
     return EllipticalGears(omega, e, m)
 
 
@@ -95,14 +88,14 @@ def _times(args: Any, slider: CardanSlider) -> Any:
         parts = [p for p in args.times.split(",") if p.strip()]
         if not parts:
             raise InputError("--times is empty; give at least one time, e.g. --times 0,0.5,1")
-        return as_times([float(_number(p, f"time {i} in --times")) for i, p in enumerate(parts, 1)])
+        return as_times([float(as_real(p, what=f"time {i} in --times")) for i, p in enumerate(parts, 1)])
     n = parse_integer(args.samples, what="--samples")
     if n < 1:
         raise InputError(f"--samples must be at least 1, got {n}")
     if n > MAX_SAMPLES:
         raise InputError(f"--samples is at most {MAX_SAMPLES}, got {n}")
-    end = _number(args.t_end, "--t-end") if args.t_end is not None else None
-    return slider.times(t_start=_number(args.t_start, "--t-start"), t_end=end, samples=int(n))
+    end = as_real(args.t_end, what="--t-end") if args.t_end is not None else None
+    return slider.times(t_start=as_real(args.t_start, what="--t-start"), t_end=end, samples=int(n))
 
 
 def run_cardan(args: Any) -> int:
@@ -112,16 +105,16 @@ def run_cardan(args: Any) -> int:
         warnings.warn("symkin cardan --omega W is deprecated: it is now --speed W (--omega LINK=VALUE names a link's "
                       "speed in the other commands)", SymkinWarning, stacklevel=1)
         args.speed = args.omega_deprecated
-    length = _number(args.length, "--length", positive=True)
+    length = as_real(args.length, what="--length", positive=True)
     z1, z3 = teeth_list(args.teeth, (2,))
     if z3 <= z1:
         raise InputError(f"the ring needs more teeth than the planet: got z1 = {z1}, z3 = {z3}")
     drive = _drive(args)
-    pin_radius = _number(args.pin_radius, "--pin-radius", positive=True) if args.pin_radius is not None else None
-    pin_angle = _number(args.pin_angle, "--pin-angle") if args.pin_angle is not None else None
+    pin_radius = as_real(args.pin_radius, what="--pin-radius", positive=True) if args.pin_radius is not None else None
+    pin_angle = as_real(args.pin_angle, what="--pin-angle") if args.pin_angle is not None else None
     slider = CardanSlider.build(length, drive=drive, teeth=(z1, z3), pin_radius=pin_radius, pin_angle=pin_angle,
-                                guide_angle=_number(args.guide_angle, "--guide-angle"),
-                                carrier_angle=_number(args.carrier_angle, "--carrier-angle"))
+                                guide_angle=as_real(args.guide_angle, what="--guide-angle"),
+                                carrier_angle=as_real(args.carrier_angle, what="--carrier-angle"))
     table = slider.table(_times(args, slider))
     emit(args, table.text(), table.to_json())
     return 0

@@ -21,14 +21,13 @@ Conventions every command follows:
 from __future__ import annotations
 
 import argparse
-import sys
 from pathlib import Path
 from typing import Any, Callable
 
-from symkin.errors import InputError
 from symkin._util.jsonout import exact_json, float_text
-from symkin._util.progress import Progress
 from symkin._util.parsing import parse_expression, parse_integer
+from symkin._util.progress import Progress
+from symkin.errors import InputError
 
 __all__ = [
     "teeth_list",

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 from typing import Any
 
-from symkin.printing import latex
 from symkin.cli.common import (
     SCHEME_HELP,
     add_command,
@@ -17,6 +16,7 @@ from symkin.cli.common import (
     link_value,
     scheme_mechanism,
 )
+from symkin.printing import latex
 
 __all__ = ["register", "SCHEME_HELP"]
 

@@ -4,11 +4,11 @@ from __future__ import annotations
 
 from typing import Any
 
+from symkin._util.parsing import parse_integer, parse_number
+from symkin.cli.common import Progress, add_command, add_quiet_flag, emit
 from symkin.errors import InputError
 from symkin.mechanisms.helical.synthesis import SCHEMES, SynthesisRequest, synthesise
-from symkin._util.parsing import parse_integer, parse_number
 from symkin.statics import planet_forces
-from symkin.cli.common import Progress, add_command, add_quiet_flag, emit
 
 #: Relative axial residual every listed design must meet in the independent force check.
 FORCE_TOLERANCE = 1e-12

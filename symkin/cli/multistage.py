@@ -5,10 +5,17 @@ from __future__ import annotations
 
 from typing import Any
 
-from symkin.errors import InputError
-from symkin._util.parsing import parse_integer, parse_number
 from symkin._util.jsonout import exact_json
-from symkin.cli.common import Progress, add_command, add_quiet_flag, emit, figure_file, save_figure
+from symkin._util.parsing import parse_integer, parse_number
+from symkin.cli.common import (
+    Progress,
+    add_command,
+    add_quiet_flag,
+    emit,
+    figure_file,
+    save_figure,
+)
+from symkin.errors import InputError
 
 #: More stages than this take long to derive symbolically (about 5 s at 8 stages).
 MAX_STAGES = 8
@@ -124,7 +131,11 @@ def _model(args: Any):
 
 
 def run_split(args: Any) -> int:
-    from symkin.mechanisms.multistage.split import SplitProblem, best_designs, solve_continuous
+    from symkin.mechanisms.multistage.split import (
+        SplitProblem,
+        best_designs,
+        solve_continuous,
+    )
 
     n = parse_integer(args.stages, what="--stages")
     if not 1 <= n <= MAX_STAGES:

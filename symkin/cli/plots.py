@@ -11,8 +11,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-from symkin.errors import InputError
-from symkin._util.parsing import parse_expression, parse_integer, parse_number
+from symkin._util.parsing import as_integer, parse_expression, parse_number
 from symkin.cli.common import (
     add_command,
     add_omega_argument,
@@ -25,6 +24,7 @@ from symkin.cli.common import (
     save_figure,
     scheme_mechanism,
 )
+from symkin.errors import InputError
 
 __all__ = ["register"]
 
@@ -122,13 +122,6 @@ def _setup(args: Any) -> tuple[Any, Any, list, float, list[str]]:
     return mech, motion, points, t_end, labels
 
 
-def _whole(text: str, what: str, low: int, high: int) -> int:
-    value = parse_integer(text, what=what)
-    if not low <= value <= high:
-        raise InputError(f"{what} must be between {low} and {high}, got {value}")
-    return int(value)
-
-
 def _turns(args: Any) -> float:
     if args.turns is None:
         return 1.0
@@ -192,9 +185,9 @@ def run_animate(args: Any) -> int:
     out = Path(args.out)
     if out.suffix.lower() not in WRITERS:
         raise InputError(f"--out {args.out}: give a file ending in {' or '.join(WRITERS)}")
-    fps = _whole(args.fps, "--fps", 1, MAX_FPS)
-    dpi = _whole(args.dpi, "--dpi", 10, MAX_DPI)
-    frames = _whole(args.frames, "--frames", 2, MAX_FRAMES) if args.frames is not None else None
+    fps = int(as_integer(args.fps, what="--fps", minimum=1, maximum=MAX_FPS))
+    dpi = int(as_integer(args.dpi, what="--dpi", minimum=10, maximum=MAX_DPI))
+    frames = int(as_integer(args.frames, what="--frames", minimum=2, maximum=MAX_FRAMES)) if args.frames is not None else None
     mech, motion, points, t_end, labels = _setup(args)
     if frames is None:
         turns = _turns(args) if args.t_end is None else 1.0

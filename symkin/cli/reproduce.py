@@ -9,10 +9,10 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import Any, Iterator
 
+from symkin.cli.common import add_command, add_out_argument, add_quiet_flag, emit
 from symkin.errors import InputError, SymkinWarning
 from symkin.papers.reproduce import format_table, paper_names, run
 from symkin.papers.texbuild import MISSING, find_pdflatex
-from symkin.cli.common import add_command, add_out_argument, add_quiet_flag, emit
 
 
 def register(sub: Any) -> None:

@@ -41,14 +41,14 @@ import sympy as sp
 from symkin import schemes
 from symkin import symbols as S
 from symkin._util.budget import simplify_within
+from symkin._util.jsonout import exact_json
+from symkin._util.parsing import as_expr, as_rational, as_real, as_values, substitute
 from symkin.drives import AngleLaw, ConstantSpeed, Drive, EllipticalGears, as_drive
 from symkin.errors import InputError, ModelError, UnsupportedError
 from symkin.laws import Law
+from symkin.model import Mechanism, as_length, as_teeth
 from symkin.numeric import compile
 from symkin.numeric.sampling import as_times, on_grid, time_grid
-from symkin.model import Mechanism, as_length, as_teeth
-from symkin._util.jsonout import exact_json
-from symkin._util.parsing import as_expr, as_rational, as_real, as_values, substitute
 from symkin.vectorloop import LinkVector, VectorLoop, harmonics, solve_linear
 
 __all__ = [

@@ -24,10 +24,9 @@ cancelled, angles unwrapped, cosine sums well conditioned.
 
 from __future__ import annotations
 
-from collections.abc import Iterable
-
 import math
 import warnings
+from collections.abc import Iterable
 from dataclasses import dataclass
 from typing import Any, Mapping, Sequence
 

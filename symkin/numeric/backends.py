@@ -30,6 +30,7 @@ from typing import Any, Callable, Sequence
 import numpy as np
 import sympy as sp
 
+from symkin._util.parsing import parse_number
 from symkin.errors import InputError, PoleError, PrecisionWarning, UnsupportedError
 from symkin.numeric import runtime
 from symkin.numeric.codegen import ExactPrinter, FloatPrinter, kernel_source
@@ -539,8 +540,6 @@ def _to_mpf(v: Any, name: str) -> Any:
     if isinstance(v, sp.Rational):
         return mpmath.mpf(int(v.p)) / int(v.q)
     if isinstance(v, str):
-        from symkin._util.parsing import parse_number
-
         r = parse_number(v, what=name)
         return mpmath.mpf(int(r.p)) / int(r.q)
     if isinstance(v, sp.Expr) and v.is_number:
@@ -602,8 +601,6 @@ def _to_fraction(v: Any, name: str) -> Any:
     if isinstance(v, sp.Rational):
         return Fraction(int(v.p), int(v.q))
     if isinstance(v, str):
-        from symkin._util.parsing import parse_number
-
         r = parse_number(v, what=name)
         return Fraction(int(r.p), int(r.q))
     raise InputError(

@@ -23,7 +23,7 @@ from typing import Any, Mapping
 
 import sympy as sp
 
-from symkin._util.parsing import parse_number
+from symkin._util.parsing import as_expr, parse_number
 from symkin.printing import latex
 
 __all__ = ["Verdict", "Comparison", "Check", "compare_symbolic", "compare_exact", "compare_rounded", "slip"]
@@ -49,8 +49,6 @@ class Comparison:
 
 def _expr(value: Any) -> Any:
     """A SymPy object from a value; text is parsed with the allow-list, never by Python."""
-    from symkin._util.parsing import as_expr
-
     return as_expr(value, what="a compared value", finite=False)
 
 

@@ -16,6 +16,7 @@ from typing import Any, Iterable
 
 import sympy as sp
 
+from symkin._version import __version__
 from symkin.laws import Law
 from symkin.printing import escape_text, estimated_width, latex, latex_lines
 
@@ -97,8 +98,6 @@ def _check_block(check: Any) -> str:
 
 
 def _summary(results: list[Any]) -> str:
-    from symkin._version import __version__
-
     checks = [c for r in results for c in r.checks]
     bad = [c for c in checks if not c.verdict.ok]
     slips = [c for c in checks if c.verdict.value.startswith("paper slip")]

@@ -11,10 +11,6 @@ only when complete, so an interrupted or failing run leaves the previous report 
 from __future__ import annotations
 
 import json
-import os
-import shutil
-import sys
-import tempfile
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -22,11 +18,12 @@ from typing import Any, Callable, Iterable, TextIO
 
 from symkin._util.atomic import write_atomically
 from symkin._util.progress import Progress
+from symkin._version import __version__
 from symkin.errors import InputError
 from symkin.papers.checks import Check
 from symkin.papers.document import equations_document
-from symkin.papers.texbuild import compile_pdf, find_pdflatex
 from symkin.papers.registry import load, paper_names
+from symkin.papers.texbuild import compile_pdf, find_pdflatex
 
 __all__ = ["paper_names", "load", "PaperResult", "run", "check_target", "write_atomically", "format_table"]
 
@@ -112,8 +109,6 @@ _POST_BUILD: list[Callable[[Path, list[PaperResult]], None]] = []
 
 
 def report_json(results: list[PaperResult], root: Path) -> dict[str, Any]:
-    from symkin._version import __version__
-
     checks = [c for r in results for c in r.checks]
     return {
         "symkin_version": __version__,

@@ -26,11 +26,10 @@ import sympy as sp
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
-from symkin import symbols as S
 from symkin._util.atomic import replacing
+from symkin._util.parsing import as_values, substitute
 from symkin.errors import InputError, ToolError
 from symkin.model import FRAME, LinkKind
-from symkin._util.parsing import as_values, substitute
 from symkin.numeric.sampling import on_grid, time_grid
 
 __all__ = ["Frames", "draw_frame", "frame_figure", "animate", "WRITERS", "ffmpeg_available"]

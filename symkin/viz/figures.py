@@ -14,7 +14,6 @@ straight line.
 
 from __future__ import annotations
 
-import math
 from pathlib import Path
 from typing import Any, Iterable, Mapping, Sequence
 
@@ -23,10 +22,10 @@ import sympy as sp
 from matplotlib.figure import Figure
 from matplotlib.patches import Circle
 
-from symkin import symbols as S
+from symkin._util.atomic import replacing
+from symkin._util.parsing import as_values, substitute
 from symkin.errors import InputError
 from symkin.model import LinkKind, Mechanism
-from symkin._util.parsing import as_values, substitute
 
 __all__ = [
     "default_particles",
@@ -156,8 +155,6 @@ def save(fig: Figure, path: Path, formats: Sequence[str] = ("png", "pdf")) -> li
     The files appear together when all are written (:func:`symkin._util.atomic.replacing`): a
     failure leaves any earlier ones as they were.
     """
-    from symkin._util.atomic import replacing
-
     targets = [Path(path).with_suffix("." + fmt) for fmt in formats]
     with replacing(*targets) as temps:
         for tmp in temps:

@@ -33,8 +33,8 @@ from typing import Any
 
 import sympy as sp
 
+from symkin._util.parsing import as_expr, as_float, as_integer
 from symkin.errors import ModelError
-from symkin._util.parsing import as_expr, as_rational
 from symkin.model import Gear
 from symkin.schemes import TWO_ROW
 
@@ -248,22 +248,6 @@ def helical_gear(
     return Gear(name, radius, teeth=teeth, internal=internal)
 
 
-def _positive_int(value: Any, what: str) -> int:
-    if isinstance(value, bool) or not isinstance(value, (int, sp.Integer)) or int(value) <= 0:
-        raise ModelError(f"{what} must be a positive whole number, got {value!r}")
-    return int(value)
-
-
-def _positive(value: Any, what: str) -> float:
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise ModelError(f"{what} must be a number, got {value!r}") from None
-    if not math.isfinite(v) or v <= 0:
-        raise ModelError(f"{what} must be positive and finite, got {value!r}")
-    return v
-
-
 def _angle(value: Any, what: str, low: float, high: float) -> float:
     try:
         v = float(value)
@@ -319,9 +303,9 @@ class HelicalMesh:
     addendum: float = 1.0
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "teeth_external", _positive_int(self.teeth_external, "teeth of the external gear"))
-        object.__setattr__(self, "teeth_mate", _positive_int(self.teeth_mate, "teeth of the mating gear"))
-        object.__setattr__(self, "normal_module", _positive(self.normal_module, "the normal module"))
+        object.__setattr__(self, "teeth_external", int(as_integer(self.teeth_external, what="teeth of the external gear", text=False, error=ModelError, minimum=1)))
+        object.__setattr__(self, "teeth_mate", int(as_integer(self.teeth_mate, what="teeth of the mating gear", text=False, error=ModelError, minimum=1)))
+        object.__setattr__(self, "normal_module", as_float(self.normal_module, what="the normal module", positive=True, error=ModelError))
         object.__setattr__(self, "beta", _angle(self.beta, "the helix angle", 0.0, math.pi / 2))
         object.__setattr__(self, "alpha_n", _angle(self.alpha_n, "the normal pressure angle", 1e-9, math.pi / 2))
         if not isinstance(self.internal, bool):

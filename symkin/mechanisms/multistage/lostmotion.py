@@ -31,7 +31,11 @@ from typing import Any, Callable, Sequence
 import sympy as sp
 
 from symkin import symbols as S
+from symkin._util.parsing import as_real, parse_expression
 from symkin.errors import InputError
+from symkin.mechanisms.multistage.stages import stage_laws
+from symkin.numeric import compile
+from symkin.schemes import common_ring_train, single_row_AI
 
 __all__ = [
     "stage_ratio_symbol",
@@ -192,8 +196,6 @@ def lost_motion(stages: int) -> LostMotion:
     """
     if isinstance(stages, bool) or not isinstance(stages, int) or stages < 1:
         raise InputError(f"the number of stages must be a positive whole number, got {stages!r}")
-    from symkin.schemes import common_ring_train
-
     n = stages
     train = common_ring_train(n)
     speeds = train_speeds(train)
@@ -248,7 +250,7 @@ class StageErrorModel:
         >>> StageErrorModel.linear("0.5", 2).expr
         2*u + 1/2
         """
-        av, bv = _number(a, "a"), _number(b, "b")
+        av, bv = as_real(a, what="a"), as_real(b, what="b")
         return cls(av + bv * U, f"linear model Phi/d = {av} + {bv} u")
 
     @classmethod
@@ -258,8 +260,6 @@ class StageErrorModel:
         >>> StageErrorModel.from_expression("1 + u^2").expr
         u**2 + 1
         """
-        from symkin._util.parsing import parse_expression
-
         expr = parse_expression(text, symbols={"u": U}, what="the stage error model Phi/d")
         return cls(expr, f"Phi/d = {expr}")
 
@@ -275,11 +275,8 @@ class StageErrorModel:
         >>> StageErrorModel.from_backlash_line(40, sp.Rational(1, 2), module=1, ring=100).expr
         21*u/20 - 4/5
         """
-        from symkin.schemes import single_row_AI
-        from symkin.mechanisms.multistage.stages import stage_laws
-
-        c0, c1 = _number(intercept, "the intercept"), _number(slope, "the slope")
-        m = _number(module, "the module")
+        c0, c1 = as_real(intercept, what="the intercept"), as_real(slope, what="the slope")
+        m = as_real(module, what="the module")
         if m <= 0:
             raise InputError(f"the module must be positive, got {m}")
         if isinstance(ring, bool) or not isinstance(ring, (int, sp.Integer)) or ring < 3:
@@ -310,8 +307,6 @@ class StageErrorModel:
         >>> StageErrorModel.from_expression("u**2").numeric()(1.5)
         2.25
         """
-        from symkin.numeric import compile
-
         f = compile(self.expr, [U])
         return lambda x: float(f(float(x)))
 
@@ -324,8 +319,6 @@ class StageErrorModel:
         symkin.errors.InputError: the stage error model u - 3 is not positive at u = 2; a lost motion must be positive over the whole ratio range, so change the model or the bounds
         """
         import numpy as np
-
-        from symkin.numeric import compile
 
         f = compile(self.expr, [U], on_pole="return")  # a pole is reported below, as not positive
         grid = np.linspace(float(lower), float(upper), 401)
@@ -346,12 +339,6 @@ def _models(model: Any, n: int) -> tuple[StageErrorModel, ...]:
     if len(models) != n or not all(isinstance(m, StageErrorModel) for m in models):
         raise InputError(f"give one StageErrorModel for every stage or {n} of them, got {model!r}")
     return models
-
-
-def _number(value: Any, what: str) -> sp.Expr:
-    from symkin._util.parsing import as_real
-
-    return as_real(value, what=what)
 
 
 # --------------------------------------------------------------------------- tolerance stacks
@@ -392,7 +379,7 @@ def max_lost_motion(E_HS1: Any, E_HS2: Any, T_H1: Any, T_H2: Any, f_a: Any, G_r1
 def _tolerance(value: Any, signed: bool = False) -> sp.Expr:
     if isinstance(value, sp.Symbol):
         return value
-    v = _number(value, "a tolerance")
+    v = as_real(value, what="a tolerance")
     if not signed and v < 0:
         raise InputError(f"a tolerance must not be negative, got {v}")
     return v

@@ -26,18 +26,19 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from functools import lru_cache
 from fractions import Fraction
+from functools import lru_cache
 from typing import Any, Callable, Iterator, Sequence
 
 import sympy as sp
 
 from symkin import symbols as S
-from symkin.errors import InputError, ModelError
 from symkin._util.jsonout import exact_json, exact_json_list
+from symkin._util.parsing import as_integer, as_rational
+from symkin.errors import InputError, ModelError
 from symkin.laws import Law
 from symkin.numeric import compile
-from symkin._util.parsing import as_integer, as_rational
+from symkin.schemes import single_row_AI
 
 __all__ = [
     "Stage",
@@ -126,8 +127,6 @@ def stage_laws() -> StageLaws:
     >>> laws.neighbour_margin
     -2*h_a^* - z_2 + (z_1 + z_2)*sin(pi/k)
     """
-    from symkin.schemes import single_row_AI
-
     mech = single_row_AI(teeth=True)
     m = S.module()
     ratio = mech.ratio("1", "H", fixed="4")
@@ -139,13 +138,6 @@ def stage_laws() -> StageLaws:
     margin = sp.expand((2 * arm * sp.sin(sp.pi / K) - tip_diameter) / m)
     margin = sp.collect(margin, sp.sin(sp.pi / K), sp.factor)
     return StageLaws(ratio, cond, ring, planet, margin, sp.expand(arm / m))
-
-
-def _integer(value: Any, what: str, minimum: int = 1) -> int:
-    value = int(as_integer(value, what=what, text=False))
-    if value < minimum:
-        raise InputError(f"{what} must be at least {minimum}, got {value}")
-    return value
 
 
 def _tip_height(ha: Any) -> sp.Rational:
@@ -225,7 +217,7 @@ def neighbours_clear(sun: int, planet: int, satellites: int, ha: Any = 1) -> boo
     >>> neighbours_clear(24, 20, 6), neighbours_clear(25, 20, 6)  # equality is not clearance
     (False, True)
     """
-    k = _integer(satellites, "the number of satellites")
+    k = int(as_integer(satellites, what="the number of satellites", text=False, minimum=1))
     if k == 1:
         return True
     h = _tip_height(ha)
@@ -399,12 +391,12 @@ def enumerate_stages(ring: int, satellites: int, *, zmin: int = 1, zmax: int | N
     ...
     symkin.errors.InputError: no single-row AI stage fits a ring of 40 teeth with 15 <= z <= 100: coaxiality z_ring = z_sun + 2 z_planet leaves no sun and planet of at least 15 teeth each; use a ring of at least 45 teeth or lower zmin
     """
-    ring = _integer(ring, "the ring's tooth number")
+    ring = int(as_integer(ring, what="the ring's tooth number", text=False, minimum=1))
     if ring > MAX_RING:
         raise InputError(f"the ring has {ring} teeth; the enumeration visits every sun, so at most {MAX_RING} are accepted")
-    k = _integer(satellites, "the number of satellites")
-    zmin = _integer(zmin, "zmin")
-    zmax = ring if zmax is None else _integer(zmax, "zmax")
+    k = int(as_integer(satellites, what="the number of satellites", text=False, minimum=1))
+    zmin = int(as_integer(zmin, what="zmin", text=False, minimum=1))
+    zmax = ring if zmax is None else int(as_integer(zmax, what="zmax", text=False, minimum=1))
     ha_value = _tip_height(ha)
     if zmax < zmin:
         raise InputError(f"zmin = {zmin} is larger than zmax = {zmax}; give zmin <= zmax")

@@ -36,22 +36,22 @@ from symkin.mechanisms.helical.synthesis.conditions import (
     BETA12,
     BETA34,
     DELTA,
-    K,
     LAMBDA,
     M12,
     M34,
     MU,
     NU,
-    P,
-    Q,
     RATIO,
     SCHEMES,
     SIN_PI_K,
     U34,
+    HelixAngleSolution,
+    K,
+    P,
+    Q,
+    ToothEquations,
     X,
     Z,
-    HelixAngleSolution,
-    ToothEquations,
     assembly_condition,
     assembly_integers,
     balance_condition,
@@ -65,8 +65,17 @@ from symkin.mechanisms.helical.synthesis.conditions import (
     working_diameter_ratio,
 )
 from symkin.mechanisms.helical.synthesis.conditions import __all__ as _laws_all
-from symkin.mechanisms.helical.synthesis.regions import ExistenceBounds, existence_bounds, existence_interval, existence_range
-from symkin.mechanisms.helical.synthesis.request import HelicalDesign, SynthesisRequest, SynthesisResult
+from symkin.mechanisms.helical.synthesis.regions import (
+    ExistenceBounds,
+    existence_bounds,
+    existence_interval,
+    existence_range,
+)
+from symkin.mechanisms.helical.synthesis.request import (
+    HelicalDesign,
+    SynthesisRequest,
+    SynthesisResult,
+)
 from symkin.mechanisms.helical.synthesis.search import synthesise
 
 __all__ = [

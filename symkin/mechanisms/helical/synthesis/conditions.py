@@ -17,15 +17,16 @@ import math
 from dataclasses import dataclass
 from fractions import Fraction
 from functools import lru_cache
-from typing import Any, Callable, Sequence
+from typing import Sequence
 
 import sympy as sp
 
 from symkin import symbols as S
-from symkin.errors import InputError, UnsupportedError
+from symkin.errors import UnsupportedError
 from symkin.mechanisms.helical.geometry import SCHEME_MESHES, helical_gear
 from symkin.mechanisms.helical.train import SCHEMES, _scheme, ratio_function, ratio_law
-from symkin.laws import Law
+from symkin.schemes import two_row
+from symkin.statics import planet_statics
 
 __all__ = [
     "RATIO", "X", "K", "P", "Q", "DELTA", "LAMBDA", "Z", "M12", "M34", "BETA12", "BETA34", "ALPHA_T12", "ALPHA_T34",
@@ -74,8 +75,6 @@ def assembly_condition(scheme: str) -> sp.Eq:
     >>> assembly_condition("AI")
     Eq(-Q*z_2/z_3 + i_{1H}^{(4)}*z_1/k, P)
     """
-    from symkin.schemes import two_row
-
     mech = two_row(_scheme(scheme), teeth=True)
     turn_H = sp.Integer(1)
     turns_1 = mech.speeds({"H": turn_H, "4": 0})["1"]  # revolutions of gear 1 per carrier revolution
@@ -124,8 +123,6 @@ def working_coaxiality(scheme: str) -> sp.Expr:
     >>> working_coaxiality("AI")
     delta*z_1*z_3 + delta*z_2*z_3 + z_2*z_3 - z_2*z_4
     """
-    from symkin.schemes import two_row
-
     (coax,) = two_row(_scheme(scheme)).coaxiality
     r1, r2, r3, r4 = (S.radius(str(n)) for n in (1, 2, 3, 4))
     expr = (coax.lhs - coax.rhs).subs({r1: r2 * Z[1] / Z[2], r4: r3 * Z[4] / Z[3]}).subs(r2, DELTA * r3)
@@ -160,8 +157,6 @@ def helical_coaxiality(scheme: str, shifted: bool = True) -> sp.Eq:
     >>> helical_coaxiality("AA", shifted=False)
     Eq(m_n12*z_1/(2*cos(beta_12)) + m_n12*z_2/(2*cos(beta_12)), m_n34*z_3/(2*cos(beta_34)) + m_n34*z_4/(2*cos(beta_34)))
     """
-    from symkin.schemes import two_row
-
     (coax,) = two_row(_scheme(scheme)).coaxiality
     radii = _helical_radii(scheme, shifted)
     return sp.Eq(sp.expand(coax.lhs.subs(radii)), sp.expand(coax.rhs.subs(radii)), evaluate=False)
@@ -189,9 +184,6 @@ def balance_condition() -> sp.Eq:
     >>> balance_condition()
     Eq(tan(beta_12)/tan(beta_34), m_n12*z_2*cos(beta_34)/(m_n34*z_3*cos(beta_12)))
     """
-    from symkin.schemes import two_row
-    from symkin.statics import planet_statics
-
     st = planet_statics(two_row("AI"))
     bw2, bw3 = sp.Symbol("beta_w2", positive=True), sp.Symbol("beta_w3", positive=True)
     rw2, rw3 = S.radius("2"), S.radius("3")  # the engine's radii are the working ones

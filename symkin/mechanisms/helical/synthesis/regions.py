@@ -12,17 +12,23 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from functools import lru_cache
-from typing import Any, Callable
+from typing import Any
 
 import numpy as np
 import sympy as sp
 
 from symkin import symbols as S
+from symkin._util.parsing import as_integer, as_real
 from symkin.errors import InputError, UnsupportedError
-from symkin._util.parsing import as_real
+from symkin.mechanisms.helical.synthesis.conditions import (
+    _S,
+    DELTA,
+    SIN_PI_K,
+    K,
+    _scheme,
+)
 from symkin.numeric import NumericFunction, compile
-from symkin.mechanisms.helical.synthesis.conditions import DELTA, K, SIN_PI_K, _S, _scheme
-from symkin.mechanisms.helical.synthesis.request import _whole
+from symkin.schemes import two_row
 
 __all__ = ["ExistenceBounds", "existence_bounds", "existence_interval", "existence_range"]
 
@@ -39,8 +45,6 @@ R1 = S.radius("1")
 
 @lru_cache(maxsize=None)
 def _region_setup(scheme: str) -> _RegionSetup:
-    from symkin.schemes import two_row
-
     mech = two_row(_scheme(scheme))
     r2, r3, r4 = (S.radius(str(n)) for n in (2, 3, 4))
     (coax,) = mech.coaxiality
@@ -157,7 +161,7 @@ def existence_interval(scheme: str, satellites: int, delta: Any) -> tuple[sp.Exp
     d = as_real(delta, what="d_w2/d_w3")  # a float is its decimal, never a guessed surd
     if not d.is_positive:
         raise InputError(f"d_w2/d_w3 must be a positive number, got {delta!r}")
-    k = _whole(satellites, "the number of satellites")
+    k = int(as_integer(satellites, what="the number of satellites"))
     if k < 1:
         raise InputError(f"the number of satellites must be a positive whole number, got {satellites!r}")
     setup = _region_setup(scheme)

@@ -11,23 +11,13 @@ from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any
 
+from symkin._util.jsonout import exact_json, exact_json_list
+from symkin._util.parsing import as_fraction, as_integer
 from symkin.errors import InputError
 from symkin.mechanisms.helical import HelicalTrain, hand_name
-from symkin._util.jsonout import exact_json, exact_json_list
-from symkin._util.parsing import as_integer, as_rational
 from symkin.mechanisms.helical.synthesis.conditions import _scheme
 
 __all__ = ["SynthesisRequest", "HelicalDesign", "SynthesisResult"]
-
-
-def _fraction(value: Any, what: str) -> Fraction:
-    """An exact number from a user value (text is parsed safely, never evaluated)."""
-    r = as_rational(value, what=what)
-    return Fraction(int(r.p), int(r.q))
-
-
-def _whole(value: Any, what: str) -> int:
-    return int(as_integer(value, what=what))
 
 
 @dataclass(frozen=True)
@@ -80,13 +70,13 @@ class SynthesisRequest:
             object.__setattr__(self, name, value)
 
         _scheme(self.scheme)
-        put("ratio", _fraction(self.ratio, "the target ratio"))
+        put("ratio", as_fraction(self.ratio, what="the target ratio"))
         if self.ratio == 0:
             raise InputError("the target ratio i_1H^(4) must not be 0 (the carrier would not turn); give a non-zero ratio")
-        put("tolerance", _fraction(self.tolerance, "the ratio tolerance"))
+        put("tolerance", as_fraction(self.tolerance, what="the ratio tolerance"))
         if self.tolerance < 0:
             raise InputError(f"the ratio tolerance must be >= 0 (a relative error), got {self.tolerance}")
-        k = _whole(self.satellites, "the number of satellites")
+        k = int(as_integer(self.satellites, what="the number of satellites"))
         if k < 1:
             raise InputError(f"the number of satellites must be at least 1, got {k}")
         put("satellites", k)
@@ -94,12 +84,12 @@ class SynthesisRequest:
             m12, m34 = self.normal_modules
         except (TypeError, ValueError):
             raise InputError("give two normal modules, m_n12 and m_n34") from None
-        mods = (_fraction(m12, "the normal module m_n12"), _fraction(m34, "the normal module m_n34"))
+        mods = (as_fraction(m12, what="the normal module m_n12"), as_fraction(m34, what="the normal module m_n34"))
         for name, m in zip(("m_n12", "m_n34"), mods):
             if m <= 0:
                 raise InputError(f"the normal module {name} must be positive, got {m}")
         put("normal_modules", mods)
-        lo, hi = _fraction(self.beta_min_deg, "beta-min"), _fraction(self.beta_max_deg, "beta-max")
+        lo, hi = as_fraction(self.beta_min_deg, what="beta-min"), as_fraction(self.beta_max_deg, what="beta-max")
         for name, b in (("beta-min", lo), ("beta-max", hi)):
             if not 0 < b < 45:
                 raise InputError(f"{name} must lie strictly between 0 and 45 degrees, got {float(b):g}")
@@ -107,7 +97,7 @@ class SynthesisRequest:
             raise InputError(f"beta-min ({float(lo):g} deg) must be less than beta-max ({float(hi):g} deg): these limits exclude every design")
         put("beta_min_deg", lo)
         put("beta_max_deg", hi)
-        zmin, zmax = _whole(self.teeth_min, "zmin"), _whole(self.teeth_max, "zmax")
+        zmin, zmax = int(as_integer(self.teeth_min, what="zmin")), int(as_integer(self.teeth_max, what="zmax"))
         if zmin < 1:
             raise InputError(f"zmin must be at least 1, got {zmin}")
         if zmin > zmax:
@@ -118,20 +108,20 @@ class SynthesisRequest:
             )
         put("teeth_min", zmin)
         put("teeth_max", zmax)
-        a_n = _fraction(self.alpha_n_deg, "the normal pressure angle")
+        a_n = as_fraction(self.alpha_n_deg, what="the normal pressure angle")
         if not 0 < a_n < 45:
             raise InputError(f"the normal pressure angle must lie between 0 and 45 degrees, got {float(a_n):g}")
         put("alpha_n_deg", a_n)
-        ha = _fraction(self.addendum, "the addendum coefficient")
+        ha = as_fraction(self.addendum, what="the addendum coefficient")
         if ha < 0:
             raise InputError(f"the addendum coefficient must be >= 0, got {ha}")
         put("addendum", ha)
-        dmin = _whole(self.min_ring_difference, "the least ring-planet tooth difference")
+        dmin = int(as_integer(self.min_ring_difference, what="the least ring-planet tooth difference"))
         if dmin < 1:
             raise InputError(f"the least ring-planet tooth difference must be at least 1, got {dmin}")
         put("min_ring_difference", dmin)
         if self.top is not None:
-            top = _whole(self.top, "top")
+            top = int(as_integer(self.top, what="top"))
             if top < 1:
                 raise InputError(f"top must be at least 1, got {top}")
             put("top", top)

@@ -17,12 +17,29 @@ import numpy as np
 import sympy as sp
 
 from symkin.errors import InputError
-from symkin.numeric import compile
 from symkin.mechanisms.helical import SCHEME_MESHES, HelicalTrain
-from symkin.mechanisms.helical.synthesis.conditions import M12, M34, MU, NU, RATIO, SCHEMES, U34, Z, assembly_integers, coaxial_cosine_ratio, helix_angle_solution
-from symkin.mechanisms.helical.synthesis.conditions import ratio_function, ratio_law
+from symkin.mechanisms.helical.synthesis.conditions import (
+    M12,
+    M34,
+    MU,
+    NU,
+    RATIO,
+    SCHEMES,
+    U34,
+    Z,
+    assembly_integers,
+    coaxial_cosine_ratio,
+    helix_angle_solution,
+    ratio_function,
+    ratio_law,
+)
 from symkin.mechanisms.helical.synthesis.regions import _as_float, existence_range
-from symkin.mechanisms.helical.synthesis.request import HelicalDesign, SynthesisRequest, SynthesisResult
+from symkin.mechanisms.helical.synthesis.request import (
+    HelicalDesign,
+    SynthesisRequest,
+    SynthesisResult,
+)
+from symkin.numeric import compile
 
 __all__ = ["synthesise"]
 

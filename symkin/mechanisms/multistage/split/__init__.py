@@ -27,8 +27,17 @@ from here.
 
 from __future__ import annotations
 
-from symkin.mechanisms.multistage.split.continuous import ContinuousSplit, optimise_split, profile, solve_continuous
-from symkin.mechanisms.multistage.split.discrete import Design, DiscreteSplit, best_designs
+from symkin.mechanisms.multistage.split.continuous import (
+    ContinuousSplit,
+    optimise_split,
+    profile,
+    solve_continuous,
+)
+from symkin.mechanisms.multistage.split.discrete import (
+    Design,
+    DiscreteSplit,
+    best_designs,
+)
 from symkin.mechanisms.multistage.split.problem import MAX_STAGES, SplitProblem
 
 _solve = solve_continuous  # the former private name

@@ -23,8 +23,8 @@ from typing import Any, Sequence
 import numpy as np
 import sympy as sp
 
-from symkin.errors import SymkinError
 from symkin._util.jsonout import exact_json, exact_json_list
+from symkin.errors import SymkinError
 from symkin.mechanisms.multistage.lostmotion import StageErrorModel  # noqa: F401  (the doctests use it)
 from symkin.mechanisms.multistage.split.problem import _BOUND_TOL, SplitProblem
 

@@ -18,10 +18,14 @@ from typing import Any, Callable, Sequence
 import numpy as np
 import sympy as sp
 
-from symkin.errors import InputError, UnsupportedError
 from symkin._util.jsonout import exact_json, exact_json_list
+from symkin._util.parsing import as_rational
+from symkin.errors import InputError, UnsupportedError
 from symkin.mechanisms.multistage.lostmotion import StageErrorModel  # noqa: F401  (the doctests use it)
-from symkin.mechanisms.multistage.split.problem import _TABLE_SIZE, SplitProblem, _rational
+from symkin.mechanisms.multistage.split.problem import (
+    _TABLE_SIZE,
+    SplitProblem,
+)
 
 __all__ = ["Design", "DiscreteSplit", "best_designs"]
 
@@ -427,14 +431,14 @@ def best_designs(total: Any, stage_set: Any, stages: int, *, model: Any, toleran
         raise InputError("no feasible stages were given; enumerate them with symkin.mechanisms.multistage.stages.enumerate_stages")
     if isinstance(top, bool) or not isinstance(top, (int, sp.Integer)) or int(top) < 1:
         raise InputError(f"top must be a positive whole number, got {top!r}")
-    tol = _rational(tolerance, "the tolerance")
+    tol = as_rational(tolerance, what="the tolerance")
     if tol < 0:
         raise InputError(f"the tolerance must not be negative, got {tol}")
     if tol >= 1:
         raise InputError(f"the tolerance is relative (0.01 = 1%) and must be below 1, got {tol}")
     ratios = [s.ratio for s in stage_list]
-    lo = _rational(lower, "the lower bound") if lower is not None else min(ratios)
-    hi = _rational(upper, "the upper bound") if upper is not None else max(ratios)
+    lo = as_rational(lower, what="the lower bound") if lower is not None else min(ratios)
+    hi = as_rational(upper, what="the upper bound") if upper is not None else max(ratios)
     if lo > hi:
         raise InputError(f"the bounds are reversed: lower {lo} > upper {hi}; give lower <= upper")
     stage_list = [s for s in stage_list if lo <= s.ratio <= hi]

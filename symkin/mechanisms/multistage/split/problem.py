@@ -13,14 +13,18 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from functools import cached_property
-from typing import Any, Callable, Sequence
+from typing import Any, Sequence
 
 import sympy as sp
 
 from symkin._util.budget import simplify_within
-from symkin.errors import InputError
-from symkin.mechanisms.multistage.lostmotion import LostMotion, StageErrorModel, lost_motion
 from symkin._util.parsing import as_rational
+from symkin.errors import InputError
+from symkin.mechanisms.multistage.lostmotion import (
+    LostMotion,
+    StageErrorModel,
+    lost_motion,
+)
 from symkin.numeric import NumericFunction, compile
 
 __all__ = ["SplitProblem", "MAX_STAGES"]
@@ -33,16 +37,12 @@ _TABLE_SIZE = 200_000  # largest table of completion products the discrete searc
 
 
 # --------------------------------------------------------------------------- inputs
-def _rational(value: Any, what: str) -> sp.Rational:
-    return as_rational(value, what=what)
-
-
 def _per_stage(value: Any, n: int, what: str) -> tuple[sp.Rational, ...]:
     if isinstance(value, (list, tuple)):
         if len(value) != n:
             raise InputError(f"{what} gives {len(value)} values for {n} stages; give one value or one per stage")
-        return tuple(_rational(v, f"{what} of stage {i}") for i, v in enumerate(value, 1))
-    return (_rational(value, what),) * n
+        return tuple(as_rational(v, what=f"{what} of stage {i}") for i, v in enumerate(value, 1))
+    return (as_rational(value, what=what),) * n
 
 
 @dataclass(frozen=True)
@@ -81,7 +81,7 @@ class SplitProblem:
         if isinstance(stages, bool) or not isinstance(stages, (int, sp.Integer)) or not 1 <= int(stages) <= MAX_STAGES:
             raise InputError(f"the number of stages must be a positive whole number, at most {MAX_STAGES}, got {stages!r}")
         n = int(stages)
-        U = _rational(total, "the total ratio")
+        U = as_rational(total, what="the total ratio")
         if U <= 0:
             raise InputError(f"the total ratio must be positive, got {U}")
         lo, hi = _per_stage(lower, n, "the lower bound"), _per_stage(upper, n, "the upper bound")
@@ -140,7 +140,7 @@ class SplitProblem:
 
     def exact_value(self, ratios: Sequence[Any]) -> sp.Expr:
         """The objective at a split, exactly (rationals in, a rational out for rational models)."""
-        subs = {u: r if isinstance(r, sp.Basic) else _rational(r, "a stage ratio") for u, r in zip(self.lost_motion.ratios, ratios)}
+        subs = {u: r if isinstance(r, sp.Basic) else as_rational(r, what="a stage ratio") for u, r in zip(self.lost_motion.ratios, ratios)}
         return sp.cancel(self.objective.xreplace(subs))
 
     @cached_property
