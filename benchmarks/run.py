@@ -224,7 +224,7 @@ def evalf_points(expr, args, values, n):
 def run_case(title: str, case: dict, sizes: list[int], ref_n: int = 1000) -> list[dict]:
     rows = []
     vals_ref = prefix(case["values"], ref_n)
-    ref_vals = vals_ref if title.startswith("ratio") else vals_ref
+    ref_vals = vals_ref
     ref_expr = case["expr"]
     if title.startswith("elliptical"):
         ref_expr = L.slider_laws_continuous()[2]
@@ -435,7 +435,7 @@ def write_plot(rows: list[dict], n: int, folder: Path) -> None:
                 handles.append(h)
                 labels.append(lbl)
     fig.legend(handles, [lbl.split(" (n=")[0] for lbl in labels], loc="lower center", ncol=3, fontsize=7)
-    fig.suptitle(f"Speed versus accuracy at the largest size measured (errors below 1e-17 drawn at 1e-17)", fontsize=10)
+    fig.suptitle("Speed versus accuracy at the largest size measured (errors below 1e-17 drawn at 1e-17)", fontsize=10)
     fig.subplots_adjust(bottom=0.17, hspace=0.35, wspace=0.3)
     save(fig, folder / "numerics-speed-error")
 
@@ -616,7 +616,7 @@ def main() -> None:
 
     ratios = []
     best = "symkin numba float64, 2 threads" if HAS_NUMBA else "symkin numpy float64"
-    for law, key in (("ratio", "ratio"), ("differential", "differential"), ("elliptical", "elliptical")):
+    for law, _key in (("ratio", "ratio"), ("differential", "differential"), ("elliptical", "elliptical")):
         title = next(t for t in cases if t.startswith(law))
         b, lam, np_ = rate(law, best), rate(law, "sympy.lambdify"), rate(law, "symkin numpy float64")
         line = f"{title}: {best} / sympy.lambdify = {b / lam:.1f}x; symkin numpy float64 / sympy.lambdify = {np_ / lam:.1f}x"

@@ -91,7 +91,7 @@ def _published_2_closed(n: int, upper: str) -> sp.Expr:
 
 def _published_fig4_FF(Fd: list) -> sp.Expr:
     """Fig. 4, step 6: FF(u) = (1/U_S)(Fd1 + Fd2 u1 + Fd3 u1 u2 + Fd4 u1 u2 u3)."""
-    u1, u2, u3, u4 = (stage_ratio_symbol(i) for i in range(1, 5))
+    u1, u2, u3, _u4 = (stage_ratio_symbol(i) for i in range(1, 5))
     U_S = sp.Symbol("U_Sigma", positive=True)
     return (Fd[0] + Fd[1] * u1 + Fd[2] * u1 * u2 + Fd[3] * u1 * u2 * u3) / U_S, U_S
 

@@ -17,7 +17,7 @@ are derived and checked on the 2009 paper's AA example.
 from __future__ import annotations
 
 import math
-from functools import lru_cache
+from functools import cache
 from pathlib import Path
 
 import sympy as sp
@@ -349,7 +349,7 @@ def _table_evidence(kind: str, b, c_hi: Comparison) -> str:
 
 
 # --------------------------------------------------------------------------- synthesis example
-@lru_cache(maxsize=None)
+@cache
 def synthesis_example() -> HS.SynthesisResult:
     """The synthesis example, every design found (the report lists the best ``top``)."""
     return HS.synthesise(**{**SYNTHESIS_EXAMPLE, "top": None})
@@ -412,7 +412,7 @@ def _region_figure(folder: Path) -> list[Path]:
             free_end = b.lower if not b.lower.has(K) else b.upper
             k_end = b.upper if free_end is b.lower else b.lower
 
-            def curve(expr, kk=3):
+            def curve(expr, kk=3, d=d):
                 v = sp.lambdify(DELTA, expr.subs(K, kk), "numpy")(d) * np.ones_like(d)
                 return np.where(np.abs(v) < 1e3, v, np.nan)  # do not join the branches of a pole
 

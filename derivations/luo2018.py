@@ -13,6 +13,7 @@ are what is compared against, never used to derive.
 from __future__ import annotations
 
 import functools
+import itertools
 from pathlib import Path
 
 import numpy as np
@@ -404,7 +405,7 @@ def _stats(data, period: float) -> dict[str, float]:
     }
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def curves():
     """The sampled curves of figures 7-8 (computed once per process)."""
     return _curves()
@@ -416,7 +417,7 @@ def _ratios(rows, name: str) -> str:
 
 
 def _increasing(xs) -> bool:
-    return all(b > a for a, b in zip(xs, xs[1:]))
+    return all(b > a for a, b in itertools.pairwise(xs))
 
 
 def _figure_claims() -> list[Check]:
@@ -470,7 +471,7 @@ def _figure_claims() -> list[Check]:
     asym = [abs(hi + lo) / max(hi, -lo) for hi, lo in zip(column(c_rows, "a_max"), column(c_rows, "a_min"))]
     claims_c = {
         "longer steady stretch": _increasing(steady_c),
-        "forward and reverse acceleration extremes approach each other": all(b < a for a, b in zip(asym, asym[1:])) and asym[-1] < 1e-9,
+        "forward and reverse acceleration extremes approach each other": all(b < a for a, b in itertools.pairwise(asym)) and asym[-1] < 1e-9,
     }
     detail_c = (
         "; ".join(f"{k}: {shown(v)}" for k, v in claims_c.items())
@@ -525,7 +526,7 @@ def _table1_figure(folder: Path) -> list[Path]:
     ts = np.linspace(0, float(slider.period()), 501)
     d = slider.evaluate(ts)
     fig = Figure(figsize=(7, 6))
-    for n, (key, unit, name) in enumerate((("s", "mm", "displacement"), ("v", "mm/s", "velocity"), ("a", "mm/s$^2$", "acceleration")), 1):
+    for n, (key, unit, _name) in enumerate((("s", "mm", "displacement"), ("v", "mm/s", "velocity"), ("a", "mm/s$^2$", "acceleration")), 1):
         ax = fig.add_subplot(3, 1, n)
         ax.plot(ts, d[key] * 1e3, lw=1.2)
         ax.set_ylabel(f"{key} [{unit}]", fontsize=8)

@@ -48,7 +48,7 @@ class Law:
         """Symbols the right-hand side depends on."""
         return self.rhs.free_symbols
 
-    def subs(self, *args: Any, **kwargs: Any) -> "Law":
+    def subs(self, *args: Any, **kwargs: Any) -> Law:
         """The law with values substituted into its right-hand side."""
         return Law(self.lhs, self.rhs.subs(*args, **kwargs), self.description)
 

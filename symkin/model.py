@@ -25,9 +25,10 @@ from +z.
 from __future__ import annotations
 
 import enum
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
-from typing import Any, Iterable, Mapping, Sequence
+from typing import Any
 
 import sympy as sp
 
@@ -148,7 +149,7 @@ class Gear:
             object.__setattr__(self, "module", as_length(self.module, f"module of gear {self.name}"))
 
     @classmethod
-    def from_teeth(cls, name: str, teeth: Any, *, internal: bool = False, module: Any = None) -> "Gear":
+    def from_teeth(cls, name: str, teeth: Any, *, internal: bool = False, module: Any = None) -> Gear:
         """A gear of ``teeth`` teeth and pitch radius ``module * teeth / 2``.
 
         The module defaults to the symbol ``m``; it cancels from every ratio.
@@ -161,7 +162,7 @@ class Gear:
         return cls(name, m * z / 2, teeth=z, internal=internal, module=m)
 
     @classmethod
-    def symbolic(cls, name: str, *, internal: bool = False) -> "Gear":
+    def symbolic(cls, name: str, *, internal: bool = False) -> Gear:
         """A gear whose pitch radius is the symbol ``r_name``.
 
         >>> Gear.symbolic("4", internal=True)
@@ -233,19 +234,19 @@ class Link:
             raise ModelError(f"the frame must be named {FRAME!r}, got {self.name!r}")
 
     @classmethod
-    def central(cls, name: str, *gears: Gear) -> "Link":
+    def central(cls, name: str, *gears: Gear) -> Link:
         """A link turning about the main axis: a sun, a ring, or a carrier."""
         return cls(name, LinkKind.CENTRAL, gears)
 
     @classmethod
     def planet(
         cls, name: str, *gears: Gear, carrier: str = "H", arm: Any = None, position_angle: Any = 0
-    ) -> "Link":
+    ) -> Link:
         """A planet (satellite) carried by ``carrier``; a stepped planet has two gears."""
         return cls(name, LinkKind.PLANET, gears, carrier=carrier, arm=arm, position_angle=position_angle)
 
     @classmethod
-    def frame(cls, *gears: Gear) -> "Link":
+    def frame(cls, *gears: Gear) -> Link:
         """The fixed frame, optionally holding fixed gears (a fixed ring)."""
         return cls(FRAME, LinkKind.FRAME, gears)
 
@@ -276,8 +277,8 @@ class MeshGeometry:
     mesh: Mesh
     gear_a: Gear
     gear_b: Gear
-    link_a: "Link"
-    link_b: "Link"
+    link_a: Link
+    link_b: Link
     centre_distance: sp.Expr
     pitch_y: sp.Expr
 
@@ -536,7 +537,7 @@ class Mechanism:
 
         return kinematic_system(self).equations
 
-    def speeds(self, known: Mapping[str, Any]) -> "Any":
+    def speeds(self, known: Mapping[str, Any]) -> Any:
         """Angular velocity of every link, given the speeds of some links.
 
         See :func:`symkin.kinematics.solve_speeds`.
@@ -545,7 +546,7 @@ class Mechanism:
 
         return solve_speeds(self, known)
 
-    def ratio(self, driver: str, driven: str, fixed: str | Sequence[str] | None = None) -> "Any":
+    def ratio(self, driver: str, driven: str, fixed: str | Sequence[str] | None = None) -> Any:
         """The ratio i_ab^(c) = omega_a / omega_b with link(s) c fixed.
 
         See :func:`symkin.kinematics.ratio`.
@@ -554,7 +555,7 @@ class Mechanism:
 
         return ratio(self, driver, driven, fixed)
 
-    def motion(self, inputs: Mapping[str, Any], frame: Any = None) -> "Any":
+    def motion(self, inputs: Mapping[str, Any], frame: Any = None) -> Any:
         """The motion of every link for given input drives; see :class:`symkin.particles.Motion`."""
         from symkin.particles import Motion
 

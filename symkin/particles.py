@@ -20,9 +20,10 @@ only when asked for, and cached.
 
 from __future__ import annotations
 
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
-from typing import Any, Mapping, Sequence
+from typing import Any
 
 import numpy as np
 import sympy as sp
@@ -69,7 +70,7 @@ class Motion:
     _cache: dict = field(default_factory=dict, init=False, repr=False, compare=False, hash=False)
 
     @classmethod
-    def build(cls, mechanism: Mechanism, inputs: Mapping[str, Any], frame: FrameMotion | None = None) -> "Motion":
+    def build(cls, mechanism: Mechanism, inputs: Mapping[str, Any], frame: FrameMotion | None = None) -> Motion:
         if not isinstance(inputs, Mapping):
             raise InputError(f"inputs are a mapping of link name to drive or speed, got {inputs!r}")
         resolved: dict[str, Drive] = {}
@@ -130,7 +131,7 @@ class Motion:
         offset = rotation(turn0) * vec(arm * sp.cos(L.position_angle), arm * sp.sin(L.position_angle))
         return L.carrier, sp.ImmutableMatrix(self._origin0 + offset)
 
-    def particle(self, link: str, point: Sequence[Any], *, relative_to: str = "frame") -> "Particle":
+    def particle(self, link: str, point: Sequence[Any], *, relative_to: str = "frame") -> Particle:
         """A particle of ``link``.
 
         Parameters
@@ -203,7 +204,7 @@ class Particle:
     initial: sp.ImmutableMatrix
 
     @cached_property
-    def _pole(self) -> tuple["Particle | None", sp.ImmutableMatrix]:
+    def _pole(self) -> tuple[Particle | None, sp.ImmutableMatrix]:
         parent, pole0 = self.motion.pole(self.link)
         if self.link == FRAME:
             return None, pole0

@@ -22,8 +22,8 @@ from __future__ import annotations
 
 import re
 import unicodedata
-from collections.abc import Mapping
-from typing import Any, Iterable
+from collections.abc import Iterable, Mapping
+from typing import Any
 
 import sympy as sp
 from sympy.printing.latex import LatexPrinter
@@ -40,7 +40,7 @@ class SymkinLatexPrinter(LatexPrinter):
     """LaTeX printer for symkin: polynomial terms in the paper's order (1 + ... first)."""
 
     printmethod = "_latex"
-    _default_settings = {**LatexPrinter._default_settings, "order": "none"}
+    _default_settings = {**LatexPrinter._default_settings, "order": "none"}  # noqa: RUF012 (SymPy printers declare settings so)
 
     def _print_Add(self, expr: sp.Add, order: Any = None) -> str:
         return "".join(self._add_pieces(expr))
@@ -61,7 +61,7 @@ class SymkinLatexPrinter(LatexPrinter):
                 sign = " + "
             term_tex = self._print(term)
             if self._needs_add_brackets(term):
-                term_tex = r"\left(%s\right)" % term_tex
+                term_tex = rf"\left({term_tex}\right)"
             pieces.append(sign + term_tex)
         return pieces
 
@@ -132,15 +132,15 @@ def _tokens(printer: SymkinLatexPrinter, expr: sp.Expr, width: float) -> list[st
                 out += [sign + inner[0]] + inner[1:]
         return out
     if isinstance(expr, sp.Mul):
-        coeff, rest = expr.as_coeff_Mul()
+        coeff, _ = expr.as_coeff_Mul()
         sign = ""
         if coeff.is_negative:
             sign, expr = "- ", -expr
-            coeff, rest = expr.as_coeff_Mul()
+            coeff, _ = expr.as_coeff_Mul()
         num, den = sp.fraction(expr)
         if den != 1:
             if isinstance(num, sp.Add):
-                return _bracketed(printer, sign + r"\frac{1}{%s} " % printer._print(den), num, "", width)
+                return _bracketed(printer, sign + rf"\frac{{1}}{{{printer._print(den)}}} ", num, "", width)
             return [sign + printer._print(expr)]
         factors = sp.Mul.make_args(expr)
         plain = [f for f in factors if not _is_sum_factor(f)]
@@ -151,7 +151,7 @@ def _tokens(printer: SymkinLatexPrinter, expr: sp.Expr, width: float) -> list[st
         out = []
         for i, f in enumerate(sums):
             base, power = (f.base, f.exp) if isinstance(f, sp.Pow) else (f, sp.Integer(1))
-            tail = "" if power == 1 else "^{%s}" % printer._print(power)
+            tail = "" if power == 1 else f"^{{{printer._print(power)}}}"
             out += _bracketed(printer, head if i == 0 else "", base, tail, width)
         return out
     return [whole]

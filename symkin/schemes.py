@@ -16,7 +16,8 @@ numbers z_1 ... z_4 with a common module m; ``teeth=(z1, z2, z3, z4)`` numbers; 
 
 from __future__ import annotations
 
-from typing import Any, Callable, Sequence
+from collections.abc import Callable, Sequence
+from typing import Any
 
 from symkin import symbols as S
 from symkin.errors import ModelError

@@ -31,8 +31,9 @@ which leaves one equation over: the loop closes only when that condition holds.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import Any, Mapping
+from typing import Any
 
 import sympy as sp
 
@@ -80,7 +81,7 @@ class LinkVector:
         """``length * exp(i angle)``."""
         return self.length * sp.exp(sp.I * self.angle)
 
-    def subs(self, *args: Any, **kwargs: Any) -> "LinkVector":
+    def subs(self, *args: Any, **kwargs: Any) -> LinkVector:
         return LinkVector(self.length.subs(*args, **kwargs), self.angle.subs(*args, **kwargs), self.name)
 
 
@@ -159,7 +160,7 @@ class VectorLoop:
         across = sp.Add(*(sign * v.length * sp.sin(v.angle - angle) for sign, v in self._signed()))
         return along, across
 
-    def subs(self, *args: Any, **kwargs: Any) -> "VectorLoop":
+    def subs(self, *args: Any, **kwargs: Any) -> VectorLoop:
         """The loop with values substituted into every length and angle."""
         return VectorLoop(tuple(v.subs(*args, **kwargs) for v in self.left), tuple(v.subs(*args, **kwargs) for v in self.right))
 

@@ -35,7 +35,7 @@ def test_single_row_takes_three_teeth(capsys):
 
 
 def test_speeds(capsys):
-    code, out, _ = run(capsys, "speeds", "AA", "--teeth", "54,45,44,55", "--omega", "1=100", "--omega", "4=0", "--json")
+    _code, out, _ = run(capsys, "speeds", "AA", "--teeth", "54,45,44,55", "--omega", "1=100", "--omega", "4=0", "--json")
     data = json.loads(out)
     assert data["speeds"]["H"]["exact"] == "-2400" and data["speeds"]["1"]["given"] is True
 
@@ -61,7 +61,7 @@ BAD = [
 @pytest.mark.parametrize("argv, message", BAD)
 def test_bad_input_one_line_non_zero_exit(capsys, tmp_path, monkeypatch, argv, message):
     monkeypatch.chdir(tmp_path)
-    code, out, err = run(capsys, *argv)
+    code, _out, err = run(capsys, *argv)
     assert code == 2
     assert message in err
     assert len(err.strip().splitlines()) == 1 and "Traceback" not in err

@@ -88,7 +88,7 @@ INJECTIONS = [
     ["speeds", "AA", "--teeth", "54,45,44,55", "--omega", f"1=__import__('os').system('touch {MARKER}')", "--omega", "4=0"],
     ["cardan", "--length", "1", "--angle-law", f"t + __import__('os').system('touch {MARKER}')", "--t-end", "1"],
     ["split", "--total", "100", "--stages", "2", "--umin", "2", "--umax", "12",
-     "--model", f"[c for c in ().__class__.__base__.__subclasses__()]"],
+     "--model", "[c for c in ().__class__.__base__.__subclasses__()]"],
     ["trajectory", "AI1", "--teeth", "20,30,80", "--omega", "4=0", "--omega", "H=1",
      "--point", f"2:open('{MARKER}').read(),0", "--out", "t.png"],
 ]

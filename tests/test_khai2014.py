@@ -4,9 +4,9 @@ import json
 
 import pytest
 import sympy as sp
-from symkin.derivations import khai2014
 
 from symkin.cli import main
+from symkin.derivations import khai2014
 from symkin.papers.reproduce import run
 
 
@@ -116,7 +116,7 @@ BAD = [
 
 @pytest.mark.parametrize("argv, message", BAD)
 def test_bad_input_one_line_exit_2(capsys, argv, message):
-    code, out, err = cli(capsys, *argv)
+    code, _out, err = cli(capsys, *argv)
     assert code == 2, err
     assert message in err
     assert len(err.strip().splitlines()) == 1 and "Traceback" not in err

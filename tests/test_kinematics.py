@@ -156,7 +156,7 @@ def pitch_point_velocities(kind, radii, speeds, theta):
     C = arm * u
     VC = cross(w["H"], C)
     out = []
-    for Rg, Rp, wg, internal in ((R1, R2, w["1"], internal1), (R4, R3, w["4"], internal4)):
+    for Rg, _Rp, wg, _internal in ((R1, R2, w["1"], internal1), (R4, R3, w["4"], internal4)):
         P = Rg * u  # the pitch point lies on the central gear's pitch circle, on the line OC
         out.append((cross(wg, P), VC + cross(w["23"], P - C)))
     return out

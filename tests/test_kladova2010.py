@@ -3,8 +3,8 @@
 import json
 
 import sympy as sp
-from symkin.derivations import kladova2010
 
+from symkin.derivations import kladova2010
 from symkin.papers.reproduce import run
 
 

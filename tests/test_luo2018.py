@@ -1,11 +1,12 @@
 """The 2018 paper reproduced: every check, the slips with their evidence, the report and figures."""
 
+import itertools
 import json
 
 import pytest
 import sympy as sp
-from symkin.derivations import luo2018
 
+from symkin.derivations import luo2018
 from symkin.papers.checks import Verdict, compare_rounded, compare_symbolic
 from symkin.papers.reproduce import run
 
@@ -65,7 +66,7 @@ def test_figure_claims_are_measured(checks):
     assert "quick return (K grows from 1): shown" in a.comparison.detail
     rows = luo2018.curves()
     ratios = [stroke.ratio for _, _, _, stroke, _ in rows["a"]]
-    assert ratios[0] == pytest.approx(1) and all(b > a for a, b in zip(ratios, ratios[1:]))
+    assert ratios[0] == pytest.approx(1) and all(b > a for a, b in itertools.pairwise(ratios))
     even = [stroke.ratio for value, _, _, stroke, _ in rows["b"] if value == 2]
     assert even == [pytest.approx(1)]
 

@@ -5,7 +5,6 @@ import dataclasses
 import pytest
 import sympy as sp
 
-import symkin
 from symkin import CoaxialityWarning, Gear, Link, Mechanism, ModelError, schemes
 from symkin import symbols as S
 

@@ -4,7 +4,6 @@ the extremes where naive formulas lose their digits, scenes, chunks and Dask."""
 from __future__ import annotations
 
 import pickle
-import warnings
 from fractions import Fraction
 
 import numpy as np
@@ -389,7 +388,7 @@ def test_a_study_compiles_once_and_caches_on_the_mechanism(monkeypatch):
     p = mech.motion({"1": W1, "4": 0}).particle("23", (S.radius("1"), 0))
     direct = sp.lambdify([S.t, *[sp.Symbol(k, positive=True) if k.startswith("r") else S.omega("1") for k in values]], list(p.acceleration))
     wx = direct(t, *values.values())[0]
-    key = [k for k in first if k.startswith("wx")][0]
+    key = next(k for k in first if k.startswith("wx"))
     assert np.allclose(first[key], wx, rtol=1e-13, atol=1e-13) and np.array_equal(first[key], second[key])
     assert first["omega_H"] == pytest.approx(2.0 / 9.0 * 1.0, rel=1e-14) or first["omega_H"] == pytest.approx(float(mech.speeds({"1": 2, "4": 0})["H"].subs({S.radius("1"): 1, S.radius("2"): 2, S.radius("3"): 1, S.radius("4"): 4})), rel=1e-14)
 

@@ -5,12 +5,11 @@ import json
 
 import numpy as np
 import pytest
-import sympy as sp
 from PIL import Image
 
 from symkin import Gear, InputError, Link, Mechanism, ToolError, schemes
 from symkin.cli import main
-from symkin.viz import animation, figures
+from symkin.viz import animation
 from symkin.viz.animation import Frames, animate, frame_figure
 
 

@@ -75,8 +75,8 @@ def pitch_point_mismatch(kind, radii, w):
     the planet, exactly: a central gear of radius R at speed w_g moves it at w_g R; the planet,
     whose axis is at the arm a from the main axis, at w_H a + w_p (R - a); typed here from
     the geometry, independent of the engine's contact conditions."""
-    r1, r2, r3, r4 = radii
-    in1, in4 = INTERNAL[kind]
+    r1, r2, _r3, r4 = radii
+    in1, _in4 = INTERNAL[kind]
     arm = r1 - r2 if in1 else r1 + r2
     wp = w[PLANET[kind]]
     return [w[g] * R - (w["H"] * arm + wp * (R - arm)) for g, R in (("1", r1), ("4", r4))]

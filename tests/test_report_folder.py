@@ -168,7 +168,7 @@ def test_an_interrupt_inside_the_run_leaves_the_previous_report(tmp_path, capsys
         raise KeyboardInterrupt
 
     monkeypatch.setattr(alyushin2009, "figures", interrupted)
-    code, stdout, err = cli(capsys, "reproduce", "--out", str(out))
+    code, _stdout, err = cli(capsys, "reproduce", "--out", str(out))
     assert code == 130 and "interrupted; nothing was written" in err
     assert_untouched(out)
 
@@ -192,7 +192,7 @@ def test_a_signal_to_the_process_leaves_the_previous_report(tmp_path, sig):
 
 def test_a_complete_run_replaces_the_previous_report(tmp_path, capsys):
     out = previous_report(tmp_path / "report")
-    code, stdout, _ = cli(capsys, "reproduce", "alyushin2009", "--out", str(out), "--quiet", "--no-pdf")
+    code, _stdout, _ = cli(capsys, "reproduce", "alyushin2009", "--out", str(out), "--quiet", "--no-pdf")
     assert code == 0 and not (out / "marker.txt").exists()
     assert (out / "figures" / "alyushin2009_trajectories.png").exists()
     data = json.loads((out / "report.json").read_text())

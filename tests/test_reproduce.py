@@ -3,8 +3,8 @@
 import json
 
 import pytest
-from symkin.derivations import alyushin2009
 
+from symkin.derivations import alyushin2009
 from symkin.papers.reproduce import run, write_atomically
 
 

@@ -24,7 +24,7 @@ def test_trajectory_values_are_never_executed(particle, tmp_path, monkeypatch):
 
 def test_keys_match_by_name_whatever_the_assumptions(particle):
     plain = {sp.Symbol("r_1"): 1, "r_2": sp.Rational(1), sp.Symbol("r_4", real=True): "3"}
-    t, x, y = particle.trajectory(2.0, samples=3, values=plain)
+    _t, x, y = particle.trajectory(2.0, samples=3, values=plain)
     exact = substitute(particle.position, {"r_1": 1, "r_2": 1, "r_4": 3})
     assert x[-1] == pytest.approx(float(exact[0].subs(S.t, 2)))
     assert y[-1] == pytest.approx(float(exact[1].subs(S.t, 2)))
@@ -33,7 +33,7 @@ def test_keys_match_by_name_whatever_the_assumptions(particle):
 @pytest.mark.parametrize("bad", ["1", None, [1], {1: 2}])
 def test_bad_time_spans_and_mappings_are_symkin_errors(particle, bad):
     with pytest.raises(InputError):
-        if isinstance(bad, dict) or isinstance(bad, list):
+        if isinstance(bad, (dict, list)):
             particle.trajectory(1.0, values=bad)
         else:
             particle.trajectory(bad, t_start=2.0, values={"r_1": 1, "r_2": 1, "r_4": 3})

@@ -18,8 +18,9 @@ with :func:`symkin._util.parsing.parse_expression`; the float is for plotting an
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable
 from fractions import Fraction
-from typing import Any, Iterable
+from typing import Any
 
 import sympy as sp
 

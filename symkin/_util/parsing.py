@@ -21,8 +21,9 @@ import decimal
 import math
 import numbers
 import re
+from collections.abc import Callable, Iterable, Mapping
 from fractions import Fraction
-from typing import Any, Callable, Iterable, Mapping
+from typing import Any
 
 import sympy as sp
 

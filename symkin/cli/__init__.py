@@ -18,7 +18,8 @@ import json
 import os
 import sys
 import warnings
-from typing import NoReturn, Sequence
+from collections.abc import Sequence
+from typing import NoReturn
 
 from symkin.errors import SymkinError, SymkinWarning
 

@@ -21,8 +21,9 @@ Conventions every command follows:
 from __future__ import annotations
 
 import argparse
+from collections.abc import Callable
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any
 
 from symkin._util.jsonout import exact_json, float_text
 from symkin._util.parsing import parse_expression, parse_integer

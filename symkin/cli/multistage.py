@@ -146,9 +146,8 @@ def run_split(args: Any) -> int:
     total = parse_number(args.total, what="--total")
     model = _model(args)
     found = _stage_set(args) if args.ring is not None else None
-    if args.umin is None or args.umax is None:
-        if found is None:
-            raise InputError("give --umin and --umax, or --ring to take the bounds from the feasible stages")
+    if (args.umin is None or args.umax is None) and found is None:
+        raise InputError("give --umin and --umax, or --ring to take the bounds from the feasible stages")
     umin = parse_number(args.umin, what="--umin") if args.umin is not None else found[0].ratio
     umax = parse_number(args.umax, what="--umax") if args.umax is not None else found[-1].ratio
     tolerance = parse_number(args.tolerance, what="--tolerance")

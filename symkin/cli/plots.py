@@ -106,7 +106,7 @@ def _setup(args: Any) -> tuple[Any, Any, list, float, list[str]]:
     module = parse_number(args.module, what="--module")
     if module <= 0:
         raise InputError(f"--module must be positive, got {args.module}")
-    mech, teeth = scheme_mechanism(args.scheme, args.teeth, module)
+    mech, _teeth = scheme_mechanism(args.scheme, args.teeth, module)
     motion = mech.motion(known)
     from symkin.viz.figures import default_particles
 
@@ -118,7 +118,7 @@ def _setup(args: Any) -> tuple[Any, Any, list, float, list[str]]:
         t_end = float(t_end)
     else:
         t_end = motion.turn_time(_turns(args))
-    labels = [f"link {mech.link(l).name} at ({_fmt(a)}, {_fmt(b)}) from its axis" for l, (a, b) in points]
+    labels = [f"link {mech.link(name).name} at ({_fmt(a)}, {_fmt(b)}) from its axis" for name, (a, b) in points]
     return mech, motion, points, t_end, labels
 
 
@@ -141,7 +141,7 @@ def _report(args: Any, kind: str, out: Path, mech: Any, points: list, t_end: flo
         "scheme": args.scheme,
         "file": str(out),
         "t_end": t_end,
-        "particles": [{"link": mech.link(l).name, "a": float(a), "b": float(b)} for l, (a, b) in points],
+        "particles": [{"link": mech.link(name).name, "a": float(a), "b": float(b)} for name, (a, b) in points],
         **(extra or {}),
     }
     emit(args, f"{kind} of {args.scheme} over t = 0 ... {t_end:.4g} s written to {out}", data)
@@ -191,7 +191,7 @@ def run_animate(args: Any) -> int:
     mech, motion, points, t_end, labels = _setup(args)
     if frames is None:
         turns = _turns(args) if args.t_end is None else 1.0
-        frames = max(2, min(2000, int(round(4 * fps * turns))))
+        frames = max(2, min(2000, round(4 * fps * turns)))
     sampled = Frames.build(motion, points, t_end=t_end, frames=frames, labels=labels,
                            title=f"{args.scheme}, z = {args.teeth}")
     animate(sampled, out, fps=fps, dpi=dpi)

@@ -5,9 +5,10 @@ from __future__ import annotations
 import json
 import signal
 import warnings
+from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
-from typing import Any, Iterator
+from typing import Any
 
 from symkin.cli.common import add_command, add_out_argument, add_quiet_flag, emit
 from symkin.errors import InputError, SymkinWarning

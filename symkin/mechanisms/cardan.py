@@ -31,9 +31,10 @@ from __future__ import annotations
 
 import functools
 import math
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
-from typing import Any, Mapping, Sequence
+from typing import Any
 
 import numpy as np
 import sympy as sp
@@ -164,7 +165,7 @@ def _vanishing_pair(coefficient: sp.Expr) -> tuple[sp.Eq, sp.Eq]:
     return sp.Eq(l_1, length), sp.Eq(theta_10, angle - 2 * sp.pi * turns)
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def line_conditions() -> LineConditions:
     """Derive when the pin moves on the guide line for every carrier angle.
 
@@ -296,7 +297,7 @@ class CardanSlider:
         pin_angle: Any = None,
         guide_angle: Any = 0,
         carrier_angle: Any = 0,
-    ) -> "CardanSlider":
+    ) -> CardanSlider:
         """A Cardan slider from the carrier length and the drive.
 
         Parameters
@@ -548,7 +549,7 @@ class CardanSlider:
         (speed,) = on_grid([self.drive.speed(S.t)], grid, what="sample the carrier speed")
         return bool(np.all(speed > 0))
 
-    def table(self, times: Any, values: Mapping[Any, Any] | None = None) -> "SliderTable":
+    def table(self, times: Any, values: Mapping[Any, Any] | None = None) -> SliderTable:
         """The slider on a time grid with its path, period and stroke times: what ``symkin
         cardan`` prints (:meth:`SliderTable.text`) or writes as JSON (:meth:`SliderTable.to_json`).
 

@@ -24,11 +24,9 @@ cancelled, angles unwrapped, cosine sums well conditioned.
 
 from __future__ import annotations
 
-import math
-import warnings
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any, Mapping, Sequence
+from typing import Any
 
 import sympy as sp
 

@@ -23,9 +23,10 @@ import math
 import os
 import threading
 import warnings
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
-from typing import Any, Callable, Sequence
+from typing import Any
 
 import numpy as np
 import sympy as sp
@@ -184,7 +185,7 @@ def broadcast_flat(values: Sequence[np.ndarray], names: Sequence[str]) -> tuple[
     n = math.prod(shape)
     flat = []
     for v in values:
-        if v.size == 1 and n != 1 or v.ndim == 0:
+        if (v.size == 1 and n != 1) or v.ndim == 0:
             flat.append(v.reshape(()))
         elif v.shape == shape:
             flat.append(np.ascontiguousarray(v).reshape(-1))
@@ -378,7 +379,7 @@ class NumpyBackend:
 
     def evaluate_points(self, values: Sequence[Any], index: np.ndarray) -> list[np.ndarray]:
         """Re-evaluate a few points (given by flat index) with Python integers."""
-        shape, floats, ints = self.prepare(values)
+        _shape, floats, ints = self.prepare(values)
         take = lambda a: a[index] if a.ndim else a  # noqa: E731
         ints = [i.astype(object) for i in self.integer_chunk([take(i) for i in ints])]
         part = self.run([take(f) for f in floats], ints)
@@ -549,7 +550,7 @@ def _to_mpf(v: Any, name: str) -> Any:
 
 def _object_points(values: Sequence[Any], names: Sequence[str]) -> tuple[tuple[int, ...], list[np.ndarray]]:
     arrays = []
-    for v, nm in zip(values, names):
+    for v, _nm in zip(values, names):
         a = np.empty((), dtype=object)
         if isinstance(v, (list, tuple, np.ndarray)):
             a = np.asarray(v, dtype=object)

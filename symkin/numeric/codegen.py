@@ -14,7 +14,8 @@ arithmetic on :class:`fractions.Fraction`.
 
 from __future__ import annotations
 
-from typing import Any, Sequence
+from collections.abc import Sequence
+from typing import Any
 
 import sympy as sp
 from sympy.printing.numpy import NumPyPrinter
@@ -131,7 +132,7 @@ def kernel_source(
     float_integers = tuple(float_integers) or (False,) * len(args)
     names = [f"a{i}" for i in range(len(args))]
     ren = {}
-    for s, nm, is_int in zip(args, names, integer_args):
+    for s, nm in zip(args, names):
         ren[s] = sp.Symbol(nm)  # in ExactRatio: the integer value; elsewhere: its float twin
     exprs = [e.xreplace(ren) for e in exprs]
     float_ren = {sp.Symbol(nm): sp.Symbol(FLOAT_TWIN + nm) for nm, is_int in zip(names, integer_args) if is_int}

@@ -12,7 +12,8 @@ from __future__ import annotations
 
 import math
 import warnings
-from typing import Any, Sequence
+from collections.abc import Sequence
+from typing import Any
 
 import numpy as np
 
@@ -22,7 +23,7 @@ __all__ = ["NumericFunction", "NonFiniteInputWarning"]  # the warning lives in s
 
 
 
-_REBUILT: dict[Any, "NumericFunction"] = {}
+_REBUILT: dict[Any, NumericFunction] = {}
 
 #: What a float function does where an output is not finite: warn (PoleWarning or
 #: NonFiniteInputWarning), raise PoleError, or return the inf/nan values for a caller that

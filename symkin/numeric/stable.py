@@ -42,7 +42,8 @@ an eccentricity declared in (0, 1) makes ``(1 + e)/(1 - e)`` positive.
 
 from __future__ import annotations
 
-from typing import Any, Iterable, Mapping
+from collections.abc import Iterable, Mapping
+from typing import Any
 
 import sympy as sp
 from sympy import atan, atan2, cos, sin, tan
@@ -312,7 +313,7 @@ def exact_integer_parts(expr: sp.Expr) -> sp.Expr:
         cden, pden = sp.Poly(den, *gens).clear_denoms()
         cnum = sp.Poly(num, *gens).clear_denoms()[0]
         num_e, den_e = pnum.as_expr() * cden, pden.as_expr() * cnum
-        if den_e.is_Number and den_e < 0 or den_e.could_extract_minus_sign():
+        if (den_e.is_Number and den_e < 0) or den_e.could_extract_minus_sign():
             num_e, den_e = -num_e, -den_e
         return ExactRatio(sp.expand(num_e), sp.expand(den_e))
     if expr.is_Add:
@@ -501,7 +502,7 @@ def difference_of_products(expr: sp.Expr, ranges: Mapping[sp.Symbol, tuple[Any, 
     def exact_sum(t1: sp.Expr, t2: sp.Expr) -> bool:
         """One float operation gives the sum correctly rounded (``a - b``, ``2 a - 1``)."""
         parts = [_product_parts(t) for t in (t1, t2)]
-        return all(p is not None and p[1] == 1 or p is not None and p[0].is_Number and _power_of_two(p[0]) for p in parts)
+        return all((p is not None and p[1] == 1) or (p is not None and p[0].is_Number and _power_of_two(p[0])) for p in parts)
 
     def direct(t1: sp.Expr, t2: sp.Expr) -> sp.Expr | None:
         if t1.could_extract_minus_sign() and not t2.could_extract_minus_sign():

@@ -17,9 +17,10 @@ inconsistency) is a verdict of its own and must carry its evidence.
 from __future__ import annotations
 
 import enum
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from decimal import ROUND_HALF_UP, Decimal
-from typing import Any, Mapping
+from typing import Any
 
 import sympy as sp
 
@@ -149,7 +150,7 @@ class Check:
     @classmethod
     def make(
         cls, paper: str, label: str, description: str, derived: Any, published: Any, comparison: Comparison, **extra: Any
-    ) -> "Check":
+    ) -> Check:
         return cls(paper, label, description, derived, published, comparison, _tex(derived), _tex(published), extra)
 
     @property

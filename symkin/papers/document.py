@@ -11,8 +11,9 @@ text, so it compiles with pdflatex without overfull lines.
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from pathlib import Path
-from typing import Any, Iterable
+from typing import Any
 
 import sympy as sp
 

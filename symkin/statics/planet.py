@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import cache
 from typing import Any
 
 import numpy as np
@@ -223,7 +223,7 @@ def mesh_hand_relation(mech: Mechanism, mesh: Mesh | tuple[str, str]) -> int:
     return int(sign)
 
 
-@lru_cache(maxsize=None)
+@cache
 def balancing_hands(scheme: str, rim_hand: int = 1) -> tuple[int, int, int, int]:
     """Hands (+1 right, -1 left) of gears 1-4 of a two-row scheme whose planet's axial
     forces can cancel, with rims 2 and 3 of hand ``rim_hand``.

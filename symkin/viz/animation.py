@@ -17,9 +17,10 @@ ffmpeg); the file is written under a temporary name and renamed when complete.
 from __future__ import annotations
 
 import os
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Mapping, Sequence
+from typing import Any
 
 import numpy as np
 import sympy as sp
@@ -91,7 +92,7 @@ class Frames:
         values: Mapping[Any, Any] | None = None,
         labels: Sequence[str] | None = None,
         title: str | None = None,
-    ) -> "Frames":
+    ) -> Frames:
         """Sample ``motion`` at ``frames`` equal steps of [0, t_end].
 
         ``particles`` are (link, (a, b)) pairs, by default relative to the link's axis at
@@ -122,7 +123,7 @@ class Frames:
         angle = np.unwrap(np.arctan2(block[:, 3] - block[:, 1], block[:, 2] - block[:, 0]), axis=-1)
         rest = columns[2 + 4 * n :].reshape(len(particles), 2, frames)
         particle_xy = np.stack([rest[:, 0], rest[:, 1]], axis=-1)
-        names = tuple(labels) if labels else tuple(f"link {l}, point {tuple(p)}" for l, p in particles)
+        names = tuple(labels) if labels else tuple(f"link {name}, point {tuple(p)}" for name, p in particles)
         return cls(t, tuple(links), axis_xy, angle, main_xy, particle_xy, names, title or mech.name or "mechanism")
 
     def limits(self) -> tuple[float, float, float, float]:
@@ -161,9 +162,9 @@ class _Artists:
         self.gear_lines: list[tuple[int, float, bool, Line2D, Line2D]] = []
         self.arms: list[tuple[int, int, Line2D]] = []
         index = {name: i for i, (name, *_rest) in enumerate(frames.links)}
-        for i, (name, kind, gears, carrier) in enumerate(frames.links):
+        for i, (_name, kind, gears, carrier) in enumerate(frames.links):
             colour = _COLOURS[i % len(_COLOURS)]
-            for gname, radius, internal in gears:
+            for _gname, radius, internal in gears:
                 (circle,) = ax.plot([], [], color=colour, lw=1.6 if internal else 1.2)
                 (marks,) = ax.plot([], [], color=colour, lw=0.9)
                 self.gear_lines.append((i, radius, internal, circle, marks))

@@ -14,10 +14,11 @@ scheme (:func:`ratio_law`, derived once per scheme) evaluated exactly.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from fractions import Fraction
-from functools import cached_property, lru_cache
-from typing import Any, Callable
+from functools import cache, cached_property
+from typing import Any
 
 import sympy as sp
 
@@ -49,7 +50,7 @@ def _scheme(scheme: Any) -> str:
     return scheme
 
 
-@lru_cache(maxsize=None)
+@cache
 def ratio_law(scheme: str) -> Law:
     """i_1H^(4) in tooth numbers, from the engine's contact conditions (derived once per scheme).
 
@@ -59,7 +60,7 @@ def ratio_law(scheme: str) -> Law:
     return two_row(_scheme(scheme), teeth=True).ratio("1", "H", fixed="4")
 
 
-@lru_cache(maxsize=None)
+@cache
 def ratio_function(scheme: str) -> Callable[..., Fraction]:
     """:func:`ratio_law` as an exact function of the four tooth numbers (a Fraction).
 

@@ -24,9 +24,10 @@ standards the paper uses (GOST 9178-81, appendix 4; GOST 21098-82).
 
 from __future__ import annotations
 
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from functools import lru_cache
-from typing import Any, Callable, Sequence
+from typing import Any
 
 import sympy as sp
 
@@ -133,7 +134,7 @@ class LostMotion:
         """
         return sp.Add(*(e * t for e, t in zip(self.carrier_errors, self.carrier_transfers)))
 
-    def terms(self, model: "StageErrorModel | Sequence[StageErrorModel]") -> tuple[sp.Expr, ...]:
+    def terms(self, model: StageErrorModel | Sequence[StageErrorModel]) -> tuple[sp.Expr, ...]:
         """Each stage's contribution to the objective with Phi_i / d_(3i-2) from ``model``.
 
         ``model`` is one model for every stage or one per stage.
@@ -146,7 +147,7 @@ class LostMotion:
             m.at(u) * t for m, u, t in zip(models, self.ratios, self.sun_transfers)
         )
 
-    def objective_with(self, model: "StageErrorModel | Sequence[StageErrorModel]") -> sp.Expr:
+    def objective_with(self, model: StageErrorModel | Sequence[StageErrorModel]) -> sp.Expr:
         """The objective with the stage error model(s) substituted, in the u_i only.
 
         >>> lost_motion(2).objective_with(StageErrorModel.linear(1, 2))
@@ -154,7 +155,7 @@ class LostMotion:
         """
         return sp.Add(*self.terms(model))
 
-    def substitute(self, model: "StageErrorModel | Sequence[StageErrorModel]") -> dict[sp.Symbol, sp.Expr]:
+    def substitute(self, model: StageErrorModel | Sequence[StageErrorModel]) -> dict[sp.Symbol, sp.Expr]:
         """{Phi_i: d_(3i-2) * model(u_i)}: the substitution that puts a model into :attr:`objective`.
 
         >>> lost_motion(1).substitute(StageErrorModel.linear(1, 2))
@@ -244,7 +245,7 @@ class StageErrorModel:
         object.__setattr__(self, "expr", expr)
 
     @classmethod
-    def linear(cls, a: Any, b: Any) -> "StageErrorModel":
+    def linear(cls, a: Any, b: Any) -> StageErrorModel:
         """Phi / d = a + b u, the paper's linear model (5).
 
         >>> StageErrorModel.linear("0.5", 2).expr
@@ -254,7 +255,7 @@ class StageErrorModel:
         return cls(av + bv * U, f"linear model Phi/d = {av} + {bv} u")
 
     @classmethod
-    def from_expression(cls, text: str) -> "StageErrorModel":
+    def from_expression(cls, text: str) -> StageErrorModel:
         """A model typed by a user, e.g. ``"0.8 + 0.9*u"`` (parsed safely; only ``u`` allowed).
 
         >>> StageErrorModel.from_expression("1 + u^2").expr
@@ -264,7 +265,7 @@ class StageErrorModel:
         return cls(expr, f"Phi/d = {expr}")
 
     @classmethod
-    def from_backlash_line(cls, intercept: Any, slope: Any, *, module: Any, ring: int) -> "StageErrorModel":
+    def from_backlash_line(cls, intercept: Any, slope: Any, *, module: Any, ring: int) -> StageErrorModel:
         """Phi / d from a straight line j(a_w) = intercept + slope * a_w of each mesh's backlash.
 
         The 2014 paper's (7) is such a line.  Phi is the sum over the stage's two meshes (its

@@ -25,10 +25,11 @@ evaluated exactly.  :func:`enumerate_stages` lists every feasible stage for a ri
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
 from fractions import Fraction
 from functools import lru_cache
-from typing import Any, Callable, Iterator, Sequence
+from typing import Any
 
 import sympy as sp
 

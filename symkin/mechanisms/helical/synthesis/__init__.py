@@ -21,7 +21,7 @@ Everything here is derived from the engine and then used:
     >>> eqs.chain[Z[1]]
     k*(P + Q*x)/i_{1H}^{(4)}
 
-The derived laws and tooth equations (:mod:`.laws`), the existence regions
+The derived laws and tooth equations (:mod:`.conditions`), the existence regions
 (:mod:`.regions`), the request and result types (:mod:`.request`) and the search
 (:mod:`.search`) are separate modules; every public name is importable from here.
 """
@@ -64,7 +64,6 @@ from symkin.mechanisms.helical.synthesis.conditions import (
     working_coaxiality,
     working_diameter_ratio,
 )
-from symkin.mechanisms.helical.synthesis.conditions import __all__ as _laws_all
 from symkin.mechanisms.helical.synthesis.regions import (
     ExistenceBounds,
     existence_bounds,
@@ -79,7 +78,40 @@ from symkin.mechanisms.helical.synthesis.request import (
 from symkin.mechanisms.helical.synthesis.search import synthesise
 
 __all__ = [
-    *_laws_all,
+    "ALPHA_T12",
+    "ALPHA_T34",
+    "ALPHA_TW12",
+    "ALPHA_TW34",
+    "BETA12",
+    "BETA34",
+    "DELTA",
+    "LAMBDA",
+    "M12",
+    "M34",
+    "MU",
+    "NU",
+    "RATIO",
+    "SCHEMES",
+    "SIN_PI_K",
+    "U34",
+    "HelixAngleSolution",
+    "K",
+    "P",
+    "Q",
+    "ToothEquations",
+    "X",
+    "Z",
+    "assembly_condition",
+    "assembly_integers",
+    "balance_condition",
+    "coaxial_cosine_ratio",
+    "helical_coaxiality",
+    "helix_angle_solution",
+    "ratio_function",
+    "ratio_law",
+    "tooth_equations",
+    "working_coaxiality",
+    "working_diameter_ratio",
     "ExistenceBounds",
     "existence_bounds",
     "existence_interval",

@@ -14,10 +14,10 @@ tooth numbers.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 from fractions import Fraction
-from functools import lru_cache
-from typing import Sequence
+from functools import cache
 
 import sympy as sp
 
@@ -61,7 +61,7 @@ _S = sp.Symbol("s", positive=True)  # sin(pi/k) while deriving (positive for k >
 
 
 # --------------------------------------------------------------------------- derived laws
-@lru_cache(maxsize=None)
+@cache
 def assembly_condition(scheme: str) -> sp.Eq:
     """The assembly condition for k equally spaced planets: ``Z1 i / k - Q Z2/Z3 = P``.
 
@@ -113,7 +113,7 @@ def assembly_integers(scheme: str, teeth: Sequence[int], satellites: int) -> tup
     return p, q
 
 
-@lru_cache(maxsize=None)
+@cache
 def working_coaxiality(scheme: str) -> sp.Expr:
     """Coaxiality in tooth numbers and delta = d_w2/d_w3, as an expression equal to zero.
 
@@ -145,7 +145,7 @@ def _helical_radii(scheme: str, shifted: bool) -> dict[sp.Symbol, sp.Expr]:
     return {S.radius(g.name): g.radius for g in gears}
 
 
-@lru_cache(maxsize=None)
+@cache
 def helical_coaxiality(scheme: str, shifted: bool = True) -> sp.Eq:
     """Coaxiality of helical meshes: a_w12 = a_w34, from the engine with helical gears.
 
@@ -162,7 +162,7 @@ def helical_coaxiality(scheme: str, shifted: bool = True) -> sp.Eq:
     return sp.Eq(sp.expand(coax.lhs.subs(radii)), sp.expand(coax.rhs.subs(radii)), evaluate=False)
 
 
-@lru_cache(maxsize=None)
+@cache
 def working_diameter_ratio(shifted: bool = True) -> sp.Expr:
     """d_w2 / d_w3 of helical rims (normal modules, helix angles, pressure angles).
 
@@ -173,7 +173,7 @@ def working_diameter_ratio(shifted: bool = True) -> sp.Expr:
     return sp.simplify(radii[S.radius("2")] / radii[S.radius("3")])
 
 
-@lru_cache(maxsize=None)
+@cache
 def balance_condition() -> sp.Eq:
     """Axial balance with the reference helix angles: ``tan(beta12)/tan(beta34) = d2/d3``.
 
@@ -214,7 +214,7 @@ class HelixAngleSolution:
     nu2_of_sin2_34: sp.Expr
 
 
-@lru_cache(maxsize=None)
+@cache
 def helix_angle_solution() -> HelixAngleSolution:
     """Solve the balance and (unshifted) coaxiality conditions for the helix angles.
 
@@ -237,7 +237,7 @@ def helix_angle_solution() -> HelixAngleSolution:
     return HelixAngleSolution(mu, sp.factor(sol[U34]), sp.factor(sol[v12]), sp.factor(nu2))
 
 
-@lru_cache(maxsize=None)
+@cache
 def coaxial_cosine_ratio(scheme: str) -> sp.Expr:
     """``cos(beta12)/cos(beta34)`` that makes unshifted helical meshes coaxial.
 
@@ -278,7 +278,7 @@ class ToothEquations:
     chain: dict[sp.Symbol, sp.Expr]
 
 
-@lru_cache(maxsize=None)
+@cache
 def tooth_equations(scheme: str) -> ToothEquations:
     """Solve ratio, coaxiality, balance and assembly for Z1..Z4 (cached).
 

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import cache
 from typing import Any
 
 import numpy as np
@@ -43,7 +43,7 @@ class _RegionSetup:
 R1 = S.radius("1")
 
 
-@lru_cache(maxsize=None)
+@cache
 def _region_setup(scheme: str) -> _RegionSetup:
     mech = two_row(_scheme(scheme))
     r2, r3, r4 = (S.radius(str(n)) for n in (2, 3, 4))
@@ -96,12 +96,12 @@ _SAMPLES = {  # delta values and satellite counts on which the binding constrain
 }
 
 
-@lru_cache(maxsize=None)
+@cache
 def _numeric(expr: sp.Expr) -> NumericFunction:
     return compile(expr, [DELTA, _S, K])
 
 
-@lru_cache(maxsize=None)
+@cache
 def existence_bounds(scheme: str) -> tuple[ExistenceBounds, ExistenceBounds]:
     """Closed-form existence regions (the paper's Table 1) for delta < 1 and delta > 1.
 
@@ -210,7 +210,7 @@ def _as_float(v: sp.Expr) -> float:
     return float(v)
 
 
-@lru_cache(maxsize=None)
+@cache
 def existence_range(scheme: str) -> tuple[tuple[sp.Expr, sp.Expr], ...]:
     """The ratios a scheme can realise for some delta: the union of its existence regions.
 

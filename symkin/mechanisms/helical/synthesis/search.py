@@ -8,10 +8,11 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from fractions import Fraction
-from functools import lru_cache
-from typing import Any, Callable, Mapping
+from functools import cache
+from typing import Any
 
 import numpy as np
 import sympy as sp
@@ -59,7 +60,7 @@ class _Compiled:
     internal4: bool
 
 
-@lru_cache(maxsize=None)
+@cache
 def _compiled(scheme: str) -> _Compiled:
     z1, z2, z3, z4 = (Z[n] for n in (1, 2, 3, 4))
     law = ratio_law(scheme).rhs

@@ -11,9 +11,10 @@ import heapq
 import math
 import time
 from bisect import bisect_left, bisect_right
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
-from typing import Any, Callable, Sequence
+from typing import Any
 
 import numpy as np
 import sympy as sp
@@ -263,9 +264,9 @@ class _Search:
         for j in range(i_next + 1):
             e = self.exponents[j]
             b = self.min_self[j]
-            for l in range(j + 1, self.n):
-                if e[l]:
-                    b *= self.r[chosen[l]] ** e[l] if l > i_next else self.min_pow[e[l]]
+            for k in range(j + 1, self.n):
+                if e[k]:
+                    b *= self.r[chosen[k]] ** e[k] if k > i_next else self.min_pow[e[k]]
             total += b
         return total
 
@@ -328,9 +329,7 @@ class _Search:
                 if exact_tail is not None:
                     if exact_tail == math.inf or part + exact_tail / q * (1 - 1e-12) > threshold[0] * (1 + 1e-12):
                         continue
-                elif not self.completes(remaining, 0, log_lo - lq, log_hi - lq):
-                    continue
-                elif part + self._bound(i - 1, chosen) > threshold[0] * (1 + 1e-12):
+                elif not self.completes(remaining, 0, log_lo - lq, log_hi - lq) or part + self._bound(i - 1, chosen) > threshold[0] * (1 + 1e-12):
                     continue
                 visit(i - 1, chosen, q, Qx * self.exact[k], part, top_index)
             chosen.pop(i, None)

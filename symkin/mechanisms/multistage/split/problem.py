@@ -11,9 +11,10 @@ stage error model Phi/d(u) per stage, compiled once for the solvers.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import cached_property
-from typing import Any, Sequence
+from typing import Any
 
 import sympy as sp
 
@@ -67,7 +68,7 @@ class SplitProblem:
     models: tuple[StageErrorModel, ...]
 
     @classmethod
-    def build(cls, total: Any, stages: int, *, lower: Any, upper: Any, model: Any) -> "SplitProblem":
+    def build(cls, total: Any, stages: int, *, lower: Any, upper: Any, model: Any) -> SplitProblem:
         """Check the inputs and build the problem.
 
         ``lower``/``upper`` are one value or one per stage; ``model`` one
