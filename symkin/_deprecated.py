@@ -23,7 +23,7 @@ import importlib.abc
 import importlib.machinery
 import sys
 import warnings
-from types import ModuleType
+from types import FrameType, ModuleType
 from typing import Any
 
 __all__ = ["MODULES", "NAMES", "REMOVED_IN", "renamed", "install"]
@@ -77,15 +77,19 @@ NAMES: dict[str, str | tuple[str, str]] = {
 def _caller_level() -> int:
     """The stack level of the first frame outside the import machinery and symkin's
     own re-export layers, so that a warning points at the line that used the old name."""
-    level, frame = 1, sys._getframe(1)
-    skip = ("importlib", "_deprecated.py", "symkin/__init__.py", "symkin\\__init__.py", "numeric/__init__.py",
-            "numeric\\__init__.py")
-    while frame is not None and any(s in frame.f_code.co_filename for s in skip):
-        name = frame.f_code.co_filename
+    level = 1
+    frame: FrameType | None = sys._getframe(1)
+    while frame is not None and (frame.f_globals.get("__name__", "") in _LAYERS or
+                                 frame.f_globals.get("__name__", "").startswith("importlib")):
+        internal = "importlib" in frame.f_code.co_filename and "_bootstrap" in frame.f_code.co_filename
         frame = frame.f_back
-        if not ("importlib" in name and "_bootstrap" in name):  # warnings.warn does not count these
+        if not internal:  # warnings.warn does not count the import system's own frames
             level += 1
     return level
+
+
+#: Modules whose frames stand between a user's line and the warning.
+_LAYERS = frozenset({"symkin", "symkin._deprecated", "symkin.numeric"})
 
 
 def _warn(old: str, new: str) -> None:
@@ -139,7 +143,7 @@ class _Finder(importlib.abc.MetaPathFinder, importlib.abc.Loader):
         module.__getattr__ = __getattr__  # type: ignore[method-assign]
         module.__dir__ = __dir__  # type: ignore[method-assign]
         module.__doc__ = f"Deprecated: {old} is now {new_name} (goes in symkin {REMOVED_IN})."
-        module.__all__ = list(getattr(new, "__all__", []))
+        module.__dict__["__all__"] = list(getattr(new, "__all__", []))  # ModuleType declares no __all__
         if hasattr(new, "__path__"):
             module.__path__ = []
 

@@ -117,8 +117,10 @@ def warn_user(message: str, category: type[Warning]) -> None:
     """Issue a warning attributed to the first caller outside the symkin package."""
     import sys
     import warnings
+    from types import FrameType
 
-    level, frame = 1, sys._getframe(1)
+    level = 1
+    frame: FrameType | None = sys._getframe(1)
     while frame is not None and str(frame.f_globals.get("__name__", "")).split(".")[0] == "symkin":
         frame, level = frame.f_back, level + 1
     warnings.warn(message, category, stacklevel=level + 1)  # the first frame outside symkin

@@ -158,6 +158,7 @@ def kinematic_system(mech: Mechanism) -> KinematicSystem:
                 best = sp.ImmutableMatrix.hstack(*basis) if basis else sp.zeros(len(links), 0)
             if not matrix.free_symbols:
                 break
+        assert best is not None  # the first seed always sets it
         return KinematicSystem(mech, links, equations, matrix, sp.ImmutableMatrix(best), best.cols)
 
     return mech._memo("kinematic_system", build)

@@ -386,6 +386,7 @@ class Mechanism:
         by_name = {L.name: L for L in self.links}
         for L in self.links:
             if L.kind is LinkKind.PLANET:
+                assert L.carrier is not None  # Link.__post_init__ gives every planet a carrier
                 c = by_name.get(L.carrier)
                 if c is None:
                     raise ModelError(f"planet {L.name} names carrier {L.carrier!r}, which is not a link of this mechanism")

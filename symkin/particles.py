@@ -127,6 +127,7 @@ class Motion:
         if L.kind is LinkKind.CENTRAL:
             return FRAME, self._origin0
         arm = self.mechanism.arm(L.name)
+        assert L.carrier is not None  # a planet: Link.__post_init__ gives it a carrier
         turn0 = self.frame.angle.subs(S.t, 0)
         offset = rotation(turn0) * vec(arm * sp.cos(L.position_angle), arm * sp.sin(L.position_angle))
         return L.carrier, sp.ImmutableMatrix(self._origin0 + offset)

@@ -21,7 +21,7 @@ from typing import Any
 
 from symkin import symbols as S
 from symkin.errors import ModelError
-from symkin.model import Gear, Link, Mechanism
+from symkin.model import Gear, Link, Mechanism, Mesh
 
 __all__ = ["single_row_AI", "two_row", "common_ring_train", "cardan", "scheme", "SCHEMES", "TWO_ROW"]
 
@@ -61,7 +61,7 @@ def single_row_AI(*, radii: Any = None, teeth: Any = None, module: Any = None) -
     g1, g2, g4 = _gears(("1", "2", "4"), (False, False, True), radii, teeth, module)
     return Mechanism(
         links=(Link.central("1", g1), Link.planet("2", g2, carrier="H"), Link.central("H"), Link.central("4", g4)),
-        meshes=(("1", "2"), ("2", "4")),
+        meshes=(Mesh("1", "2"), Mesh("2", "4")),
         name="AI1",
     )
 
@@ -78,7 +78,7 @@ def two_row(kind: str, *, radii: Any = None, teeth: Any = None, module: Any = No
     g1, g2, g3, g4 = _gears(("1", "2", "3", "4"), (in1, False, False, in4), radii, teeth, module)
     return Mechanism(
         links=(Link.central("1", g1), Link.planet("23", g2, g3, carrier="H"), Link.central("H"), Link.central("4", g4)),
-        meshes=(("1", "2"), ("3", "4")),
+        meshes=(Mesh("1", "2"), Mesh("3", "4")),
         name=kind,
     )
 
@@ -129,13 +129,13 @@ def common_ring_train(
         gears = [Gear.symbolic(nm) for s, p in names for nm in (s, p)]
         ring_gear = Gear.symbolic("4", internal=True)
     links: list[Link] = [Link.central("s1", gears[0])]
-    meshes = []
+    meshes: list[Mesh] = []
     for i in range(1, n + 1):
         sun, planet = gears[2 * (i - 1)], gears[2 * (i - 1) + 1]
         links.append(Link.planet(f"p{i}", planet, carrier=f"H{i}"))
         next_sun = (gears[2 * i],) if i < n else ()
         links.append(Link.central(f"H{i}", *next_sun))
-        meshes += [(sun.name, planet.name), (planet.name, "4")]
+        meshes += [Mesh(sun.name, planet.name), Mesh(planet.name, "4")]
     links.append(Link.central("4", ring_gear))
     return Mechanism(links=tuple(links), meshes=tuple(meshes), name=f"{n} x AI1")
 
@@ -155,7 +155,7 @@ def cardan(*, radii: Any = None, teeth: Any = None, module: Any = None, carrier_
     g1, g3 = _gears(("1", "3"), (False, True), radii, teeth, module)
     return Mechanism(
         links=(Link.frame(g3), Link.central("H"), Link.planet("1", g1, carrier="H", position_angle=carrier_angle)),
-        meshes=(("1", "3"),),
+        meshes=(Mesh("1", "3"),),
         name="Cardan",
     )
 

@@ -25,7 +25,7 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
-from typing import Any
+from typing import Any, TypedDict
 
 import numpy as np
 import sympy as sp
@@ -40,6 +40,18 @@ from symkin.numeric import DEFAULT_CHUNK, compile
 __all__ = ["Study"]
 
 _QUANTITIES = ("position", "velocity", "acceleration")
+
+
+class _CompileOptions(TypedDict):
+    """The keyword arguments a study passes to :func:`symkin.compile` (part of its cache key too)."""
+
+    backend: str
+    precision: str
+    digits: int
+    ranges: Mapping[sp.Symbol, tuple[Any, Any]] | None
+    reduce_phase: Sequence[sp.Symbol]
+    chunk: int
+    threads: int | None
 
 
 @dataclass(frozen=True, eq=False)
@@ -145,7 +157,7 @@ class Study:
         """The laws compiled together, once (cached on the mechanism per backend)."""
         free = set().union(*(law.rhs.free_symbols for law in self.laws))
         args = sorted(free - {S.t}, key=lambda s: s.name) + ([S.t] if S.t in free else [])
-        options = dict(
+        options = _CompileOptions(
             backend=self.backend, precision=self.precision, digits=self.digits, ranges=self.ranges,
             reduce_phase=(S.t,) if self.reduce_phase else (), chunk=self.chunk or DEFAULT_CHUNK, threads=self.threads,
         )

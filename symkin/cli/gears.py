@@ -83,7 +83,9 @@ def run_speeds(args: Any) -> int:
         tag = "given" if name in given else "derived"
         f = float_text(value)
         rows.append(f"omega_{name:<3} = {value}" + (f" = {f}" if f and f != str(value) else "") + f"   ({tag})")
-        data_links[name] = {**exact_json(value), "given": name in given}
+        exact = exact_json(value)
+        assert exact is not None  # a speed is a SymPy expression, never None
+        data_links[name] = {**exact, "given": name in given}
     data = {
         "scheme": args.scheme,
         "teeth": [int(z) for z in teeth],

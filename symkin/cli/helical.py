@@ -106,7 +106,7 @@ def _text(result: Any, checks: list[dict[str, Any]]) -> str:
                  "then envelope diameter (hands: R right, L left, gears 1-4):")
     header = ("#", "Z1", "Z2", "Z3", "Z4", "i_1H^(4)", "error %", "beta12", "beta34", "hands", "P", "Q",
               "a_w mm", "dw2/dw3", "env. mm", "axial check")
-    rows = [header]
+    rows: list[tuple[str, ...]] = [header]
     for n, (d, c) in enumerate(zip(result.designs, checks), 1):
         b12, b34 = d.betas_deg
         hands = "".join("R" if h > 0 else "L" for h in d.train.hands)

@@ -148,8 +148,16 @@ def run_split(args: Any) -> int:
     found = _stage_set(args) if args.ring is not None else None
     if (args.umin is None or args.umax is None) and found is None:
         raise InputError("give --umin and --umax, or --ring to take the bounds from the feasible stages")
-    umin = parse_number(args.umin, what="--umin") if args.umin is not None else found[0].ratio
-    umax = parse_number(args.umax, what="--umax") if args.umax is not None else found[-1].ratio
+    if args.umin is not None:
+        umin = parse_number(args.umin, what="--umin")
+    else:
+        assert found is not None  # checked just above
+        umin = found[0].ratio
+    if args.umax is not None:
+        umax = parse_number(args.umax, what="--umax")
+    else:
+        assert found is not None  # checked just above
+        umax = found[-1].ratio
     tolerance = parse_number(args.tolerance, what="--tolerance")
     top = parse_integer(args.top, what="--top")
     plot = figure_file(args.plot, "--plot") if args.plot else None

@@ -88,12 +88,13 @@ def _point(text: str, mech: Any) -> tuple[str, tuple[Any, Any]]:
     parts = [c.strip() for c in coords.split(",")]
     if len(parts) != 2 or not all(parts):
         raise InputError(f"--point {text!r} needs two coordinates after the colon, as in 23:-15,0")
-    values = tuple(parse_expression(c, what=f"--point coordinate {c!r}") for c in parts)
+    a, b = (parse_expression(c, what=f"--point coordinate {c!r}") for c in parts)
+    values = (a, b)
     for v in values:
         if not v.is_number or not v.is_real:
             raise InputError(f"--point {text!r}: coordinates are real numbers, got {v}")
     mech.link(link)  # raises with the valid names
-    return link, values  # type: ignore[return-value]
+    return link, values
 
 
 def _setup(args: Any) -> tuple[Any, Any, list, float, list[str]]:

@@ -175,13 +175,14 @@ def compile(
     if backend == "numba" and not numba_available():
         warn_no_numba()
         cls = BACKENDS["numpy"]
-    if backend in ("numpy", "numba") and precision not in cls.precisions:
-        raise InputError(f"precision {precision!r} is not offered by the {backend} backend; choose float64 or float32")
+    float_backend = cls.floats
+    if float_backend and precision not in cls.precisions:
+        raise InputError(f"precision {precision!r} is not offered by the {backend} backend; choose "
+                         f"{' or '.join(cls.precisions)}")
     if backend == "mpmath" and (not isinstance(digits, int) or isinstance(digits, bool) or digits < 1):
         raise InputError(f"digits must be a positive integer, got {digits!r}")
     if not isinstance(chunk, int) or chunk < 1:
         raise InputError(f"chunk must be a positive number of points, got {chunk!r}")
-    float_backend = cls.key in ("numpy", "numba")
     applied: list[str] = []
     if float_backend and stable:
         rewritten = [stable_form(e, ranges=ranges, reduce_phase=reduce_phase, applied=applied) for e in exprs]
@@ -189,7 +190,7 @@ def compile(
         rewritten = list(exprs)
     plan = Plan(
         tuple(exprs), tuple(rewritten), args, tuple(names),
-        precision if float_backend else ("exact" if backend == "exact" else "mpmath"),
+        precision if float_backend else cls.precisions[0],
         digits if backend == "mpmath" else None, cse, chunk, threads,
     )
     evaluator = cls(plan)

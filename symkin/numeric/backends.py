@@ -183,7 +183,7 @@ def broadcast_flat(values: Sequence[np.ndarray], names: Sequence[str]) -> tuple[
     """The common shape and each value as a flat array of that size, or a 0-d scalar."""
     shape = common_shape(values, names)
     n = math.prod(shape)
-    flat = []
+    flat: list[np.ndarray] = []
     for v in values:
         if (v.size == 1 and n != 1) or v.ndim == 0:
             flat.append(v.reshape(()))
@@ -225,6 +225,7 @@ class NumpyBackend:
 
     key = "numpy"
     precisions = ("float64", "float32")
+    floats = True  # evaluates stable forms in binary floating point
 
     def __init__(self, plan: Plan):
         self.plan = plan
@@ -462,7 +463,7 @@ class NumbaBackend(NumpyBackend):
         return self.kernels[key]
 
     @property
-    def source(self) -> str:  # type: ignore[override]
+    def source(self) -> str:
         return next(iter(self.kernel_sources.values()), "(compiled on first call)")
 
     @source.setter
@@ -499,7 +500,9 @@ class NumbaBackend(NumpyBackend):
         try:
             kernel = self._kernel(scalar, parallel, float_integers)
             if switch:
-                numba.set_num_threads(min(plan.threads, numba.config.NUMBA_NUM_THREADS))
+                # numba.core.config defines its settings at run time (globals().update), which
+                # numba's inline types (py.typed) do not show
+                numba.set_num_threads(min(plan.threads, numba.config.NUMBA_NUM_THREADS))  # type: ignore[attr-defined]
             bad, nonwhole = kernel(*inputs, *results, n)
         except numba.core.errors.NumbaError as err:  # a construct Numba cannot compile: NumPy instead
             self.broken = True
@@ -569,6 +572,7 @@ class MpmathBackend:
 
     key = "mpmath"
     precisions = ("mpmath",)
+    floats = False
 
     def __init__(self, plan: Plan):
         self.plan = plan
@@ -615,6 +619,7 @@ class ExactBackend:
 
     key = "exact"
     precisions = ("exact",)
+    floats = False
 
     def __init__(self, plan: Plan):
         self.plan = plan
@@ -674,7 +679,7 @@ def _pole_message(plan: Plan, names: Sequence[str], point: Sequence[Any]) -> str
 
 
 #: Backends by key (see the module docstring).
-BACKENDS: dict[str, type] = {
+BACKENDS: dict[str, type[NumpyBackend] | type[MpmathBackend] | type[ExactBackend]] = {
     "numpy": NumpyBackend,
     "numba": NumbaBackend,
     "mpmath": MpmathBackend,

@@ -141,7 +141,7 @@ def kernel_source(
         if not float_ren:
             return e
         if isinstance(e, ExactRatio) or e.is_Atom:
-            return float_ren.get(e, e)  # type: ignore[arg-type]
+            return float_ren.get(e, e)
         if isinstance(e, ReducedPhase):
             return e.func(*(float_ren.get(a, a) for a in e.args))
         return e.func(*(floats_outside_exact(a) for a in e.args))

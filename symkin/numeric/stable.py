@@ -319,7 +319,8 @@ def exact_integer_parts(expr: sp.Expr) -> sp.Expr:
     if expr.is_Add:
         groups: dict[sp.Expr, list[sp.Expr]] = {}
         for term in expr.args:
-            ints, rest = [], []
+            ints: list[sp.Expr] = []
+            rest: list[sp.Expr] = []
             for f in sp.Mul.make_args(term):
                 (ints if (f.is_Rational or _integer_rational(f)) else rest).append(f)
             groups.setdefault(sp.Mul(*rest), []).append(sp.Mul(*ints))

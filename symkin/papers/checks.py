@@ -118,6 +118,7 @@ def compare_rounded(derived: Any, published: str) -> Comparison:
     if _exact(published) == d:
         return Comparison(Verdict.MATCH, f"exactly {d}")
     digits = p.as_tuple().exponent
+    assert isinstance(digits, int)  # p is finite: _exact(published) above rejects nan and infinity
     value = Decimal(str(sp.N(d, 60)))
     rounded = value.quantize(Decimal(1).scaleb(digits), rounding=ROUND_HALF_UP)
     if rounded == p:

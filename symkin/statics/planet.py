@@ -168,7 +168,8 @@ def planet_statics(mech: Mechanism, planet: str | None = None) -> PlanetStatics:
         ft2, ft3 = (-sp.sign(rho) * F for rho, F in ((rho2, F2), (rho3, F3_solved)))
         # a tooth force is normal to the helix, whose tangent on the cylinder is
         # t = h sin(beta) e_theta + cos(beta) e_z, i.e. along h tan(beta) e_theta + e_z
-        h, tan_beta, f_theta, f_z = sp.Symbol("h", nonzero=True), sp.Symbol("tan_beta", positive=True), *sp.symbols("f_theta f_z", real=True)
+        h, tan_beta = sp.Symbol("h", nonzero=True), sp.Symbol("tan_beta", positive=True)
+        f_theta, f_z = sp.symbols("f_theta f_z", real=True)
         (axial_law,) = sp.solve(sp.Eq(h * tan_beta * f_theta + f_z, 0), f_z)
         h2, h3 = sp.Symbol(f"h_{a}", nonzero=True), sp.Symbol(f"h_{b}", nonzero=True)
         bw2, bw3 = sp.Symbol(f"beta_w{a}", positive=True), sp.Symbol(f"beta_w{b}", positive=True)

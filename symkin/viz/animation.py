@@ -301,6 +301,8 @@ def animate(
         with replacing(out) as (tmp,):
             anim.save(str(tmp), writer=writer, dpi=dpi)
     except BaseException:
-        anim._draw_was_started = True  # no "deleted without rendering" warning on top of the error
+        # no "deleted without rendering" warning on top of the error; the attribute is
+        # private to matplotlib, so its stubs (animation.pyi) do not declare it
+        anim._draw_was_started = True  # type: ignore[attr-defined]
         raise
     return out

@@ -192,6 +192,7 @@ class HelicalDesign:
 
     def to_json(self) -> dict[str, Any]:
         t = self.train
+        assert t.hands is not None  # HelicalTrain.__post_init__ sets the balancing hands when none are given
         return {
             "teeth": list(t.teeth),
             "ratio": exact_json(self.ratio),

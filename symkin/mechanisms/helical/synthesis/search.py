@@ -69,17 +69,17 @@ def _compiled(scheme: str) -> _Compiled:
     (z4_of_nu,) = sp.solve(sp.Eq(nu, NU), z4)
     sol = helix_angle_solution()
     in1, in4 = SCHEME_MESHES[scheme]
-    # the sieve's bounds are inf or nan where a tooth set makes a denominator vanish: it
-    # compares them itself and discards such sets ("return"); the checks are exact
-    sieve = {"stable": False, "on_pole": "return"}
+    # the sieve's laws (stable=False, on_pole="return"): their bounds are inf or nan where a
+    # tooth set makes a denominator vanish, and the sieve compares them itself and discards
+    # such sets; the checks are exact
     return _Compiled(
         ratio=ratio_function(scheme),
-        z4_of_ratio=compile(z4_of_ratio, [RATIO, z1, z2, z3], **sieve),
-        z4_of_nu=compile(z4_of_nu, [NU, M12, M34, z1, z2, z3], **sieve),
+        z4_of_ratio=compile(z4_of_ratio, [RATIO, z1, z2, z3], stable=False, on_pole="return"),
+        z4_of_nu=compile(z4_of_nu, [NU, M12, M34, z1, z2, z3], stable=False, on_pole="return"),
         mu=compile(sol.mu, [M12, M34, z2, z3], backend="exact"),
         nu=compile(nu, [M12, M34, z1, z2, z3, z4], backend="exact"),
         sin2_34=compile(sol.sin2_34, [MU, NU], backend="exact"),
-        nu2_of_sin2_34=compile(sol.nu2_of_sin2_34, [MU, U34], **sieve),
+        nu2_of_sin2_34=compile(sol.nu2_of_sin2_34, [MU, U34], stable=False, on_pole="return"),
         internal1=in1,
         internal4=in4,
     )
@@ -95,6 +95,7 @@ def _nearest_region(scheme: str, ratio: Fraction) -> str:
                 d = abs(float(end) - float(ratio))
                 if best is None or d < best[0]:
                     best = (d, end)
+    assert best is not None  # the ratio lies in no region, so no region is (-oo, oo): some end is finite
     others = [s for s in SCHEMES if s != scheme and any(_as_float(lo) < float(ratio) < _as_float(hi) for lo, hi in existence_range(s))]
     where = f"; scheme{'s' if len(others) > 1 else ''} {' and '.join(others)} realise{'s' if len(others) == 1 else ''} it" if others else ""
     return (

@@ -17,7 +17,7 @@ from __future__ import annotations
 import math
 import re
 import warnings
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -282,6 +282,7 @@ def solve_continuous(problem: SplitProblem) -> ContinuousSplit:
     ratios = tuple(float(v) for v in np.exp(x))
     obj = problem.value(ratios)
     if exact is not None:
+        assert exact_obj is not None  # _exact gives both or neither
         exact_float = float(exact_obj)
         if exact_float <= obj * (1 + 1e-9) + 1e-300:
             ratios, obj = tuple(float(r) for r in exact), exact_float
@@ -297,7 +298,9 @@ def solve_continuous(problem: SplitProblem) -> ContinuousSplit:
                            tuple(float(v) for v in mult), resid, problem.posynomial, starts, method)
 
 
-def _exact(problem: SplitProblem, active: Sequence[str]) -> tuple[tuple[sp.Rational, ...] | None, sp.Expr | None]:
+def _exact(
+    problem: SplitProblem, active: Sequence[str]
+) -> tuple[tuple[sp.Rational, ...], sp.Expr] | tuple[None, None]:
     free = [j for j, a in enumerate(active) if a == "free"]
     if len(free) > 1:
         return None, None
@@ -312,7 +315,7 @@ def _exact(problem: SplitProblem, active: Sequence[str]) -> tuple[tuple[sp.Ratio
             return None, None
     elif known != problem.total:
         return None, None
-    ratios = tuple(values)  # type: ignore[arg-type]
+    ratios = tuple(values)  # every stage has its ratio now: the one free stage, if any, was set above
     return ratios, problem.exact_value(ratios)
 
 
@@ -339,7 +342,7 @@ def optimise_split(total: Any, stages: int, *, lower: Any, upper: Any, model: An
     return solve_continuous(SplitProblem.build(total, stages, lower=lower, upper=upper, model=model))
 
 
-def profile(problem: SplitProblem, stage: int, values: Sequence[float]) -> np.ndarray:
+def profile(problem: SplitProblem, stage: int, values: Iterable[float]) -> np.ndarray:
     """The least objective with u_stage held at each value (nan where infeasible).
 
     >>> from symkin.mechanisms.multistage.lostmotion import StageErrorModel
