@@ -182,7 +182,13 @@ def as_rational(value: Any, *, what: str = "value", text: bool = True, error: ty
         raise error(str(err)) from None
 
 
+#: Plain integers this size or smaller need no size check (the common case, in hot loops).
+_SMALL_INT = 10**18
+
+
 def _rational(value: Any, what: str, text: bool) -> sp.Rational:
+    if type(value) is int and -_SMALL_INT <= value <= _SMALL_INT:
+        return sp.Integer(value)
     if isinstance(value, str):
         if not text:
             raise InputError(f"{what} must be a number, not the string {value!r}")
@@ -238,6 +244,11 @@ def as_integer(
     ...
     symkin.errors.InputError: the number of satellites must be at least 1, got 0
     """
+    if type(value) is int and -_SMALL_INT <= value <= _SMALL_INT:  # the common case, in hot loops
+        if (minimum is not None and value < minimum) or (maximum is not None and value > maximum):
+            pass  # the message below
+        else:
+            return sp.Integer(value)
     if isinstance(value, (float, sp.Float)) or (isinstance(value, numbers.Real) and not isinstance(value, numbers.Rational)):
         raise error(f"{what} must be a whole number, got {value!r}")
     number = as_rational(value, what=what, text=text, error=error)
@@ -499,6 +510,12 @@ def as_float(value: Any, *, what: str, positive: bool = False, error: type[Excep
     >>> as_float("pi/2", what="time")
     1.5707963267948966
     """
+    if type(value) is float or (type(value) is int and -_SMALL_INT <= value <= _SMALL_INT):  # no parsing needed
+        if not math.isfinite(value):
+            raise error(f"{what} must be a finite number, got {value!r}")
+        if positive and not value > 0:
+            raise error(f"{what} must be positive, got {value!r}")
+        return float(value)
     try:
         expr = as_expr(value, what=what)
     except InputError as err:

@@ -4,14 +4,15 @@ from __future__ import annotations
 
 import argparse
 import warnings
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from symkin._util.parsing import as_real, parse_expression, parse_integer
 from symkin.cli.common import add_command, add_teeth_argument, emit, teeth_list
-from symkin.drives import AngleLaw, ConstantSpeed, Drive, EllipticalGears
 from symkin.errors import InputError, SymkinWarning
-from symkin.mechanisms.cardan import CardanSlider
-from symkin.numeric.sampling import as_times
+
+if TYPE_CHECKING:
+    from symkin.drives import Drive
+    from symkin.mechanisms.cardan import CardanSlider
 
 #: The most times ``--samples`` takes.
 MAX_SAMPLES = 100_000
@@ -55,6 +56,8 @@ def register(sub: Any) -> None:
 
 # ---- values
 def _drive(args: Any) -> Drive:
+    from symkin.drives import AngleLaw, ConstantSpeed, EllipticalGears
+
     kind = args.drive or ("elliptical" if args.eccentricity is not None else "law" if args.angle_law is not None else "constant")
     if kind != "elliptical" and (args.eccentricity is not None or args.order is not None):
         raise InputError(f"-e/--eccentricity and --order belong to the elliptical drive, not the {kind} drive")
@@ -82,6 +85,8 @@ def _drive(args: Any) -> Drive:
 
 
 def _times(args: Any, slider: CardanSlider) -> Any:
+    from symkin.numeric.sampling import as_times
+
     if args.times is not None:
         if args.t_end is not None:
             raise InputError("give either --times or --t-end/--samples, not both")
@@ -99,6 +104,8 @@ def _times(args: Any, slider: CardanSlider) -> Any:
 
 
 def run_cardan(args: Any) -> int:
+    from symkin.mechanisms.cardan import CardanSlider
+
     if args.omega_deprecated is not None:
         if args.speed is not None:
             raise InputError("give --speed only (--omega is its former name)")

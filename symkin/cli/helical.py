@@ -2,13 +2,14 @@
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from symkin._util.parsing import parse_integer, parse_number
 from symkin.cli.common import Progress, add_command, add_quiet_flag, emit
 from symkin.errors import InputError
-from symkin.mechanisms.helical.synthesis import SCHEMES, SynthesisRequest, synthesise
-from symkin.statics import planet_forces
+
+if TYPE_CHECKING:
+    from symkin.mechanisms.helical.synthesis import SynthesisRequest
 
 #: Relative axial residual every listed design must meet in the independent force check.
 FORCE_TOLERANCE = 1e-12
@@ -28,7 +29,7 @@ def register(sub: Any) -> None:
         ),
         run=run_helical,
     )
-    p.add_argument("scheme", help=f"{', '.join(SCHEMES)} (A external, I internal central gear; first letter gear 1)")
+    p.add_argument("scheme", help="AI, AA or II (A external, I internal central gear; first letter gear 1)")
     p.add_argument("--ratio", required=True, help="target i_1H^(4), exact (25, 0.02, 1/50)")
     p.add_argument("--tolerance", default="0.01", help="relative ratio tolerance (default 0.01 = 1 %%)")
     p.add_argument("--satellites", "-k", required=True, help="number of equally spaced planets")
@@ -47,6 +48,8 @@ def register(sub: Any) -> None:
 
 
 def _request(args: Any) -> SynthesisRequest:
+    from symkin.mechanisms.helical.synthesis import SCHEMES, SynthesisRequest
+
     if args.scheme not in SCHEMES:
         raise InputError(f"unknown scheme {args.scheme!r}; choose one of {', '.join(SCHEMES)}")
     top = None if args.top.strip().lower() == "all" else parse_integer(args.top, what="--top")
@@ -68,6 +71,9 @@ def _request(args: Any) -> SynthesisRequest:
 
 
 def run_helical(args: Any) -> int:
+    from symkin.mechanisms.helical.synthesis import synthesise
+    from symkin.statics import planet_forces
+
     req = _request(args)
     bar = Progress(enabled=not args.quiet)
     try:

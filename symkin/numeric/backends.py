@@ -597,6 +597,11 @@ class MpmathBackend:
 
 # --------------------------------------------------------------------------- exact
 def _to_fraction(v: Any, name: str) -> Any:
+    kind = type(v)
+    if kind is Fraction:  # the common cases first: this runs once per argument and call
+        return v
+    if kind is int:
+        return Fraction(v)
     if isinstance(v, (bool, np.bool_)):
         raise InputError(f"{name} must be a number, got {v!r}")
     if isinstance(v, (int, np.integer)):
@@ -670,7 +675,7 @@ def _point(plan: Plan, func: Any, values: Sequence[Any], convert: Any, result: A
         out = func(*point)
     except ZeroDivisionError:
         raise PoleError(_pole_message(plan, [s.name for s in plan.args], point)) from None
-    return [result(v) for v in out]
+    return [v if type(v) is result else result(v) for v in out]
 
 
 def _pole_message(plan: Plan, names: Sequence[str], point: Sequence[Any]) -> str:

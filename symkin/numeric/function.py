@@ -128,8 +128,12 @@ class NumericFunction:
             raise InputError(f"this function takes {len(self.args)} arguments ({', '.join(self.args)}), got {len(values)}")
         if isinstance(out, np.ndarray):
             out = [out]
-        if out is None and self._scalar is not None and not any(isinstance(v, _ARRAYS) for v in values):
-            return self._scalar(values)
+        if out is None and self._scalar is not None:
+            for v in values:
+                if isinstance(v, _ARRAYS):
+                    break
+            else:
+                return self._scalar(values)
         shape, results, flagged = self._evaluator.evaluate(values, out)
         if flagged and self.on_pole != "return":
             self._check_poles(values, shape, results)
