@@ -25,6 +25,7 @@ from +z.
 from __future__ import annotations
 
 import enum
+from collections import OrderedDict
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
@@ -41,6 +42,8 @@ __all__ = ["FRAME", "LinkKind", "Gear", "Link", "Mesh", "Mechanism", "as_length"
 
 #: Name of the mechanism frame (the fixed link that holds the main axis).
 FRAME = "0"
+#: The most equal planets of one kind a carrier may hold.
+MAX_PLANETS = 64
 
 
 # --------------------------------------------------------------------------- checks
@@ -197,8 +200,14 @@ class Link:
     arm : sympy expression or None
         For a planet: the distance of its axis from the main axis.  ``None`` derives it
         from the planet's first mesh with a gear that turns about the main axis.
-    position_angle : sympy expression
+    position_angle : sympy expression or None
         For a planet: the angle of its axis on the carrier at t = 0 (0 = +x axis).
+        ``None`` lets the mechanism place it (:meth:`Mechanism.position_angle`): from
+        its mesh with a planet already placed (the triangle of the two arms and their
+        centre distance), or at 0.
+    count : int
+        For a planet: how many equal planets of this kind the carrier holds, equally
+        spaced (one link for kinematics; they share the load and are drawn).
     """
 
     name: str
@@ -206,7 +215,8 @@ class Link:
     gears: tuple[Gear, ...] = ()
     carrier: str | None = None
     arm: sp.Expr | None = None
-    position_angle: sp.Expr = sp.Integer(0)
+    position_angle: sp.Expr | None = None
+    count: int = 1
 
     def __post_init__(self) -> None:
         _name(self.name, "link name")
@@ -225,11 +235,18 @@ class Link:
                 raise ModelError(f"planet {self.name} cannot carry its own axis; name another link as its carrier")
             if self.arm is not None:
                 object.__setattr__(self, "arm", as_length(self.arm, f"arm of planet {self.name}"))
-            object.__setattr__(
-                self, "position_angle", as_expr(self.position_angle, what=f"position angle of planet {self.name}", text=False, error=ModelError)
+            if self.position_angle is not None:
+                object.__setattr__(
+                    self, "position_angle",
+                    as_expr(self.position_angle, what=f"position angle of planet {self.name}", text=False, error=ModelError),
+                )
+            if isinstance(self.count, bool) or not isinstance(self.count, int) or not 1 <= self.count <= MAX_PLANETS:
+                raise ModelError(f"count of planet {self.name} must be a whole number from 1 to {MAX_PLANETS}, got {self.count!r}")
+        elif self.carrier is not None or self.arm is not None or self.position_angle is not None or self.count != 1:
+            raise ModelError(
+                f"{self.kind.value} link {self.name} turns about the main axis: it takes no carrier, arm, position "
+                "angle or planet count"
             )
-        elif self.carrier is not None or self.arm is not None:
-            raise ModelError(f"{self.kind.value} link {self.name} turns about the main axis: it takes no carrier or arm")
         if self.kind is LinkKind.FRAME and self.name != FRAME:
             raise ModelError(f"the frame must be named {FRAME!r}, got {self.name!r}")
 
@@ -240,10 +257,16 @@ class Link:
 
     @classmethod
     def planet(
-        cls, name: str, *gears: Gear, carrier: str = "H", arm: Any = None, position_angle: Any = 0
+        cls, name: str, *gears: Gear, carrier: str = "H", arm: Any = None, position_angle: Any = None, count: int = 1
     ) -> Link:
-        """A planet (satellite) carried by ``carrier``; a stepped planet has two gears."""
-        return cls(name, LinkKind.PLANET, gears, carrier=carrier, arm=arm, position_angle=position_angle)
+        """A planet (satellite) carried by ``carrier``; a stepped planet has two gears.
+
+        ``position_angle`` places its axis on the carrier at t = 0; left out, the
+        mechanism places it (at 0, or from its mesh with another planet).  ``count``
+        equal planets of this kind are equally spaced on the carrier.
+        """
+        return cls(name, LinkKind.PLANET, gears, carrier=carrier, arm=arm,
+                   position_angle=position_angle, count=count)
 
     @classmethod
     def frame(cls, *gears: Gear) -> Link:
@@ -253,16 +276,30 @@ class Link:
 
 @dataclass(frozen=True)
 class Mesh:
-    """Two gears in mesh, by name."""
+    """Two gears in mesh, by name, and optionally their working centre distance.
+
+    Without ``centre_distance`` the gears work on their pitch circles (their radii).  A
+    ``centre_distance`` other than that reference distance is a profile-shifted mesh:
+    both gears then work on circles in the ratio of their pitch radii (of their teeth,
+    for a common module) that fit that distance.  Only positions change: the ratio of a
+    mesh is the ratio of its working radii, which is that of its pitch radii.
+
+    >>> Mesh("p", "s2", centre_distance=60).centre_distance
+    60
+    """
 
     a: str
     b: str
+    centre_distance: sp.Expr | None = None
 
     def __post_init__(self) -> None:
         _name(self.a, "gear name in a mesh")
         _name(self.b, "gear name in a mesh")
         if self.a == self.b:
             raise ModelError(f"a gear cannot mesh with itself ({self.a}); name two different gears")
+        if self.centre_distance is not None:
+            object.__setattr__(self, "centre_distance",
+                               as_length(self.centre_distance, f"centre distance of mesh {self.a}-{self.b}"))
 
 
 @dataclass(frozen=True)
@@ -324,7 +361,9 @@ class Mechanism:
         object.__setattr__(self, "links", links)
         object.__setattr__(self, "meshes", meshes)
         self._validate()
+        object.__setattr__(self, "_cache", _shared_cache((links, meshes)))
         self._warn_coaxiality()
+        self.position_angles  # noqa: B018  (places every planet now: a contradiction is a ModelError here)
 
     # ---- lookups
     @cached_property
@@ -431,7 +470,11 @@ class Mechanism:
                 f"internal gear {big.name} (pitch radius {big.radius}) must be larger than gear {small.name} "
                 f"(pitch radius {small.radius}) that meshes inside it"
             )
-        return MeshGeometry(mesh, ga, gb, la, lb, d, sa * ga.radius)
+        if mesh.centre_distance is None:
+            return MeshGeometry(mesh, ga, gb, la, lb, d, sa * ga.radius)
+        # profile shift: the working circles keep the ratio of the pitch circles and fit the distance
+        scale = sp.cancel(mesh.centre_distance / d)
+        return MeshGeometry(mesh, ga, gb, la, lb, mesh.centre_distance, sa * ga.radius * scale)
 
     def _gear_and_link(self, name: str) -> tuple[Gear, Link]:
         self.gear(name)
@@ -472,6 +515,82 @@ class Mechanism:
                 "give it with Link.planet(..., arm=...)"
             )
         return dists[0][1]
+
+    @cached_property
+    def position_angles(self) -> dict[str, sp.Expr]:
+        """Where each planet's axis is on its carrier at t = 0: angle from the +x axis.
+
+        A planet's given ``position_angle`` is kept.  Otherwise a planet that meshes a
+        planet already placed is put where the two centre distances and the arms form a
+        triangle (counter-clockwise from it: give the angle for the other solution), and
+        any other planet at 0.  Every mesh between two planets is then checked: a given
+        angle that puts two meshing planets at the wrong distance, or arms that no
+        triangle can join, are a :class:`~symkin.errors.ModelError`.
+
+        >>> from symkin.model import Gear, Link, Mechanism
+        >>> m = Mechanism([Link.central("S", Gear("s", 4)), Link.central("C"), Link.central("R", Gear("r", 12, internal=True)),
+        ...                Link.planet("A", Gear("a", 2), carrier="C"), Link.planet("B", Gear("b", 3), carrier="C")],
+        ...               [("s", "a"), ("a", "b"), ("b", "r")])
+        >>> m.position_angles["B"]   # arms 6 and 9, centre distance 5: cos = (36 + 81 - 25)/(2 6 9)
+        acos(23/27)
+        """
+        planets = [L for L in self.links if L.kind is LinkKind.PLANET]
+        angles: dict[str, sp.Expr] = {L.name: L.position_angle for L in planets if L.position_angle is not None}
+        neighbours: dict[str, list[tuple[str, sp.Expr]]] = {L.name: [] for L in planets}
+        for mesh in self.meshes:
+            geo = self.mesh_geometry(mesh)
+            if geo.link_a.kind is LinkKind.PLANET and geo.link_b.kind is LinkKind.PLANET:
+                neighbours[geo.link_a.name].append((geo.link_b.name, geo.centre_distance))
+                neighbours[geo.link_b.name].append((geo.link_a.name, geo.centre_distance))
+        pending = [L.name for L in planets if L.name not in angles]
+        while pending:
+            for name in pending:
+                placed = [(other, d) for other, d in neighbours[name] if other in angles]
+                if placed:
+                    other, d = placed[0]
+                    angles[name] = angles[other] + self._triangle_angle(name, other, d)
+                    break
+            else:  # nothing to place from: start a group of meshing planets at 0
+                angles[pending[0]] = sp.Integer(0)
+                name = pending[0]
+            pending.remove(name)
+        for L in planets:
+            for other, d in neighbours[L.name]:
+                if L.name < other:
+                    self._check_planet_distance(L.name, other, d, angles)
+        return angles
+
+    def position_angle(self, planet: str) -> sp.Expr:
+        """The angle of a planet's axis on its carrier at t = 0 (see :attr:`position_angles`)."""
+        L = self.link(planet)
+        if L.kind is not LinkKind.PLANET:
+            return sp.Integer(0)
+        return self.position_angles[L.name]
+
+    def _triangle_angle(self, planet: str, other: str, d: sp.Expr) -> sp.Expr:
+        """The angle at the main axis between two meshing planets' axes (law of cosines)."""
+        a, b = self.arm(planet), self.arm(other)
+        cosine = sp.cancel((a**2 + b**2 - d**2) / (2 * a * b))
+        if cosine.is_number and not (-1 <= cosine <= 1):
+            raise ModelError(
+                f"planets {other} and {planet} cannot mesh: their axes are at {b} and {a} from the main axis, "
+                f"and no position puts them {d} apart (the arms differ by more than the centre distance, or add "
+                "up to less); change the gears or the arms"
+            )
+        return sp.acos(cosine)
+
+    def _check_planet_distance(self, p: str, q: str, d: sp.Expr, angles: Mapping[str, sp.Expr]) -> None:
+        a, b = self.arm(p), self.arm(q)
+        gap = a**2 + b**2 - 2 * a * b * sp.cos(angles[p] - angles[q]) - d**2
+        if gap.is_number and gap.free_symbols == set():
+            value = sp.N(gap, 30)
+            if value.is_real and abs(value) > sp.Float(1e-20) * (1 + abs(sp.N(d**2, 30))):
+                wanted = sp.acos(sp.cancel((a**2 + b**2 - d**2) / (2 * a * b)))
+                raise ModelError(
+                    f"planets {p} and {q} mesh but their given position angles put their axes "
+                    f"{sp.N(sp.sqrt(gap + d**2), 6)} apart instead of the centre distance {d}; leave one angle out "
+                    f"to have it placed, or make their angles differ by +-{wanted} = +-{sp.N(wanted, 6)} rad"
+                )
 
     def _centre_distance_pairs(self) -> list[tuple[str, sp.Expr, sp.Expr]]:
         """(planet, reference distance, another distance) for every planet with two or more."""
@@ -560,15 +679,39 @@ class Mechanism:
         """The motion of every link for given input drives; see :class:`symkin.particles.Motion`."""
         from symkin.particles import Motion
 
-        return Motion.build(self, inputs, frame)
+        motion = Motion.build(self, inputs, frame)
+        try:
+            return self._memo(("motion", motion.inputs, motion.frame), lambda: motion)
+        except TypeError:  # an input that cannot be hashed: not shared
+            return motion
 
     def _memo(self, key: Any, compute: Any) -> Any:
-        """Return ``compute()`` for ``key``, computing it once per mechanism."""
+        """Return ``compute()`` for ``key``, computing it once per mechanism value: equal
+        mechanisms (the same links and meshes) share what is derived from them."""
         try:
             return self._cache[key]
         except KeyError:
             value = self._cache[key] = compute()
             return value
+
+
+#: Derived laws of mechanisms by value (links, meshes): the most recently used are kept.
+_CACHES: OrderedDict[Any, dict] = OrderedDict()
+_CACHE_SIZE = 256
+
+
+def _shared_cache(key: Any) -> dict:
+    """The cache of derived laws shared by every mechanism equal to ``key``."""
+    try:
+        cache = _CACHES.pop(key)
+    except KeyError:
+        cache = {}
+    except TypeError:  # unhashable parts: a cache of its own
+        return {}
+    _CACHES[key] = cache
+    while len(_CACHES) > _CACHE_SIZE:
+        _CACHES.popitem(last=False)
+    return cache
 
 
 def _pair(m: Iterable[str]) -> tuple[str, str]:

@@ -129,7 +129,8 @@ class Motion:
         arm = self.mechanism.arm(L.name)
         assert L.carrier is not None  # a planet: Link.__post_init__ gives it a carrier
         turn0 = self.frame.angle.subs(S.t, 0)
-        offset = rotation(turn0) * vec(arm * sp.cos(L.position_angle), arm * sp.sin(L.position_angle))
+        angle = self.mechanism.position_angle(L.name)
+        offset = rotation(turn0) * vec(arm * sp.cos(angle), arm * sp.sin(angle))
         return L.carrier, sp.ImmutableMatrix(self._origin0 + offset)
 
     def particle(self, link: str, point: Sequence[Any], *, relative_to: str = "frame") -> Particle:

@@ -21,8 +21,8 @@ from symkin.cli.common import (
     emit,
     figure_file,
     link_value,
+    mechanism_of,
     save_figure,
-    scheme_mechanism,
 )
 from symkin.errors import InputError
 
@@ -32,14 +32,14 @@ MAX_FRAMES = 5000
 
 
 def _common(p: Any, out_help: str) -> None:
-    add_scheme_argument(p)
-    add_teeth_argument(p, "20,30,20,70")
+    add_scheme_argument(p, train=True)
+    add_teeth_argument(p, "20,30,20,70", required=False)
     add_omega_argument(p, "a known angular velocity LINK=VALUE in rad/s (repeat; as many as the scheme's degrees of "
                        "freedom, 0 fixes a link)")
     p.add_argument("--point", action="append", default=[], metavar="LINK:a,b",
                    help="a particle of LINK at (a, b) from the link's axis at t = 0 (repeat); default: planet "
                    "particles on the pitch circle of its first rim and at half its radius")
-    p.add_argument("--module", default="1", help="gear module: pitch radius = module * teeth / 2 (default 1)")
+    p.add_argument("--module", default=None, help="gear module of a scheme: pitch radius = module * teeth / 2 (default 1)")
     span = p.add_mutually_exclusive_group()
     span.add_argument("--turns", default=None, help="time span: turns of the carrier H (or of the fastest link), default 1")
     span.add_argument("--t-end", default=None, help="time span in seconds")
@@ -97,17 +97,19 @@ def _point(text: str, mech: Any) -> tuple[str, tuple[Any, Any]]:
     return link, values
 
 
-def _setup(args: Any) -> tuple[Any, Any, list, float, list[str]]:
+def _setup(args: Any) -> tuple[Any, Any, list, float, list[str], dict[str, Any], str]:
     known: dict[str, Any] = {}
     for item in args.omega:
         link, value = link_value(item)
         if not value.is_number:
             raise InputError(f"--omega {item!r}: give a number (rad/s)")
         known[link] = value
-    module = parse_number(args.module, what="--module")
-    if module <= 0:
-        raise InputError(f"--module must be positive, got {args.module}")
-    mech, _teeth = scheme_mechanism(args.scheme, args.teeth, module)
+    module: Any = None if getattr(args, "train", None) is not None else 1
+    if args.module is not None:
+        module = parse_number(args.module, what="--module")
+        if module <= 0:
+            raise InputError(f"--module must be positive, got {args.module}")
+    mech, about, title = mechanism_of(args, module)
     motion = mech.motion(known)
     from symkin.viz.figures import default_particles
 
@@ -120,7 +122,7 @@ def _setup(args: Any) -> tuple[Any, Any, list, float, list[str]]:
     else:
         t_end = motion.turn_time(_turns(args))
     labels = [f"link {mech.link(name).name} at ({_fmt(a)}, {_fmt(b)}) from its axis" for name, (a, b) in points]
-    return mech, motion, points, t_end, labels
+    return mech, motion, points, t_end, labels, about, title
 
 
 def _turns(args: Any) -> float:
@@ -136,16 +138,17 @@ def _fmt(v: Any) -> str:
     return f"{float(v):g}"
 
 
-def _report(args: Any, kind: str, out: Path, mech: Any, points: list, t_end: float, extra: dict | None = None) -> None:
+def _report(args: Any, kind: str, out: Path, mech: Any, points: list, t_end: float, about: dict[str, Any], title: str,
+            extra: dict | None = None) -> None:
     data = {
         "command": kind,
-        "scheme": args.scheme,
+        **about,
         "file": str(out),
         "t_end": t_end,
         "particles": [{"link": mech.link(name).name, "a": float(a), "b": float(b)} for name, (a, b) in points],
         **(extra or {}),
     }
-    emit(args, f"{kind} of {args.scheme} over t = 0 ... {t_end:.4g} s written to {out}", data)
+    emit(args, f"{kind} of {title} over t = 0 ... {t_end:.4g} s written to {out}", data)
 
 
 # --------------------------------------------------------------------------- commands
@@ -155,16 +158,16 @@ def run_trajectory(args: Any) -> int:
     from symkin.viz.figures import draw_pitch_circles, draw_trajectories
 
     out = figure_file(args.out)
-    mech, motion, points, t_end, labels = _setup(args)
+    mech, motion, points, t_end, labels, about, title = _setup(args)
     fig = Figure(figsize=(5.5, 5.5))
     ax = fig.add_subplot()
     draw_pitch_circles(ax, mech)
     draw_trajectories(ax, motion, points, t_end, relative_to="pole", labels=labels)
     ax.set_aspect("equal")
-    ax.set_title(f"{args.scheme}, z = {args.teeth}: particle paths, t = 0 ... {t_end:.3g} s", fontsize=9)
+    ax.set_title(f"{title}: particle paths, t = 0 ... {t_end:.3g} s", fontsize=9)
     ax.legend(fontsize=7, loc="upper right")
     save_figure(fig, out)
-    _report(args, "trajectory", out, mech, points, t_end)
+    _report(args, "trajectory", out, mech, points, t_end, about, title)
     return 0
 
 
@@ -172,11 +175,11 @@ def run_curves(args: Any) -> int:
     from symkin.viz.figures import kinematics_figure
 
     out = figure_file(args.out)
-    mech, motion, points, t_end, labels = _setup(args)
+    mech, motion, points, t_end, labels, about, title = _setup(args)
     fig = kinematics_figure(motion, points, t_end, relative_to="pole", labels=labels,
-                            title=f"{args.scheme}, z = {args.teeth}: speed and acceleration, eqs. (5), (6)")
+                            title=f"{title}: speed and acceleration, eqs. (5), (6)")
     save_figure(fig, out)
-    _report(args, "curves", out, mech, points, t_end)
+    _report(args, "curves", out, mech, points, t_end, about, title)
     return 0
 
 
@@ -189,12 +192,12 @@ def run_animate(args: Any) -> int:
     fps = int(as_integer(args.fps, what="--fps", minimum=1, maximum=MAX_FPS))
     dpi = int(as_integer(args.dpi, what="--dpi", minimum=10, maximum=MAX_DPI))
     frames = int(as_integer(args.frames, what="--frames", minimum=2, maximum=MAX_FRAMES)) if args.frames is not None else None
-    mech, motion, points, t_end, labels = _setup(args)
+    mech, motion, points, t_end, labels, about, title = _setup(args)
     if frames is None:
         turns = _turns(args) if args.t_end is None else 1.0
         frames = max(2, min(2000, round(4 * fps * turns)))
     sampled = Frames.build(motion, points, t_end=t_end, frames=frames, labels=labels,
-                           title=f"{args.scheme}, z = {args.teeth}")
+                           title=title)
     animate(sampled, out, fps=fps, dpi=dpi)
-    _report(args, "animation", out, mech, points, t_end, {"frames": frames, "fps": fps})
+    _report(args, "animation", out, mech, points, t_end, about, title, {"frames": frames, "fps": fps})
     return 0

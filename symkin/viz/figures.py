@@ -62,7 +62,7 @@ def draw_pitch_circles(ax: Any, mech: Mechanism, values: Mapping[Any, Any] | Non
         centre = (0.0, 0.0)
         if link.kind is LinkKind.PLANET:
             arm = float(substitute(sp.sympify(mech.arm(link.name)), named))
-            ang = float(substitute(sp.sympify(link.position_angle), named))
+            ang = float(substitute(sp.sympify(mech.position_angle(link.name)), named))
             centre = (arm * np.cos(ang), arm * np.sin(ang))
         for gear in link.gears:
             r = float(substitute(gear.radius, named))
