@@ -44,6 +44,7 @@ if TYPE_CHECKING:  # what the lazy attributes below are, for type checkers and I
         schemes,
         statics,
         symbols,
+        trains,
         vectorloop,
         viz,
     )

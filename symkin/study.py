@@ -71,6 +71,9 @@ class Study:
     inputs : mapping of link to speed or drive, optional
         Known speeds (for ``speeds``) and input drives (for ``particles``); default: the
         symbols omega_k of an admissible choice of links.
+    frame : FrameMotion or SpaceFrame, optional
+        The frame's own motion (a base moving in the plane, or in space: then each
+        particle gives x, y and z laws).
     t : array, optional
         Time grid used when the laws depend on t and no ``t`` is given to :meth:`evaluate`.
     backend, precision, digits, ranges, chunk, threads
@@ -85,6 +88,7 @@ class Study:
     speeds: Sequence[str] = ()
     particles: Sequence[tuple[Any, ...]] = ()
     inputs: Mapping[str, Any] | None = None
+    frame: Any = None
     t: Any = None
     backend: str = "numpy"
     precision: str = "float64"
@@ -124,7 +128,7 @@ class Study:
             solved = mech.speeds(self._inputs())
             laws += [solved.law(n) for n in self.speeds]
         if self.particles:
-            motion = mech.motion(self._inputs())
+            motion = mech.motion(self._inputs(), self.frame)
             for item in self.particles:
                 link, point = item[0], item[1]
                 quantities = item[2] if len(item) == 3 else ("position",)
@@ -133,7 +137,7 @@ class Study:
                 for q in quantities:
                     vec = getattr(p, q)
                     sym = {"position": "", "velocity": "V", "acceleration": "w"}[q]
-                    for axis, comp in zip("xy", vec):
+                    for axis, comp in zip("xyz", vec):
                         laws.append(Law(sp.Symbol(f"{sym or ''}{axis}[{tag}]" if sym else f"{axis}[{tag}]"), comp, f"{q} {axis} of {tag}"))
         return tuple(laws)
 
@@ -145,6 +149,7 @@ class Study:
             tuple(self.speeds),
             tuple((p[0], tuple(map(str, p[1])), tuple(p[2]) if len(p) == 3 else ("position",)) for p in self.particles),
             tuple(sorted((k, str(v)) for k, v in (self.inputs or {}).items())),
+            repr(self.frame),
         )
 
     @cached_property

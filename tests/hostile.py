@@ -131,6 +131,8 @@ COMMANDS: dict[str, Command] = {
     "states": Command(("states", "--train", "simple", "--state", "low", "--json")),
     "trains": Command(("trains", "--json")),
     "trajectory": Command(("trajectory", *_AI1, "--point", "2:10,0", "--module", "1", "--turns", "1", "--out", "t.png", "--json")),
+    "trajectory-space": Command(("trajectory", *_AI1, "--point", "2:10,0,1", "--base-z", "5*t", "--base-pitch", "t/10",
+                                 "--turns", "1", "--out", "t.png", "--json")),
     "trajectory-train": Command(("trajectory", "--train", "simple", "--omega", "S=1", "--omega", "R=0", "--turns", "1",
                                  "--out", "t.png", "--json")),
     "curves": Command(("curves", *_AI1, "--point", "2:10,0", "--module", "1", "--t-end", "2", "--out", "c.png", "--json")),
