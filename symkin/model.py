@@ -318,7 +318,9 @@ class Link:
 class Mesh:
     """Two gears in mesh, by name, and optionally their working centre distance.
 
-    Without ``centre_distance`` the gears work on their pitch circles (their radii).  A
+    ``efficiency`` (optional) is the mesh's efficiency for :mod:`symkin.statics`; the
+    kinematics ignores it.  Without ``centre_distance`` the gears work on their pitch
+    circles (their radii).  A
     ``centre_distance`` other than that reference distance is a profile-shifted mesh:
     both gears then work on circles in the ratio of their pitch radii (of their teeth,
     for a common module) that fit that distance.  Only positions change: the ratio of a
@@ -331,6 +333,7 @@ class Mesh:
     a: str
     b: str
     centre_distance: sp.Expr | None = None
+    efficiency: sp.Expr | None = None
 
     def __post_init__(self) -> None:
         _name(self.a, "gear name in a mesh")
@@ -340,6 +343,11 @@ class Mesh:
         if self.centre_distance is not None:
             object.__setattr__(self, "centre_distance",
                                as_length(self.centre_distance, f"centre distance of mesh {self.a}-{self.b}"))
+        if self.efficiency is not None:
+            eta = as_expr(self.efficiency, what=f"efficiency of mesh {self.a}-{self.b}", text=False, error=ModelError)
+            if eta.is_number and not (0 < eta <= 1):
+                raise ModelError(f"the efficiency of mesh {self.a}-{self.b} must lie in (0, 1], got {self.efficiency!r}")
+            object.__setattr__(self, "efficiency", eta)
 
 
 @dataclass(frozen=True)

@@ -35,6 +35,7 @@ Beyond it (all optional):
 - a mesh as a table: ``{ gears = ["p", "s2"], centre_distance = 60 }``: a working centre
   distance other than the pitch circles give, i.e. a profile-shifted mesh (the working
   circles keep the tooth ratio, so the ratio is exact and the planet axis coaxial);
+  ``efficiency = 0.985``: the mesh's efficiency for the statics (symkin efficiency);
 - a state: ``description``;
 - ``[base]``: the base (the frame) moving in space, expressions in t: ``x``, ``y``, ``z``
   of the main axis point O and ``yaw``, ``pitch``, ``roll`` of the frame (the motion the
@@ -79,7 +80,7 @@ _TOP = {"name", "description", "module", "meshes", "links", "states", "base"}
 _BASE = {"x", "y", "z", "yaw", "pitch", "roll"}
 _LINK = {"gears", "carrier", "angle", "arm", "count", "axis"}
 _GEAR = {"teeth", "internal", "module", "radius", "bevel", "side"}
-_MESH = {"gears", "centre_distance"}
+_MESH = {"gears", "centre_distance", "efficiency"}
 _STATE = {"input", "output", "brakes", "clutches", "description"}
 _SYMBOL = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
 #: The link name of the frame in a file.
@@ -357,11 +358,15 @@ class _Reader:
         out = []
         for k, item in enumerate(items, 1):
             where = f"meshes[{k}]"
-            distance = None
+            distance = efficiency = None
             if isinstance(item, Mapping):
                 item = self.keys(item, _MESH, where)
                 if "centre_distance" in item:
                     distance = self.number(item["centre_distance"], f"{where} centre_distance")
+                if "efficiency" in item:
+                    efficiency = self.number(item["efficiency"], f"{where} efficiency")
+                    if not efficiency <= 1:
+                        raise self.fail(f"{where} efficiency", f"must lie in (0, 1], got {_show(item['efficiency'])}")
                 item = item.get("gears")
             if not isinstance(item, list) or len(item) != 2:
                 raise self.fail(where, f"a mesh is a pair of gear names [\"a\", \"b\"], got {_show(item)}")
@@ -369,7 +374,7 @@ class _Reader:
                 if g not in owner:
                     raise self.fail(where, f"names no gear {g!r}; the gears are {', '.join(owner)}")
             try:
-                mesh = Mesh(item[0], item[1], centre_distance=distance)
+                mesh = Mesh(item[0], item[1], centre_distance=distance, efficiency=efficiency)
             except ModelError as err:
                 raise self.fail(where, str(err)) from None
             out.append(mesh)
