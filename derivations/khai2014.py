@@ -330,7 +330,9 @@ def _backlash_check() -> Check:
                for e, sign, j in zip(stage.contact_conditions(), (s1, s2), (J_SUN, J_RING))]
         sol = sp.solve(eqs, [turn[S.omega("1")], turn[S.omega("2")]], dict=True)[0]
         lost.append(sp.expand(r1 * sol[turn[S.omega("1")]]))
-    derived = max(lost, key=lambda e: e.subs({J_SUN: 1, J_RING: 2}))  # the largest lost displacement at the sun's pitch circle
+    # the largest lost displacement at the sun's pitch circle, chosen at sample values of every symbol
+    sample = {x: n + 2 for n, x in enumerate(sorted(set().union(*(e.free_symbols for e in lost)), key=str))}
+    derived = max(lost, key=lambda e: float(e.subs(sample)))
     return _check("(3)", "a stage's lost motion at the sun's pitch circle, carrier held and ring fixed, from the engine's "
                   "contact conditions with backlashes j_12 (sun-planet) and j_23 (planet-ring)",
                   derived, PUBLISHED_3, compare_symbolic(derived, PUBLISHED_3),

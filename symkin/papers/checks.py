@@ -70,6 +70,7 @@ __all__ = [
     "confirmation",
     "judge",
     "item_results",
+    "nonzero_somewhere",
     "as_float",
 ]
 
@@ -224,9 +225,38 @@ def _difference(derived: Any, published: Any, under: Mapping[Any, Any] | None) -
     if under:
         d, p = d.subs(under), p.subs(under)
     diff = sp.cancel(sp.together(d - p))
-    if diff != 0 and diff.has(sp.sin, sp.cos, sp.tan, sp.exp, sp.atan, sp.sqrt, sp.log):
+    if diff != 0 and diff.has(sp.sin, sp.cos, sp.tan, sp.exp, sp.atan, sp.sqrt, sp.log) and not nonzero_somewhere(diff):
         diff = sp.simplify(diff)
     return diff
+
+
+def nonzero_somewhere(expr: Any, tries: int = 2) -> bool:
+    """True when ``expr`` is shown not identically zero by its value at random points.
+
+    Every symbol gets a random rational in [1/2, 5/2] (positive, as lengths and tooth
+    numbers are), evaluated with 30 digits; a value above 1e-15 proves the expression is
+    not zero, so the exact (slow) simplification can be skipped.  False means undecided:
+    an expression with undefined functions, or one that vanished at the points tried.
+
+    >>> x = sp.Symbol("x")
+    >>> nonzero_somewhere(sp.sin(x)**2 + sp.cos(x)**2 - 1), nonzero_somewhere(sp.sin(x) - x)
+    (False, True)
+    """
+    import random
+
+    if not isinstance(expr, sp.Expr) or expr.atoms(sp.core.function.AppliedUndef) or expr.has(sp.Derivative):
+        return False
+    rng = random.Random(20260101)
+    symbols = sorted(expr.free_symbols, key=str)
+    for _ in range(tries):
+        point = {s: sp.Rational(rng.randint(50, 250), 100) for s in symbols}
+        try:
+            value = complex(expr.subs(point).evalf(30))
+        except (TypeError, ValueError, ZeroDivisionError):
+            continue
+        if math.isfinite(abs(value)) and abs(value) > 1e-15:
+            return True
+    return False
 
 
 # ---------------------------------------------------------------------------- comparators
