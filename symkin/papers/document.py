@@ -69,14 +69,23 @@ def math_text(text: str) -> str:
         base, sub, sup, arg = m.group("base", "sub", "sup", "arg")
         if base not in _GREEK and sub is None and sup is None:
             continue  # a plain letter stays text
-        out.append(escape_text(text[end : m.start()], breakable=True))
+        out.append(_plain_text(text[end : m.start()]))
         symbol = "\\varepsilon" if base == "eps" else (f"\\{base}" if base in _GREEK else base)
         symbol += f"_{_index(sub)}" if sub else ""
         symbol += f"^{_index(sup, keep_parentheses=True)}" if sup else ""
         out.append(f"${symbol}{arg or ''}$")
         end = m.end()
-    out.append(escape_text(text[end:], breakable=True))
+    out.append(_plain_text(text[end:]))
     return "".join(out)
+
+
+_RELATION = re.compile(r"(<=|>=|!=)")
+_RELATION_TEX = {"<=": r"$\le$", ">=": r"$\ge$", "!=": r"$\ne$"}
+
+
+def _plain_text(text: str) -> str:
+    """Escaped text, with <=, >= and != as their signs."""
+    return "".join(_RELATION_TEX.get(part) or escape_text(part, breakable=True) for part in _RELATION.split(text))
 
 
 #: How the document names each kind of check.
