@@ -40,6 +40,8 @@ from symkin.papers.checks import (
     judge,
     nonzero_somewhere,
 )
+from symkin.particles import SpaceFrame
+from symkin.statics import mesh_efficiencies, statics
 
 KEY = "alyushin2009"
 CITATION = (
@@ -175,10 +177,9 @@ PRINTED_ITEMS = (
     PrintedItem("example II coaxiality", "the tooth numbers satisfy r1 - r2 = r4 - r3 with equal modules"),
     PrintedItem("example II z1", "z1 = ?00 (a digit lost in the OCR)"),
     PrintedItem("example II z4", "z4 = ?01 (a digit lost in the OCR)"),
-    PrintedItem("II efficiency", "such II trains have an efficiency below 1 %",
-                "the paper gives neither the mesh efficiencies nor the driving link for this claim"),
-    PrintedItem("AI ratios and efficiency", "AI trains are used at i_1H = 3...15 with efficiency 0.98...0.96 [1]",
-                "a design range quoted from a textbook, not a result of the paper"),
+    PrintedItem("II efficiency", "such II trains (one satellite, mechanical sirens) have an efficiency below 1 %"),
+    PrintedItem("II against AA efficiency", "II trains have the advantage of smaller size and higher efficiency"),
+    PrintedItem("AI ratios and efficiency", "AI trains are used at i_1H = 3...15 with efficiency 0.98...0.96 [1]"),
     PrintedItem("drill head", "superposed motion of the main axis (a drill head on a manipulator)",
                 "a method stated in words; symkin's FrameMotion implements it, the paper gives no case to compare"),
 )
@@ -218,6 +219,8 @@ def checks() -> list[Check]:
     out += _ratio_checks(symbolic, teeth)
     out += _system_checks(symbolic)
     out += _examples()
+    out += _efficiency_checks()
+    out += _drill_head_checks()
     return out
 
 
@@ -471,39 +474,145 @@ def _gap_check(label: str, m) -> Check:
 ETA0 = sp.Symbol("eta_0", positive=True)  # efficiency of the basic (carrier-fixed) train
 
 
-def _efficiency_cases(mech) -> list[tuple[str, sp.Expr, sp.Expr]]:
-    """For each member that may drive the basic train: (member, its relative power, the output power at gear 1),
-    in the basic-train efficiency ``ETA0``, with the carrier driving at unit speed and unit torque."""
-    speeds = mech.speeds({"H": 1, "4": 0})
-    w_1 = speeds["1"]
-    rel = {"1": w_1 - 1, "4": sp.Integer(-1)}
-    T1, T4 = sp.symbols("T_1 T_4", real=True)
-    TH = sp.Integer(1)  # unit input torque at unit carrier speed: unit input power
-    T = {"1": T1, "4": T4}
-    cases = []
-    for driver, driven in (("1", "4"), ("4", "1")):
-        # torque balance of the three members; losses only in the basic train, ETA0 of the driving member's power passes
-        (sol,) = sp.solve([T1 + T4 + TH, T[driven] * rel[driven] + ETA0 * T[driver] * rel[driver]], [T1, T4], dict=True)
-        cases.append((driver, sp.cancel((T[driver] * rel[driver]).subs(sol)), sp.cancel((T1 * w_1).subs(sol))))
-    return cases
+def basic_train_law(mech, driver: str, driven: str) -> sp.Expr:
+    """The efficiency of ``driver`` -> ``driven`` with gear 4 held, by :func:`symkin.statics.statics`
+    (the relative-power method), as a law in the basic-train efficiency ``eta_0``.
 
-
-def carrier_driving_efficiency(mech, eta0, cases=None) -> tuple[sp.Expr, str] | None:
-    """Efficiency with the carrier driving gear 1 and gear 4 fixed, by the relative-power method.
-
-    Losses arise only in the motion relative to the carrier: the member whose relative
-    power is positive drives the basic (carrier-fixed) train, which passes on ``eta0`` of
-    it.  Returns (efficiency, the member driving the basic train) for the case whose
-    signs are consistent (input at H, output at 1), or None when none is: the train
-    jams (self-locks).
+    The engine derives the law with one efficiency symbol per mesh; it depends on the two
+    meshes only through their product ``eta_0`` (checked here: the second symbol must drop out
+    when the first is replaced by ``eta_0`` over it).
     """
-    for driver, driving_power, output in cases or _efficiency_cases(mech):
-        p, o = driving_power.subs(ETA0, eta0), output.subs(ETA0, eta0)
-        if not (p.is_finite and o.is_finite):  # this case is singular at eta0 (a torque would be infinite)
-            continue
-        if bool(p > 0) and bool(o < 0):
-            return sp.nsimplify(-o), driver
-    return None
+    st = statics(mech, input=driver, output=driven, fixed=("4",))
+    (_, e1), (_, e2) = st.efficiencies.items()
+    law = st.efficiency.rhs.subs(e1, ETA0 / e2)
+    law = sp.Piecewise(*[(sp.cancel(e), c) for e, c in law.args]) if isinstance(law, sp.Piecewise) else sp.cancel(law)
+    if e2 in law.free_symbols:
+        raise RuntimeError(f"the efficiency of {mech.name} does not depend on its meshes through their product only: {law}")
+    return law
+
+
+def default_basic_efficiency(mech) -> sp.Expr:
+    """eta_0 with symkin's default mesh efficiencies (0.98 external, 0.99 internal)."""
+    return sp.Mul(*mesh_efficiencies(mech, "default").values())
+
+
+def _efficiency_checks() -> list[Check]:
+    return [_ai_efficiency_check(), _ii_efficiency_check(), _ii_against_aa_check()]
+
+
+def _claim(label: str, description: str, published: str, decide) -> Check:
+    """A claim decided on derived laws by ``decide() -> (derived, holds, detail)``.
+
+    A law that cannot decide it (a relation SymPy cannot settle, no root where one is
+    needed: what a wrong engine result gives) is a claim that does not hold, said so."""
+    try:
+        derived, holds, detail = decide()
+    except (TypeError, ValueError, ZeroDivisionError) as exc:
+        derived, holds, detail = f"the derived laws do not decide it: {exc}"[:400], False, "undecided on the derived laws"
+    return _check(label, description, derived, published, compare_claim(bool(holds), detail))
+
+
+def _ai_efficiency_check() -> Check:
+    """'AI trains are used at i_1H = 3...15 with efficiency 0.98...0.96 [1]': the law, in i_1H."""
+    return _claim(
+        "AI ratios and efficiency",
+        "AI trains at i_1H = 3...15 with efficiency 0.98...0.96 (read as: the efficiency of these trains lies in "
+        "0.96...0.98 and falls as the ratio grows), the sun driving, gear 4 held, mesh losses only",
+        "eta = 0.98 ... 0.96 for i_1H = 3 ... 15", _decide_ai_efficiency)
+
+
+def _decide_ai_efficiency():
+    i = sp.Symbol("i", positive=True)
+    laws = {}
+    for k in ("AI1", "AI"):
+        m = _scheme(k, teeth=True)
+        law = basic_train_law(m, "1", "H")
+        ratio = PUBLISHED_RATIO_TEETH[k][1]  # checked as (13a), (13b): i_1H = 1 + z2 z4/(z1 z3), 1 + z4/z1
+        zfree = z4  # eliminate z4 through the ratio
+        (z4_of_i,) = sp.solve(sp.Eq(ratio, i), zfree)
+        laws[k] = sp.factor(sp.cancel(law.subs(zfree, z4_of_i)))
+    same = sp.cancel(laws["AI1"] - laws["AI"]) == 0
+    law = laws["AI"]
+    v = sp.Symbol("v", positive=True)  # eta_0 = 1/(1 + v) < 1
+    falling = sp.factor(sp.diff(law, i).subs(ETA0, 1 / (1 + v))).is_negative
+    eta0 = default_basic_efficiency(_scheme("AI", teeth=True))
+    ends = [law.subs({ETA0: eta0, i: n}) for n in (3, 15)]
+    lo, hi = sp.Rational(955, 1000), sp.Rational(985, 1000)  # 0.96 ... 0.98 at the printed two decimals
+    inside = bool(min(ends) >= lo) and bool(max(ends) < hi)
+    # the printed ends read one to one (0.98 at i = 3, 0.96 at i = 15): the eta_0 that gives each after rounding
+    band = {n: sp.solve([law.subs(i, n) >= c - sp.Rational(5, 1000), law.subs(i, n) < c + sp.Rational(5, 1000)], ETA0)
+            for n, c in ((3, sp.Rational(98, 100)), (15, sp.Rational(96, 100)))}
+    derived = (f"eta = {law} for AI and single-row AI alike ({'the same law' if same else 'different laws'}), "
+               f"falling with i_1H for eta_0 < 1: {bool(falling)}; with the default meshes (eta_0 = {eta0}) "
+               f"eta = {float(ends[0]):.4f} at i_1H = 3 and {float(ends[1]):.4f} at i_1H = 15")
+    return (derived, same and falling and inside,
+            f"at the default meshes the efficiency runs {float(ends[0]):.4f} ... {float(ends[1]):.4f}, inside "
+            f"0.96 ... 0.98 to the printed two decimals; read end to end, 0.98 at i_1H = 3 needs {band[3]} and "
+            f"0.96 at i_1H = 15 needs {band[15]}: no one basic-train efficiency gives both printed ends")
+
+
+def _ii_efficiency_check() -> Check:
+    """II 200/99/100/201: 'low efficiency, below 1 %', in the direction of the paper's use (a siren)."""
+    return _claim(
+        "II efficiency",
+        "II z = (200, 99, 100, 201), i_H1 = 198, one satellite: efficiency below 1 % (read as the paper's example "
+        "of use, a mechanical siren: gear 1 driving the fast carrier, gear 4 held)",
+        "eta < 1 %", _decide_ii_efficiency)
+
+
+def _decide_ii_efficiency():
+    m = _scheme("II", teeth=(200, 99, 100, 201))
+    up, down = basic_train_law(m, "1", "H"), basic_train_law(m, "H", "1")
+    eta0 = default_basic_efficiency(m)
+    (limit,) = sp.solve(sp.Eq(up, sp.Rational(1, 100)), ETA0)  # below it, gear 1 driving gives < 1 %
+    (limit_down,) = sp.solve(sp.Eq(down, sp.Rational(1, 100)), ETA0)
+    up0, down0 = up.subs(ETA0, eta0), down.subs(ETA0, eta0)
+    holds = bool(up0 < sp.Rational(1, 100)) and bool(limit > eta0)
+    derived = (f"gear 1 driving the carrier (speed-up, i_1H = 1/198): eta = {up}, = {float(up0):.4f} at the default "
+               f"meshes (eta_0 = {eta0}): {'it self-locks' if up0 <= 0 else 'it runs'}; below 1 % for every "
+               f"eta_0 < {limit} = {float(limit):.5f}.  The carrier driving (reduction): eta = {down}, "
+               f"= {float(down0):.4f}; below 1 % only for eta_0 < {float(limit_down):.4f}")
+    return (derived, holds, f"below 1 % for every basic-train efficiency up to {float(limit):.5f} (two meshes of "
+                            f"{float(sp.sqrt(limit)):.5f} each); driven the other way, from the carrier, the same "
+                            f"train gives {float(down0):.3f}, so the claim holds for the siren's direction only")
+
+
+def _ii_against_aa_check() -> Check:
+    """'II trains have the advantage of ... higher efficiency' (than the AA trains before them)."""
+    return _claim(
+        "II against AA efficiency",
+        "II trains have a higher efficiency than AA trains (read as: at the same tooth numbers, hence the same ratio, "
+        "and the same drive, with internal meshes at least as efficient as external ones)",
+        "II more efficient than AA", _decide_ii_against_aa)
+
+
+def _decide_ii_against_aa():
+    laws = {k: {d: basic_train_law(_scheme(k, teeth=True), *d) for d in (("1", "H"), ("H", "1"))} for k in ("AA", "II")}
+    same = all(compare_symbolic(laws["AA"][d], laws["II"][d]).verdict.agrees for d in laws["AA"])
+    # each branch rises with eta_0, on its own side of the basic ratio K = z2 z4/(z1 z3) = 1
+    rising = all(_rises_with_eta0(law) for law in laws["AA"].values())
+    eta = {k: default_basic_efficiency(_scheme(k, teeth=True)) for k in ("AA", "II")}
+    holds = same and rising and bool(eta["II"] > eta["AA"])
+    derived = (f"AA and II: the same efficiency law in the teeth and eta_0 in both drive directions: {same}; it rises "
+               f"with eta_0 on every branch: {rising}; eta_0 = {eta['AA']} (two external meshes) and {eta['II']} (two "
+               "internal)")
+    return (derived, holds, "the advantage comes from the meshes alone: an internal mesh loses less than an external "
+                            "one (default 0.99 against 0.98)")
+
+
+def _rises_with_eta0(law) -> bool:
+    """True when the efficiency ``law`` (teeth, eta_0) rises with eta_0 for every basic ratio
+    K = z2 z4/(z1 z3) below 1 and above 1 and every eta_0 < 1, on the branch that applies there."""
+    K, u, v = sp.symbols("K u v", positive=True)
+    in_K = {z4: K * z1 * z3 / z2}
+    branches = law.args if isinstance(law, sp.Piecewise) else [(law, sp.true)]
+    for k_of_u in (1 / (1 + u), 1 + u):  # K below 1, K above 1
+        sample = k_of_u.subs(u, 1)
+        (expr,) = [e for e, c in branches if sp.simplify(c.subs(in_K).subs(K, sample)) is sp.true]
+        slope = sp.factor(sp.diff(expr.subs(in_K), ETA0).subs({K: k_of_u, ETA0: 1 / (1 + v)}))
+        if slope.is_positive is not True:
+            return False
+    return True
 
 
 def _conditions_check() -> Check:
@@ -517,13 +626,11 @@ def _conditions_check() -> Check:
     clear = [k for k in range(2, 13) if bool(2 * arm * sp.sin(sp.pi / k) > tips)]
     both = sorted(set(assembled) & set(clear))
     grid = [sp.Rational(n, 100) for n in range(50, 100)]
-    cases = _efficiency_cases(m)
-    results = {eta0: carrier_driving_efficiency(m, eta0, cases) for eta0 in grid}
-    moving = all(r is not None and r[0] > 0 for r in results.values())
-    sample = results[sp.Rational(96, 100)]
+    law = basic_train_law(m, "H", "1")  # the carrier driving gear 1, gear 4 held
+    moving = all(bool(law.subs(ETA0, eta0) > 0) for eta0 in grid)
     derived = (f"coaxial: {coaxial}; assembles with k = {assembled}; tips clear for k = {clear}; both for k = {both}; "
-               f"carrier driving does not self-lock for eta0 = 0.50 ... 0.99: {moving}"
-               + (f" (eta0 = 0.96: efficiency {sp.N(sample[0], 4)})" if sample else ""))
+               f"carrier driving: eta = {law}, positive (no self-locking) for eta0 = 0.50 ... 0.99: {moving} "
+               f"(eta0 = 0.96: efficiency {sp.N(law.subs(ETA0, sp.Rational(96, 100)), 4)})")
     holds = coaxial and bool(both) and moving
     return _check(
         "example AA 54/45/44/55 conditions",
@@ -531,7 +638,7 @@ def _conditions_check() -> Check:
         "(read as: no self-locking with the carrier driving, the mode the paper names for such trains)",
         derived, "the conditions are satisfied",
         compare_claim(holds, f"engine arm a_w = {arm} m, tip diameter {tips} m, assembly from the engine's ratio; "
-                             "efficiency by the relative-power method with basic-train efficiency eta0"),
+                             "efficiency by symkin.statics (relative-power method), basic-train efficiency eta0"),
     )
 
 
@@ -560,6 +667,88 @@ def _ii_example() -> list[Check]:
     return out
 
 
+# ---- the drill head: the main axis moved in space by a manipulator (the text after (25a))
+#: A single-row AI head: sun 1 on the motor, ring 4 in the housing, a bit crown on each planet shaft.
+DRILL_TEETH, DRILL_MODULE = (24, 12, 48), 2  # pitch radii 24, 12 and 48 mm
+DRILL_INPUTS = {"1": 3, "4": 0}  # the sun at 3 rad/s: the carrier turns at 1 rad/s, each planet at -3 rad/s
+DRILL_TOOTH = (10, 0, 30)  # a bit tooth: 10 mm from the planet axis, 30 mm ahead of the gears (along the main axis)
+DRILL_FEED = 2  # mm/s: the manipulator advances the head along z ...
+DRILL_NOD = (sp.pi / 36, sp.Rational(1, 2))  # ... and nods it, pitch = 5 degrees x sin(t/2)
+DRILL_SPAN = 8 * sp.pi  # four carrier turns, two nods
+
+
+def drill_head_frame() -> SpaceFrame:
+    """The manipulator's motion of the head: O at (0, 0, feed t), pitched by A sin(w t)."""
+    amplitude, rate = DRILL_NOD
+    return SpaceFrame.euler(z=DRILL_FEED * t, pitch=amplitude * sp.sin(rate * t))
+
+
+def drill_head_motion():
+    """The drill head's every link in space: the single-row AI train carried by :func:`drill_head_frame`."""
+    m = schemes.single_row_AI(teeth=DRILL_TEETH, module=DRILL_MODULE)
+    return m.motion(DRILL_INPUTS, frame=drill_head_frame())
+
+
+def _drill_head_checks() -> list[Check]:
+    """The paper's recipe for the superposed motion (position), and the engine's 3-D laws against an
+    independent sympy.physics.mechanics model of the same head."""
+    motion = drill_head_motion()
+    tooth = motion.particle("2", DRILL_TOOTH, relative_to="pole")
+    frame = drill_head_frame()
+    # the recipe in words: the planar law (4) of the particle, with z = c, carried by the manipulator's motion
+    planar = drill_head_motion().mechanism.motion(DRILL_INPUTS).particle("2", DRILL_TOOTH[:2], relative_to="pole")
+    recipe = (sp.Matrix([frame.x, frame.y, frame.z])
+              + frame.rotation * sp.Matrix([planar.position[0], planar.position[1], DRILL_TOOTH[2]]))
+    out = [_check(
+        "drill head", "a bit tooth of the drill head (single-row AI, z = (24, 12, 48), m = 2 mm, sun at 3 rad/s) while "
+        "the manipulator advances the head 2 mm/s and nods it 5 degrees: eq. (4) with z = c, then the motion of the "
+        "main axis superposed (the paper's recipe, stated in words)",
+        list(tooth.position), list(recipe), _vector_match(tooth.position, recipe), source="reconstructed",
+    )]
+    reference = _drill_head_reference()
+    times = [sp.Rational(n, 7) for n in (0, 5, 11, 37, 80)]
+    worst = max(abs(sp.N(ours.subs(t, tt), 30) - sp.N(ref.subs(t, tt), 30))
+                for laws, refs in zip((tooth.position, tooth.velocity, tooth.acceleration), reference)
+                for ours, ref in zip(laws, refs) for tt in times)
+    out.append(_check(
+        "drill head in space", "the bit tooth's position, velocity and acceleration in 3-D against a "
+        "sympy.physics.mechanics model (body frame pitched by the manipulator, carrier and planet turning in it, the "
+        "planet's speed by Willis' relation by hand), at t = 0, 5/7, 11/7, 37/7, 80/7 s",
+        [list(tooth.velocity), list(tooth.acceleration)], "sympy.physics.mechanics: v2pt and a2pt of the tooth",
+        compare_claim(bool(worst < sp.Float("1e-20")), f"largest difference {sp.N(worst, 3)} mm, mm/s or mm/s^2 over "
+                                                         "the 45 values"),
+        kind=Kind.EXTENSION,
+    ))
+    return out
+
+
+def _drill_head_reference():
+    """The drill head built independently in sympy.physics.mechanics: (position, velocity, acceleration) in t."""
+    from sympy.physics import mechanics as me
+
+    tm = me.dynamicsymbols._t
+    sun, planet = (sp.Rational(DRILL_MODULE * z, 2) for z in DRILL_TEETH[:2])
+    z1_, z2_, z4_ = DRILL_TEETH
+    w1 = DRILL_INPUTS["1"]
+    wH = sp.Rational(w1 * z1_, z1_ + z4_)  # by hand: ring fixed, i_1H = 1 + z4/z1
+    w2 = wH * (1 - sp.Rational(z4_, z2_))  # by hand: Willis, (w2 - wH)/(0 - wH) = z4/z2 with the ring fixed
+    amplitude, rate = DRILL_NOD
+    N = me.ReferenceFrame("N")
+    B = N.orientnew("B", "Axis", [amplitude * sp.sin(rate * tm), N.y])  # the manipulator's nod
+    H = B.orientnew("H", "Axis", [wH * tm, B.z])
+    P = B.orientnew("P", "Axis", [w2 * tm, B.z])
+    O0 = me.Point("O0")
+    O0.set_vel(N, 0)
+    origin = O0.locatenew("O", DRILL_FEED * tm * N.z)
+    axis = origin.locatenew("C", (sun + planet) * H.x)
+    a_, b_, c_ = DRILL_TOOTH
+    X = axis.locatenew("X", a_ * P.x + b_ * P.y + c_ * B.z)
+    position = X.pos_from(O0)
+    velocity = position.dt(N)
+    acceleration = velocity.dt(N)
+    return [[vec.dot(e).subs(tm, t) for e in (N.x, N.y, N.z)] for vec in (position, velocity, acceleration)]
+
+
 # ---- figure: planet-particle trajectories for each scheme
 FIGURE_TEETH = {"AI1": (20, 30, 80), "AI": (20, 30, 20, 70), "AA": (54, 45, 44, 55), "II": (200, 99, 100, 201)}
 
@@ -569,7 +758,24 @@ def figures(folder: Path) -> list[Path]:
     for each scheme, gear 4 fixed, over one carrier turn (see :func:`trajectories_figure`)."""
     from symkin.viz import figures
 
-    return figures.save(trajectories_figure(), folder / "alyushin2009_trajectories")
+    return [*figures.save(trajectories_figure(), folder / "alyushin2009_trajectories"),
+            *figures.save(drill_head_figure(), folder / "alyushin2009_drill_head")]
+
+
+def drill_head_figure() -> Any:
+    """The drill head in space (:func:`drill_head_motion`): the path of a bit tooth, of the planet axis
+    and of the main axis point O over four carrier turns while the manipulator feeds and nods the head."""
+    from symkin.viz import figures
+
+    fig = figures.space_figure(
+        drill_head_motion(), [("2", DRILL_TOOTH), ("2", (0, 0, DRILL_TOOTH[2]))], float(DRILL_SPAN),
+        labels=[f"bit tooth {DRILL_TOOTH[0]} mm off the planet axis", "planet axis (crown centre)"],
+        title="Alyushin & Verzhanskiy 2009, drill head: single-row AI z = (24, 12, 48), m = 2 mm, sun 3 rad/s;\n"
+              "the manipulator feeds the head 2 mm/s along z and nods it 5 deg (pitch 5 deg sin(t/2)); mm",
+    )
+    ax = fig.axes[0]
+    ax.set_box_aspect([hi - lo for lo, hi in (ax.get_xlim(), ax.get_ylim(), ax.get_zlim())])  # true proportions
+    return fig
 
 
 def trajectories_figure() -> Any:

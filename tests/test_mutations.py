@@ -35,6 +35,7 @@ MUTATIONS: dict[str, tuple[tuple[str, ...], dict[str, set[str]]]] = {
             "example AA 100/100/101/99", "example AA 100/99/100/101", "example AA 54/45/44/55 (i_1H)",
             "example AA 54/45/44/55 arithmetic", "example AA 54/45/44/55 (i_H1)", "example II 200/99/100/201",
             "example II z1", "example II z4", "example II arithmetic",
+            "AI ratios and efficiency", "II efficiency", "II against AA efficiency",
         },
         "luo2018": {"(2)"},
         "khai2014": {"(3)"},

@@ -37,7 +37,7 @@ def test_checks_of_the_engine_against_itself_are_not_paper_items(checks):
     assert {k for k, v in kinds.items() if v is Kind.CONSISTENCY} == {
         *(f"({n}) {s}" for n in (1, 2) for s in ("AI1", "AI", "AA", "II")), "(5)-(6) engine"}
     assert {k for k, v in kinds.items() if v is Kind.EXTENSION} == {
-        "coaxiality AI1", "(24a) at omega_4 = 0", "(25a) at omega_4 = 0"}
+        "coaxiality AI1", "(24a) at omega_4 = 0", "(25a) at omega_4 = 0", "drill head in space"}
 
 
 def test_the_gap_slip_rests_on_a_computed_alternative(checks):
@@ -77,9 +77,41 @@ def test_the_54_45_44_55_conditions(checks):
     # by hand: with the carrier driving, efficiency eta0 (i - 1)/(i - eta0), i = i_14^(H) = 2475/2376 > 1
     m = schemes.two_row("AA", teeth=(54, 45, 44, 55), module=1)
     i = sp.Rational(45 * 55, 54 * 44)
-    for eta0 in (sp.Rational(9, 10), sp.Rational(96, 100), sp.Rational(99, 100)):
-        value, driver = alyushin2009.carrier_driving_efficiency(m, eta0)
-        assert value == eta0 * (i - 1) / (i - eta0) and driver == "4"
+    eta0 = alyushin2009.ETA0
+    assert sp.cancel(alyushin2009.basic_train_law(m, "H", "1") - eta0 * (i - 1) / (i - eta0)) == 0
+
+
+# ---------------------------------------------------------------------------- efficiency statements
+def test_the_efficiency_laws_are_the_textbook_ones():
+    """The basic-train method by hand (Kudryavtsev): K = i_14^(H), gear 4 held."""
+    eta0, K = alyushin2009.ETA0, sp.Rational(99 * 201, 200 * 100)
+    ii = schemes.two_row("II", teeth=(200, 99, 100, 201))
+    # 0 < K < 1: the sun driving the carrier passes (1 - K/eta0)/(1 - K); the carrier driving the sun (1 - K)/(1 - K eta0)
+    assert sp.cancel(alyushin2009.basic_train_law(ii, "1", "H") - (1 - K / eta0) / (1 - K)) == 0
+    assert sp.cancel(alyushin2009.basic_train_law(ii, "H", "1") - (1 - K) / (1 - K * eta0)) == 0
+    # AI, K < 0: the sun driving the carrier, 1 - (1 - eta0)(1 - 1/i_1H)
+    ai = schemes.two_row("AI", teeth=(20, 30, 20, 70))
+    i = 1 + sp.Rational(30 * 70, 20 * 20)
+    assert sp.cancel(alyushin2009.basic_train_law(ai, "1", "H") - (1 - (1 - eta0) * (1 - 1 / i))) == 0
+
+
+def test_the_efficiency_statements_have_computed_verdicts(checks):
+    ai, ii, vs = checks["AI ratios and efficiency"], checks["II efficiency"], checks["II against AA efficiency"]
+    assert ai.verdict is ii.verdict is vs.verdict is Verdict.MATCH
+    # by hand at the default meshes (0.98 external, 0.99 internal): eta0 = 0.9702, (1 + eta0 (i - 1))/i
+    assert "0.9801 at i_1H = 3 and 0.9722 at i_1H = 15" in ai.derived
+    assert "no one basic-train efficiency gives both printed ends" in ai.comparison.detail
+    # II: (20000 eta0 - 19899)/(101 eta0) at eta0 = 0.99^2 is below zero: the siren direction locks
+    assert "-3.0003" in ii.derived and "0.2032" in ii.derived
+    assert "9801/10000" in vs.derived and "2401/2500" in vs.derived
+
+
+def test_the_drill_head_follows_the_paper_recipe_and_sympy_mechanics(checks):
+    assert checks["drill head"].verdict is Verdict.MATCH and checks["drill head"].kind is Kind.PAPER
+    assert checks["drill head in space"].verdict is Verdict.MATCH
+    # the tooth is at its place at t = 0: planet axis at r1 + r2 = 36 mm, the tooth 10 mm further, 30 mm ahead
+    assert list(alyushin2009.drill_head_motion().particle("2", (10, 0, 30), relative_to="pole").position.subs(S.t, 0)) \
+        == [46, 0, 30]
 
 
 def test_a_wrong_published_form_is_reported_as_differs():
@@ -101,6 +133,7 @@ def test_reproduce_writes_the_report(tmp_path):
     assert data["summary"]["differs"] == 0 and data["summary"]["checks"] == len(results[0].checks)
     jsonschema.validate(data, report_schema())
     assert (out / "figures" / "alyushin2009_trajectories.png").stat().st_size > 10_000
+    assert (out / "figures" / "alyushin2009_drill_head.png").stat().st_size > 10_000
     tex = (out / "equations.tex").read_text()
     assert r"\begin{document}" in tex and "(13a)" in tex
 
