@@ -51,6 +51,7 @@ def test_the_wheel_carries_every_module_its_types_and_data(wheel):
     expected |= {f"symkin/derivations/{p.name}" for p in (ROOT / "derivations").glob("*.py")}
     expected |= {"symkin/py.typed", "symkin/papers/report.schema.json"}
     expected |= {p.relative_to(ROOT).as_posix() for p in (ROOT / "symkin/trains/library").glob("*.toml")}
+    expected |= {p.relative_to(ROOT).as_posix() for p in (ROOT / "symkin/cli/schemas").glob("*.schema.json")}
     missing = sorted(expected - names)
     assert not missing, f"not in the wheel (add the package to [tool.setuptools] packages or package-data): {missing}"
 
