@@ -242,7 +242,11 @@ def _nullspace(M: sp.Matrix) -> sp.Matrix:
     n = M.cols
     if not M.rows:
         return sp.eye(n)
-    rref, pivots = _domain_matrix(M).rref()
+    dM = _domain_matrix(M)
+    if dM is None:  # irrational constants (sqrt(2), pi, exp(1000)): SymPy's general route
+        basis = M.nullspace()
+        return sp.Matrix.hstack(*basis) if basis else sp.zeros(n, 0)
+    rref, pivots = dM.rref()
     rows = rref.to_sdm()
     columns = []
     for free in (j for j in range(n) if j not in set(pivots)):
@@ -613,15 +617,27 @@ def _independent_rows(A: sp.Matrix) -> list[int]:
     generic = A.xreplace(_generic_values(A.free_symbols, 1)) if A.free_symbols else A
     if not generic.rows:
         return []
-    _, pivots = _domain_matrix(generic.T).rref()
+    dM = _domain_matrix(generic.T)
+    if dM is None:  # irrational constants: row by row with SymPy's rank
+        chosen: list[int] = []
+        for i in range(A.rows):
+            if len(chosen) == A.cols:
+                break
+            if generic.extract([*chosen, i], list(range(A.cols))).rank() > len(chosen):
+                chosen.append(i)
+        return chosen
+    _, pivots = dM.rref()
     return list(pivots)[: A.cols]
 
 
 def _domain_matrix(M: sp.Matrix) -> Any:
-    """A matrix of rational numbers as a sparse DomainMatrix over QQ (fast elimination)."""
+    """A matrix of rational numbers as a sparse DomainMatrix over QQ (fast elimination);
+    None when an entry is not rational (an irrational constant such as sqrt(2) or pi)."""
     from sympy.polys.domains import QQ
     from sympy.polys.matrices import DomainMatrix
 
+    if any(not e.is_Rational for e in M.values()):
+        return None
     rows = {}
     for i in range(M.rows):
         row = {j: QQ.from_sympy(M[i, j]) for j in range(M.cols) if M[i, j] != 0}
