@@ -34,12 +34,13 @@ import sympy as sp
 from symkin._util.parsing import parse_number
 from symkin.errors import InputError, PoleError, PrecisionWarning, UnsupportedError
 from symkin.numeric import runtime
-from symkin.numeric.codegen import ExactPrinter, FloatPrinter, kernel_source
+from symkin.numeric.codegen import ExactPrinter, FloatPrinter, ScalarPrinter, kernel_source
 from symkin.numeric.stable import ExactRatio, plain_form
 
 __all__ = ["Plan", "BACKENDS", "NumpyBackend", "NumbaBackend", "MpmathBackend", "ExactBackend", "numba_available"]
 
 _INT64_SAFE = 2**62
+_FLOAT_INT = 2**1023  # Python integers below this convert to finite floats
 _THREADS_FROM = 1 << 15  # fewer points are evaluated on the calling thread
 _POOLS: dict[int, Any] = {}
 
@@ -208,16 +209,17 @@ def _own(r: Any, shape: tuple[int, ...], dtype: Any, inputs: Sequence[np.ndarray
 
 
 def _all_finite(results: Sequence[np.ndarray]) -> bool:
-    """True when every value is finite.  A finite sum of squares (one BLAS dot, no
-    temporary) proves it; otherwise (a non-finite value, or squares overflowing) each
-    value is checked."""
-    for r in results:
-        flat = r.reshape(-1)
-        with np.errstate(over="ignore", invalid="ignore"):  # squares of huge finite values overflow: checked below
-            square_sum = np.dot(flat, flat)
-        if not math.isfinite(square_sum) and not np.isfinite(flat).all():
-            return False
-    return True
+    """True when every value is finite.  A finite sum (one pass, no temporary: an inf or
+    nan makes the sum inf or nan) proves it; otherwise (a non-finite value, or a sum of
+    huge values overflowing) each value is checked.  (A BLAS dot, used before, took 14 ms
+    instead of 0.02 ms for 16384 points on a busy 2-core machine: OpenBLAS threads.)"""
+    with np.errstate(over="ignore", invalid="ignore"):  # a sum of huge finite values overflows: checked below
+        return _finite(results)
+
+
+def _finite(results: Sequence[np.ndarray]) -> bool:
+    """:func:`_all_finite` for a caller inside ``np.errstate(all="ignore")``."""
+    return all(math.isfinite(np.add.reduce(r, axis=None)) or np.isfinite(r).all() for r in results)
 
 
 # --------------------------------------------------------------------------- numpy
@@ -256,6 +258,69 @@ class NumpyBackend:
         self.float_used = tuple(s in outside for s in plan.args)
         self.names = [s.name for s in plan.args]
         self.dtype = plan.dtype
+
+    # ------------------------------------------------------------------ one point
+    _scalar_code: Any = None  # built on the first scalar call; False where it cannot be
+
+    def _build_scalar(self) -> Any:
+        """The laws as Python code on floats (``math``) for one float64 point, or False."""
+        if self.plan.precision != "float64":
+            return False
+        try:
+            exprs = [self._twin(e) for e in self.plan.stable]
+            return sp.lambdify(
+                list(self.plan.args) + list(self.twins.values()), exprs,
+                modules=[{**runtime.SCALAR_NAMESPACE, "math": math}, "math"], printer=ScalarPrinter({"strict": True}),
+                cse=self.plan.cse, docstring_limit=0,
+            )
+        except Exception:  # a function the math module lacks: arrays only
+            return False
+
+    def evaluate_scalar(self, values: Sequence[Any]) -> list[Any] | None:
+        """The outputs at one point given as Python or NumPy float64 numbers, without
+        arrays (about 1-2 us); None when this point needs the array path (another input
+        type, a value that is not finite, an output that is not: the array path checks,
+        converts and reports)."""
+        code = self._scalar_code
+        if code is None:
+            code = self._scalar_code = self._build_scalar()
+        if code is False:
+            return None
+        floats = []
+        ints = []
+        for v, s in zip(values, self.plan.args):
+            kind = type(v)
+            if kind is float or kind is np.float64:
+                x = v
+            elif kind is int:
+                if not -_FLOAT_INT < v < _FLOAT_INT:
+                    return None
+                x = float(v)
+            else:
+                return None
+            floats.append(x)
+            if s in self.twins:  # a tooth number: its exact integer value too
+                if kind is int:
+                    ints.append(v)
+                elif x.is_integer() and abs(x) < 2.0**63:
+                    ints.append(int(x))
+                else:
+                    return None
+        try:
+            out = code(*floats, *ints)
+        except (ArithmeticError, ValueError, TypeError):  # a pole or a domain error: reported by the array path
+            return None
+        results = []
+        for r in out:
+            if type(r) is not float:
+                if type(r) is int or isinstance(r, float):
+                    r = float(r)
+                else:  # a complex number from x**(1/3) of a negative x: the array path says nan
+                    return None
+            if not math.isfinite(r):
+                return None
+            results.append(np.float64(r))
+        return results
 
     @staticmethod
     def _exact_integer_symbols(plan: Plan) -> tuple[sp.Symbol, ...]:
@@ -344,8 +409,8 @@ class NumpyBackend:
                 # one call on the arrays as given: no copies, no chunks, one finiteness pass
                 with np.errstate(all="ignore"):
                     out = self.func(*floats)
-                results = [_own(r, shape, dtype, floats) for r in out]
-                return shape, results, not _all_finite(results)
+                    results = [_own(r, shape, dtype, floats) for r in out]
+                    return shape, results, not _finite(results)
             shape, floats = broadcast_flat(floats, names)
             ints: list[np.ndarray] = []
         else:
@@ -368,7 +433,7 @@ class NumpyBackend:
                 part = self.run([f[sl] if f.ndim else f for f in floats], int_part)
                 for o, r in zip(results, part):
                     o[sl] = r
-                    flagged = flagged or not np.isfinite(o[sl]).all()
+                    flagged = flagged or not _all_finite([o[sl]])
             return flagged
 
         threads = min(plan.threads or 1, len(starts))

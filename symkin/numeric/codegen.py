@@ -23,7 +23,7 @@ from sympy.printing.pycode import PythonCodePrinter
 
 from symkin.numeric.stable import ExactRatio, Group, ProductDifference, ReducedPhase
 
-__all__ = ["FloatPrinter", "ExactPrinter", "kernel_source", "abs_bound"]
+__all__ = ["FloatPrinter", "ScalarPrinter", "ExactPrinter", "kernel_source", "abs_bound"]
 
 
 class FloatPrinter(NumPyPrinter):
@@ -200,6 +200,44 @@ def kernel_source(
         lines.append("            _bad += 1")
     lines.append("    return _bad, _nonwhole")
     return "\n".join(lines) + "\n"
+
+
+class ScalarPrinter(PythonCodePrinter):
+    """Python code on floats (the ``math`` module) for one point of a float64 law: the
+    scalar path of a compiled law, with the stable-form nodes of :mod:`symkin.numeric.stable`
+    called as scalar helpers (exact ratios on Python integers are correctly rounded).
+
+    >>> import sympy as sp
+    >>> x, y = sp.symbols("x y")
+    >>> ScalarPrinter().doprint(sp.sin(x) / 3 + ProductDifference(x, y, y, 2))
+    '(1/3)*math.sin(x) + _symkin_product_difference(x, y, y, 2)'
+    """
+
+    def _print_Rational(self, expr: sp.Rational) -> str:
+        return f"{expr.p}/{expr.q}"  # one correctly rounded division of exact integers
+
+    def _print_Float(self, expr: sp.Float) -> str:
+        return repr(float(expr))
+
+    def _print_NumberSymbol(self, expr: Any) -> str:
+        return repr(float(expr))
+
+    _print_Pi = _print_NumberSymbol
+    _print_Exp1 = _print_NumberSymbol
+
+    def _print_Group(self, expr: Group) -> str:
+        return f"({self._print(expr.args[0])})"
+
+    def _print_ExactRatio(self, expr: ExactRatio) -> str:
+        return f"_symkin_exact_ratio({', '.join(self._print(a) for a in expr.args)})"
+
+    def _print_ProductDifference(self, expr: ProductDifference) -> str:
+        return f"_symkin_product_difference({', '.join(self._print(a) for a in expr.args)})"
+
+    def _print_ReducedPhase(self, expr: ReducedPhase) -> str:
+        p, q, *xs = expr.args
+        xs = list(xs) + [sp.Integer(1)] * (3 - len(xs))
+        return f"_symkin_reduced_phase({int(p)}, {int(q)}, {', '.join(self._print(x) for x in xs)})"
 
 
 class ExactPrinter(PythonCodePrinter):
