@@ -126,3 +126,30 @@ def test_the_slider_scalar_path_reduces_the_phase_like_the_array_path(monkeypatc
     got = f(*point)
     scale = max(abs(float(w[0])) for w in want)
     assert all(abs(float(x) - float(w[0])) <= 8 * U64 * scale for x, w in zip(got, want))
+
+
+_CACHED = """
+import numpy as np, symkin
+from symkin import schemes
+f = symkin.compile(schemes.two_row("AA").ratio("H", "1", fixed="4"), backend="numba")
+x = np.linspace(1, 2, 1000)
+values = [f(x, 0.3, 2.0, 0.5), f(x, x, 2.0, 0.5), f(1.5, x, x, 0.5), f(1.5, 0.3, x, 0.5)]  # four mixes of scalars and arrays
+kernels = list(f._evaluator.kernels.values())
+print(len(kernels), sum(sum(k.stats.cache_hits.values()) for k in kernels), sum(sum(k.stats.cache_misses.values()) for k in kernels))
+print(float(values[0][0]), float(values[3][-1]))
+"""
+
+
+@pytest.mark.skipif(not numba_available(), reason="numba is an optional extra")
+def test_numba_compiles_one_kernel_per_law_and_the_next_process_loads_it_from_disk(tmp_path):
+    import os
+    import subprocess
+    import sys
+
+    env = {**os.environ, "SYMKIN_CACHE_DIR": str(tmp_path)}
+    runs = [subprocess.run([sys.executable, "-c", _CACHED], env=env, capture_output=True, text=True, check=True).stdout.split("\n")
+            for _ in range(2)]
+    assert runs[0][0] == "1 0 1"  # one kernel for the four mixes, compiled once
+    assert runs[1][0] == "1 1 0"  # the second process loads it
+    assert runs[0][1] == runs[1][1] == f"{1 * 2.0 / (2.0 - 0.3 * 0.5)!r} {1.5 * 2.0 / (1.5 * 2.0 - 0.3 * 0.5)!r}"
+    assert list(tmp_path.glob("symkin_kernel_*.py")) and list(tmp_path.glob("__pycache__/*.nbi"))

@@ -17,6 +17,7 @@ jitted, Numba's scalar loops.
 
 from __future__ import annotations
 
+import functools
 import math
 from typing import Any
 
@@ -209,8 +210,10 @@ NAMESPACE = {
 }
 
 
+@functools.cache
 def numba_namespace(precision: str) -> dict[str, Any]:
-    """The same helpers, jitted for Numba scalar loops."""
+    """The same helpers, jitted for Numba scalar loops (once per process and precision:
+    the kernels cached on disk find the same helpers)."""
     import numba
 
     two_prod = numba.njit(inline="always")(_two_prod)
