@@ -258,10 +258,12 @@ class NumpyBackend:
             outside |= e.replace(lambda n: isinstance(n, ExactRatio), lambda n: sp.Integer(1)).free_symbols
         self.float_used = tuple(s in outside for s in plan.args)
         self.names = [s.name for s in plan.args]
+        self.integer_flags = tuple(s in self.twins for s in plan.args)
         self.dtype = plan.dtype
 
     # ------------------------------------------------------------------ one point
     _scalar_code: Any = None  # built on the first scalar call; False where it cannot be
+    scalar_types_checked = True  # evaluate_scalar takes any values and returns None for what it cannot take
 
     def _build_scalar(self) -> Any:
         """The laws as Python code on floats (``math``) for one float64 point, or False."""
@@ -289,7 +291,7 @@ class NumpyBackend:
             return None
         floats = []
         ints = []
-        for v, s in zip(values, self.plan.args):
+        for v, integer in zip(values, self.integer_flags):
             kind = type(v)
             if kind is float or kind is np.float64:
                 x = v
@@ -300,7 +302,7 @@ class NumpyBackend:
             else:
                 return None
             floats.append(x)
-            if s in self.twins:  # a tooth number: its exact integer value too
+            if integer:  # a tooth number: its exact integer value too
                 if kind is int:
                     ints.append(v)
                 elif x.is_integer() and abs(x) < 2.0**63:
