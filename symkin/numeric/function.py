@@ -86,7 +86,7 @@ class NumericFunction:
         # the exact and mpmath backends evaluate point by point: a call with scalars goes
         # straight to the generated function, without arrays
         # (the float backends: one float64 point in Python floats, or None for the array path)
-        self._scalar = getattr(evaluator, "evaluate_scalar", None)
+        self._scalar: Any = getattr(evaluator, "evaluate_scalar", None)
         self._scalar_typed = bool(getattr(evaluator, "scalar_types_checked", False))
         lines = [
             f"Compiled {', '.join(self.outputs)} ({self.backend}, {self.precision}).",
