@@ -479,7 +479,7 @@ def write_markdown(res: dict, path: Path) -> None:
         "f = symkin.compile(laws, args, precision='float32')          # ~1e-6 relative",
         "f = symkin.compile(laws, args, backend='mpmath', digits=50)  # reference",
         "f = symkin.compile(laws, args, backend='exact')              # Fractions",
-        "f = symkin.compile(laws, args, ranges={e: (0, 1)}, reduce_phase=[t])",
+        "f = symkin.compile(laws, args, ranges={e: (0, 1)})  # phases of t reduced (reduce_phase=() turns it off)",
         "```",
         "",
         "- Rational laws (ratios, differentials) are memory bound: the numba loop reads the inputs once",
