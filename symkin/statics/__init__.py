@@ -25,6 +25,6 @@ from symkin.statics.planet import (
     planet_forces,
     planet_statics,
 )
-from symkin.statics.power import DEFAULT_EFFICIENCY, MeshPower, Statics, efficiency_symbol, statics
+from symkin.statics.power import DEFAULT_EFFICIENCY, MeshPower, Statics, efficiency_symbol, mesh_efficiencies, statics
 
-__all__ = ["statics", "Statics", "MeshPower", "efficiency_symbol", "DEFAULT_EFFICIENCY", "PlanetStatics", "planet_statics", "mesh_hand_relation", "balancing_hands", "PlanetForces", "planet_forces"]
+__all__ = ["statics", "Statics", "MeshPower", "efficiency_symbol", "mesh_efficiencies", "DEFAULT_EFFICIENCY", "PlanetStatics", "planet_statics", "mesh_hand_relation", "balancing_hands", "PlanetForces", "planet_forces"]

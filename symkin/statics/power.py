@@ -220,6 +220,9 @@ class Statics:
         locks = self.self_locking
         lines.append("self-locking: " + ("yes, it cannot be driven from the output" if locks is True else "no" if locks is False
                                          else f"when {locks}"))
+        if eta.is_number and eta <= 0:
+            other = f"; {self.output} can drive {self.input}" if back.is_number and back > 0 else ""
+            lines.append(f"this way it locks: {self.input} cannot drive {self.output} (efficiency zero or below){other}")
         if self.circulating.is_number and self.circulating > 1:
             lines.append(f"circulating power: a mesh carries {float_text(self.circulating)} times the input power")
         lines.append("torques (ideal): " + ", ".join(f"{k} {v}" for k, v in self.torques.items() if v != 0))
@@ -233,6 +236,16 @@ class Statics:
 def _short(value: sp.Expr) -> str:
     text = str(value)
     return text if len(text) <= 12 else float_text(value) or text[:12]
+
+
+def mesh_efficiencies(mech: Mechanism, efficiency: Any = None) -> dict[str, sp.Expr]:
+    """Each mesh's efficiency, keyed ``"a-b"``, as :func:`statics` takes ``efficiency``.
+
+    >>> from symkin import schemes
+    >>> mesh_efficiencies(schemes.two_row("II", teeth=(200, 99, 100, 201)), "default")
+    {'1-2': 99/100, '3-4': 99/100}
+    """
+    return _efficiencies(mech, _sides(mech), efficiency)
 
 
 def _efficiencies(mech: Mechanism, sides: Sequence[_Side], efficiency: Any) -> dict[str, sp.Expr]:
