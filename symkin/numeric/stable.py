@@ -433,7 +433,6 @@ def factor_differences(expr: sp.Expr) -> sp.Expr:
             node.is_Add
             and not node.has(sp.Function)
             and 0 < len(node.free_symbols) <= 3
-            and all(a.is_Symbol or a.is_Rational for a in node.atoms())  # no E**1000 to factor over
             and not all(s.is_integer for s in node.free_symbols)
             and sp.count_ops(node) <= 30
             and node.is_polynomial(*node.free_symbols)
