@@ -428,6 +428,33 @@ class Problem:
                 return a
         raise KeyError(planet)
 
+    def assembles(self, teeth: Mapping[Any, int]) -> bool:
+        """True when the derived assembly conditions hold for these tooth numbers (decided exactly).
+
+        >>> from symkin.trains import load_train
+        >>> p = derive(load_train("simple"), driver="S", driven="C", fixed="R", planets=4)
+        >>> p.assembles({"z_s": 20, "z_p": 30, "z_r": 80}), p.assembles({"z_s": 21, "z_p": 30, "z_r": 81})
+        (True, False)
+        """
+        from fractions import Fraction
+
+        from symkin.synthesis.integers import solvable
+
+        values = {z: int(teeth[z] if z in teeth else teeth[str(z)]) for z in self.unknowns}
+        for group in self.assembly:
+            k = self.count[group.planets[0]]
+            if k < 2:
+                continue
+            names = list(group.integers)
+            G, h = [], []
+            for row in group.rows:
+                coeff = {n: int(c.subs(values)) for n, c in row.coefficients}
+                G.append([coeff.get(n, 0) for n in names])
+                h.append(Fraction(int(row.numerator.subs(values)), row.denominator * k))
+            if not solvable(G, h):
+                return False
+        return True
+
     def conditions(self) -> tuple[Condition, ...]:
         """Every derived condition, the planet count substituted (see :class:`Condition`)."""
         o = self.options

@@ -42,9 +42,10 @@ class DesignCheck:
     ----------
     ratio : sympy.Rational or None
         The ratio the kinematics derives for the train with these teeth.
-    ratio_ok, coaxial, placed : bool
+    ratio_ok, coaxial, placed, assembles : bool
         The ratio equals the design's; no planet axis is put at two distances; every
-        planet could be placed (meshing planets form a triangle).
+        planet could be placed (meshing planets form a triangle); the copies of every
+        planet kind were placed tooth by tooth (:func:`assembles_tooth_by_tooth`).
     gap : float or None
         The least gap between tip circles of planet copies that could touch, in modules
         (positive: clear), after the tip clearance asked for; None with one planet.
@@ -58,9 +59,11 @@ class DesignCheck:
     gap: float | None
     passed: bool
     problem: str = ""
+    assembles: bool = True
 
     def to_json(self) -> dict[str, Any]:
         return {"ratio": exact_json(self.ratio), "ratio_ok": self.ratio_ok, "coaxial": self.coaxial, "placed": self.placed,
+                "assembles": self.assembles,
                 "gap_modules": None if self.gap is None else round(self.gap, 9), "passed": self.passed,
                 "problem": self.problem}
 
@@ -183,8 +186,12 @@ class Design:
         except ModelError:
             return DesignCheck(ratio, ratio_ok, coaxial, False, None, False, "the planets cannot be placed")
         gap = _least_gap(problem, train, angles)
-        passed = ratio_ok and coaxial and placed and (gap is None or gap > 0)
-        return DesignCheck(ratio, ratio_ok, coaxial, placed, gap, passed, "" if passed else "a condition fails")
+        count = problem.count
+        assembles = all(assembles_tooth_by_tooth(train, g.planets, count[g.planets[0]]) for g in problem.assembly)
+        passed = ratio_ok and coaxial and placed and assembles and (gap is None or gap > 0)
+        failed = [name for name, ok in (("ratio", ratio_ok), ("coaxiality", coaxial), ("assembly", assembles),
+                                        ("clearance", gap is None or gap > 0)) if not ok]
+        return DesignCheck(ratio, ratio_ok, coaxial, placed, gap, passed, ", ".join(failed), assembles)
 
     def to_json(self) -> dict[str, Any]:
         return {
@@ -197,6 +204,101 @@ class Design:
             "shifts": {m: exact_json(y) for m, y in self.shifts},
             "planets": dict(self.planets),
         }
+
+
+def assembles_tooth_by_tooth(train: Mechanism, planets: Sequence[str], k: int) -> bool:
+    """Can ``k`` equally spaced copies of these (meshing) planets be put in, tooth by tooth?
+
+    An independent route to the assembly condition, from the tooth positions alone.  At a
+    pitch point the tooth phase of a gear, ``z (phi - d)`` in pitches (phi the angle of one of
+    its teeth, d the direction of the pitch point from its axis, in turns), and that of its
+    mate add up (an external pair; an internal gear's subtracts) to half a pitch, whole
+    pitches apart.  Copy j stands where copy 0 would after the carrier's turn by j/k, the
+    gears on the main axis staying where they are: its pitch points are turned by j/k, and
+    the copy may be turned by j/k plus some e_P.  So a mesh of copy j holds when, whole
+    pitches apart, ``z_p e_P - z_g j/k`` (external central gear g), ``z_p e_P + z_g j/k``
+    (internal g), or ``z_p e_P + z_q e_Q`` (two planets) is whole.  Each e_P is tried at
+    every one of the ``z_p`` spins its first mesh allows, and the copy fits when some choice
+    satisfies every mesh.
+
+    >>> from symkin.trains import load_train
+    >>> assembles_tooth_by_tooth(load_train("simple"), ["P"], 3), assembles_tooth_by_tooth(load_train("simple"), ["P"], 5)
+    (True, False)
+    """
+    cluster = list(planets)
+    inside = set(cluster)
+    meshes = []
+    for mesh in train.meshes:
+        geo = train.mesh_geometry(mesh)
+        la, lb = geo.link_a, geo.link_b
+        if la.name not in inside and lb.name not in inside:
+            continue
+        meshes.append(geo)
+    order: list[str] = []
+    pending = list(cluster)
+    while pending:  # planets meshing a central gear first, then planets meshing planets already placed
+        for p in pending:
+            touches = [g for g in meshes if p in (g.link_a.name, g.link_b.name)]
+            if any((g.link_a.kind is not LinkKind.PLANET or g.link_b.kind is not LinkKind.PLANET) or
+                   ({g.link_a.name, g.link_b.name} - {p}) <= set(order) for g in touches):
+                order.append(p)
+                pending.remove(p)
+                break
+        else:
+            return False  # planets meshing no central gear: not handled here
+    for j in range(1, k):
+        turn = Fraction(j, k)
+        if not _fits(meshes, order, {}, turn):
+            return False
+    return True
+
+
+def _term(geo: Any, side: str, spins: dict[str, Fraction], turn: Fraction) -> Fraction | None:
+    """How far one gear's tooth phase at the pitch point of copy j is from copy 0's, in pitches,
+    signed as it enters the mesh (an internal gear's phase subtracts); None while unknown."""
+    link = geo.link_a if side == "a" else geo.link_b
+    gear = geo.gear_a if side == "a" else geo.gear_b
+    z = int(gear.teeth)
+    if link.kind is LinkKind.PLANET:
+        if link.name not in spins:
+            return None
+        change = z * spins[link.name]  # turned with the copy (turn) and by its own e; its pitch point by turn
+    else:
+        change = -z * turn  # its pitch point turned by j/k, the gear did not
+    return -change if gear.internal else change
+
+
+def _mesh_value(geo: Any, spins: dict[str, Fraction], turn: Fraction) -> Fraction | None:
+    a, b = _term(geo, "a", spins, turn), _term(geo, "b", spins, turn)
+    return None if a is None or b is None else a + b
+
+
+def _fits(meshes: list[Any], order: list[str], spins: dict[str, Fraction], turn: Fraction) -> bool:
+    if len(spins) == len(order):
+        values = [_mesh_value(g, spins, turn) for g in meshes]
+        return all(v is not None and v.denominator == 1 for v in values)
+    planet = order[len(spins)]
+    anchor = None
+    for g in meshes:
+        if planet not in (g.link_a.name, g.link_b.name):
+            continue
+        other = g.link_b if g.link_a.name == planet else g.link_a
+        if other.kind is not LinkKind.PLANET or other.name in spins:
+            anchor = g
+            break
+    assert anchor is not None  # the order puts a planet after what it meshes
+    side = "a" if anchor.link_a.name == planet else "b"
+    gear = anchor.gear_a if side == "a" else anchor.gear_b
+    z = int(gear.teeth)
+    rest = _term(anchor, "b" if side == "a" else "a", spins, turn)
+    assert rest is not None
+    sign = -1 if gear.internal else 1
+    for n in range(z):  # sign z e + rest = n: every spin of the copy that fits this mesh
+        trial = {**spins, planet: Fraction(n - rest, z) * sign}
+        partial = [_mesh_value(g, trial, turn) for g in meshes]
+        if all(v is None or v.denominator == 1 for v in partial) and _fits(meshes, order, trial, turn):
+            return True
+    return False
 
 
 def _least_gap(problem: Problem, train: Mechanism, angles: dict[str, sp.Expr]) -> float | None:
