@@ -30,7 +30,7 @@ from symkin.synthesis.search import ChunkResult, Plan, evaluate_chunk, merge
 __all__ = ["run", "Execution"]
 
 #: Seconds to wait for a Dask scheduler to answer.
-CONNECT_TIMEOUT = 10
+CONNECT_TIMEOUT = 5
 
 
 @dataclass(frozen=True)
@@ -75,6 +75,8 @@ def run(plan: Plan, *, scheduler: str | None = None, workers: int | None = None,
     if time_limit is not None and spent > time_limit:
         raise TimeLimitError(f"deriving the conditions and compiling the search took {spent:.1f} s, more than the time "
                              f"limit of {time_limit:g} s; raise the time limit")
+    if scheduler is None and workers is not None:
+        raise InputError("the number of workers is for a local Dask cluster: give the scheduler 'local' with it")
     if scheduler is None:
         results, used = _local(plan, chunks, time_limit, progress, spent), 1
         where = "here"
