@@ -350,11 +350,13 @@ def test_any_chunking_gives_the_same_result():
 
 
 def test_dask_on_a_local_cluster_gives_the_same_result():
-    distributed = pytest.importorskip("distributed")
+    pytest.importorskip("distributed")
+    from symkin.synthesis.runner import local_cluster
+
     kw = dict(driver="S1", driven="R", fixed="C", ratio="12/5", tolerance="0.01", planets=3, zmax=70, top=20,
               chunk=2000)
     here = synthesize("ravigneaux", **kw)
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
+    with local_cluster(2) as cluster:
         there = synthesize("ravigneaux", scheduler=cluster.scheduler_address, **kw)
     assert [(d.gear_teeth, d.ratio, d.error, d.size) for d in there.designs] == \
         [(d.gear_teeth, d.ratio, d.error, d.size) for d in here.designs]

@@ -23,8 +23,8 @@ def table_rows(out):
 
 
 def test_simple_planetary_from_the_command_line(capsys):
-    code, out, err = run(capsys, "synthesize", "--train", "simple", "--driver", "S", "--driven", "C", "--fixed", "R",
-                         "--ratio", "4", "--tolerance", "0", "--planets", "3", "--zmax", "80", "--quiet")
+    code, out, _ = run(capsys, "synthesize", "--train", "simple", "--driver", "S", "--driven", "C", "--fixed", "R",
+                       "--ratio", "4", "--tolerance", "0", "--planets", "3", "--zmax", "80", "--quiet")
     assert code == 0 and "3 designs; all by ratio error" in out
     assert "assembly (P on carrier C): (z_r + z_s)/3 is an integer" in out
     rows = table_rows(out)
@@ -57,7 +57,7 @@ def test_ravigneaux_from_the_command_line_with_latex(capsys):
     rows = table_rows(out)
     assert len(rows) == 5 and all(r[-1] == "ok" for r in rows)
     for r in rows:  # z_s1 z_s2 z_p1 z_p2 z_r ratio: carrier held, i = z_r / z_s1; the ring coaxial with the long pinion
-        s1, s2, p1, p2, zr = map(int, r[1:6])
+        s1, s2, _, p2, zr = map(int, r[1:6])
         assert Fraction(r[6]) == Fraction(zr, s1) and zr == s2 + 2 * p2
 
 
@@ -70,7 +70,7 @@ def test_the_same_answer_on_a_local_dask_cluster(capsys):
     assert code == code2 == 0
     a, b = json.loads(here), json.loads(there)
     assert a["designs"] == b["designs"] and a["funnel"] == b["funnel"] and a["found"] == b["found"] > 0
-    assert b["execution"]["scheduler"].startswith("local cluster of 2 workers")
+    assert b["execution"]["scheduler"].startswith("local cluster of 2 workers") and b["warnings"] == []
 
 
 BAD = [

@@ -647,7 +647,11 @@ def _check(plan: Plan, batch: tuple, exact_calls: list[int]) -> tuple[int, list[
     errors: list[Fraction] = []
     rank = np.zeros(0, dtype=np.int64)
     if ok.any():
-        uniq, inverse = np.unique(pairs[ok], axis=0, return_inverse=True)
+        if np.abs(p[ok]).max() < 2**31 and q[ok].max() < 2**31:  # one int64 key per fraction: a fast 1-D sort
+            keys, inverse = np.unique((p[ok] << 32) + q[ok], return_inverse=True)
+            uniq = np.stack([keys >> 32, keys & (2**32 - 1)], axis=1)
+        else:
+            uniq, inverse = np.unique(pairs[ok], axis=0, return_inverse=True)
         which[ok] = np.asarray(inverse).reshape(-1)
         fr = [Fraction(int(a), int(b)) for a, b in uniq]
         inside = np.array([plan.target.lo <= v <= plan.target.hi for v in fr], dtype=bool)
