@@ -648,8 +648,8 @@ def _check(plan: Plan, batch: tuple, exact_calls: list[int]) -> tuple[int, list[
     rank = np.zeros(0, dtype=np.int64)
     if ok.any():
         if np.abs(p[ok]).max() < 2**31 and q[ok].max() < 2**31:  # one int64 key per fraction: a fast 1-D sort
-            keys, inverse = np.unique((p[ok] << 32) + q[ok], return_inverse=True)
-            uniq = np.stack([keys >> 32, keys & (2**32 - 1)], axis=1)
+            packed, inverse = np.unique((p[ok] << 32) + q[ok], return_inverse=True)
+            uniq = np.stack([packed >> 32, packed & (2**32 - 1)], axis=1)
         else:
             uniq, inverse = np.unique(pairs[ok], axis=0, return_inverse=True)
         which[ok] = np.asarray(inverse).reshape(-1)
