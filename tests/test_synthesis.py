@@ -358,6 +358,11 @@ def test_dask_on_a_local_cluster_gives_the_same_result():
     here = synthesize("ravigneaux", **kw)
     with local_cluster(2) as cluster:
         there = synthesize("ravigneaux", scheduler=cluster.scheduler_address, **kw)
+        start = time.perf_counter()  # the time limit holds on Dask too: the chunks left are cancelled
+        with pytest.raises(TimeLimitError, match="more than the time limit of 4 s"):
+            synthesize("ravigneaux", scheduler=cluster.scheduler_address, **{**kw, "zmax": 1500, "tolerance": "0.5",
+                                                                             "time_limit": 4})
+        assert time.perf_counter() - start < 30  # wall clock, as the limit is; the whole space takes hours
     assert [(d.gear_teeth, d.ratio, d.error, d.size) for d in there.designs] == \
         [(d.gear_teeth, d.ratio, d.error, d.size) for d in here.designs]
     assert there.found == here.found and there.funnel == here.funnel and there.execution["workers"] == 2

@@ -33,6 +33,9 @@ __all__ = ["run", "Execution", "local_cluster"]
 #: Seconds to wait for a Dask scheduler to answer.
 CONNECT_TIMEOUT = 5
 
+#: Chunks in flight per Dask worker (the rest are submitted as these finish).
+WINDOW = 3
+
 
 @dataclass(frozen=True)
 class Execution:
@@ -190,34 +193,49 @@ def _dask(plan: Plan, chunks: list[tuple[int, int]], scheduler: str, workers: in
     try:
         start = time.perf_counter()  # the cluster's start-up is not counted
         shared = client.scatter(plan, broadcast=True)
-        futures = client.map(evaluate_chunk, [shared] * len(chunks), [a for a, _ in chunks], [b for _, b in chunks],
-                             pure=False)
-        index = {f.key: i for i, f in enumerate(futures)}
+        # A window of chunks in flight, refilled as they finish: a space of millions of chunks
+        # costs no more memory than a few, and a time limit has little left to cancel.
+        todo = iter(enumerate(chunks))
+        index: dict[Any, int] = {}
+        live: set[Any] = set()
+
+        def submit() -> Any:
+            nxt = next(todo, None)
+            if nxt is None:
+                return None
+            i, (a, b) = nxt
+            f = client.submit(evaluate_chunk, shared, a, b, pure=False)
+            index[f.key] = i
+            live.add(f)
+            return f
+
+        first = [f for f in (submit() for _ in range(min(len(chunks), WINDOW * n))) if f is not None]
         results: list[ChunkResult | None] = [None] * len(chunks)
-        pending = set(futures)
-        done_outer, found = 0, 0
-        while pending:
-            remaining = None if limit is None else max(limit - spent - (time.perf_counter() - start), 0.01)
-            try:
-                finished, pending = distributed.wait(pending, timeout=remaining, return_when="FIRST_COMPLETED")
-            except (TimeoutError, getattr(distributed, "TimeoutError", TimeoutError)):
-                client.cancel(list(pending))
-                assert limit is not None
-                _check_time(plan, spent, time.perf_counter() - start, done_outer, limit, final=True)
-                raise  # pragma: no cover - _check_time raised
-            for f in finished:
+        done_outer, found, finished = 0, 0, 0
+        remaining = None if limit is None else max(limit - spent, 0.01)
+        try:
+            queue = distributed.as_completed(first, timeout=remaining)
+            for f in queue:
+                live.discard(f)
                 r = f.result()
-                results[index[f.key]] = r
+                results[index.pop(f.key)] = r
                 done_outer += r.stop - r.start
                 found += r.found
-            if progress is not None:
-                progress(sum(r is not None for r in results), len(chunks), found)
-            if limit is not None and pending:
-                try:
+                finished += 1
+                if progress is not None:
+                    progress(finished, len(chunks), found)
+                if limit is not None and finished < len(chunks):
                     _check_time(plan, spent, time.perf_counter() - start, done_outer, limit)
-                except TimeLimitError:
-                    client.cancel(list(pending))
-                    raise
+                g = submit()
+                if g is not None:
+                    queue.add(g)
+        except (TimeoutError, getattr(distributed, "TimeoutError", TimeoutError)):
+            client.cancel(list(live))
+            assert limit is not None
+            _check_time(plan, spent, time.perf_counter() - start, done_outer, limit, final=True)
+        except TimeLimitError:
+            client.cancel(list(live))
+            raise
         out = _Results(r for r in results if r is not None)
         out.elapsed = time.perf_counter() - start
         return out, n, where
