@@ -49,6 +49,8 @@ def contact_condition(mech: Mechanism, mesh: Mesh) -> sp.Eq:
     The mesh is drawn as in the paper's fig. 2: the line of centres along y, the pitch
     point on it, and the tangential component V_x of eq. (5) is equated.  Each gear's
     link has its own axis as pole; a planet axis moves with its carrier (eq. 5 again).
+    For a mesh of a second level (both axes fixed on a planet, which carries planets
+    itself) the velocities are taken in that planet's frame, where both axes stand still.
 
     >>> from symkin import schemes
     >>> ai = schemes.two_row("AI")
@@ -56,7 +58,24 @@ def contact_condition(mech: Mechanism, mesh: Mesh) -> sp.Eq:
     Eq(-omega_1*r_1, omega_23*r_2 + omega_H*(-r_1 - r_2))
     """
     geo = mech.mesh_geometry(mesh)
+    if geo.kind == "bevel":
+        return _bevel_condition(mech, geo)
     A, B, P = vec(0, 0), vec(0, geo.centre_distance), vec(0, geo.pitch_y)
+    holder = mech.link(geo.holder) if geo.holder != FRAME else None
+
+    def direct(link: Any) -> bool:  # on the main axis, or a planet on the holder with an axis of its own
+        return link.kind is not LinkKind.PLANET or (link.carrier == geo.holder and link.arm != 0)
+
+    if holder is not None and (holder.kind is LinkKind.PLANET or not (direct(geo.link_a) and direct(geo.link_b))):
+        # a second level: both axes are fixed on a link (a planet carrying planets, or a
+        # carrier whose planet carries the gear's link); in its frame each gear turns about
+        # its fixed axis at its speed relative to it, and the link's own motion adds the
+        # same velocity to both at the pitch point
+        w_k = S.omega(holder.name)
+        va = velocity(vec(0, 0), _omega(mech, geo.link_a.name) - w_k, P, A)
+        vb = velocity(vec(0, 0), _omega(mech, geo.link_b.name) - w_k, P, B)
+        omegas = [S.omega(n) for n in (geo.link_a.name, geo.link_b.name, holder.name) if n != FRAME]
+        return sp.Eq(*(sp.collect(sp.expand(v[0]), omegas, sp.factor) for v in (va, vb)), evaluate=False)
     # the main axis: where the non-planet gear turns (any point will do for two planets
     # on one carrier: the carrier's own velocity cancels between them)
     main_axis = B if geo.link_a.kind is LinkKind.PLANET and geo.link_b.kind is not LinkKind.PLANET else A
@@ -72,6 +91,27 @@ def contact_condition(mech: Mechanism, mesh: Mesh) -> sp.Eq:
     vb = pitch_velocity(geo.link_b, B)
     omegas = [S.omega(n) for n in (geo.link_a.name, geo.link_b.name, geo.link_a.carrier, geo.link_b.carrier) if n and n != FRAME]
     return sp.Eq(*(sp.collect(sp.expand(v[0]), omegas, sp.factor) for v in (va, vb)), evaluate=False)
+
+
+def _bevel_condition(mech: Mechanism, geo: Any) -> sp.Eq:
+    """Equal velocities of a bevel side gear and a bevel pinion at their contact point.
+
+    In the frame of the pinion's carrier (x along the pinion's radial axis, z along the
+    main axis), the side gear turns about z at its speed relative to the carrier, the
+    pinion about x at its own (relative) speed; the contact is at the side gear's pitch
+    radius along x and the pinion's pitch radius above (+z) or below (-z) its axis.  Both
+    velocities there are along y; the carrier's motion adds the same to both.
+    """
+    pinion, side = (geo.link_a, geo.link_b) if geo.link_a.axis == "radial" else (geo.link_b, geo.link_a)
+    carrier = geo.holder
+    w_side = _omega(mech, side.name) - _omega(mech, carrier)
+    w_pin = S.omega(pinion.name)
+    contact = sp.Matrix([geo.centre_distance, 0, geo.pitch_y])
+    v_side = sp.Matrix([0, 0, w_side]).cross(contact)  # about the carrier's axis, through the origin
+    v_pin = sp.Matrix([w_pin, 0, 0]).cross(contact)  # about the pinion's axis, the x axis through the origin
+    omegas = [S.omega(n) for n in (side.name, pinion.name, carrier) if n != FRAME]
+    sides = (v_side, v_pin) if side is geo.link_a else (v_pin, v_side)
+    return sp.Eq(*(sp.collect(sp.expand(v[1]), omegas, sp.factor) for v in sides), evaluate=False)
 
 
 # --------------------------------------------------------------------------- the system

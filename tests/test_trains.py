@@ -50,13 +50,29 @@ def willis_speeds(train, state, teeth=None):
         r[-1] = rhs
         rows.append(r)
 
+    by_name = {L.name: L for L in train.links}
+
+    def axis_owner(L):  # the planet whose axis a link turns about (None: the main axis)
+        if L.kind is not LinkKind.PLANET:
+            return None
+        return L if L.arm != 0 else axis_owner(by_name[L.carrier])
+
+    def depth(L):
+        return 0 if L is None or L.kind is not LinkKind.PLANET else 1 + depth(by_name[L.carrier])
+
     for mesh in train.meshes:
         A, B = owner[mesh.a], owner[mesh.b]
-        carrier = A.carrier if A.kind is LinkKind.PLANET else B.carrier
-        sign = 1 if gear[mesh.a].internal or gear[mesh.b].internal else -1
-        # (w_A - w_C) z_a = sign * (w_B - w_C) * ... : relative speeds inverse to teeth
-        # w_A - w_C = sign * (z_b / z_a) * (w_B - w_C)  ->  z_a (w_A - w_C) - sign z_b (w_B - w_C) = 0
         za, zb = z[mesh.a], z[mesh.b]
+        if A.axis == "radial" or B.axis == "radial":
+            # a bevel side gear and a pinion: z_side (w_side - w_C) = -side z_p w_p (w_p: the spin relative to C)
+            pin, side_link, zp, zs, side = (A, B, za, zb, gear[mesh.b].side) if A.axis == "radial" else (B, A, zb, za, gear[mesh.a].side)
+            row([(side_link.name, zs), (pin.carrier, -zs), (pin.name, side * zp)])
+            continue
+        # the link holding both axes: the carrier of the deeper axis
+        deeper = max((axis_owner(A), axis_owner(B)), key=depth)
+        carrier = deeper.carrier
+        sign = 1 if gear[mesh.a].internal or gear[mesh.b].internal else -1
+        # w_A - w_C = sign * (z_b / z_a) * (w_B - w_C)  ->  z_a (w_A - w_C) - sign z_b (w_B - w_C) = 0
         row([(A.name, za), (carrier, -za), (B.name, -sign * zb), (carrier, sign * zb)])
     for b in state.brakes:
         row([(train.link(b).name, Fraction(1))])
@@ -287,7 +303,7 @@ def test_a_bad_file_on_the_command_line_exits_2_and_writes_nothing(case, message
 
 
 def test_an_unknown_ready_made_name_lists_the_ready_made_ones():
-    with pytest.raises(TrainFileError, match="the ready-made trains are double-pinion, ferguson, ravigneaux"):
+    with pytest.raises(TrainFileError, match="the ready-made trains are bevel-differential, bevel-epicyclic, double-pinion"):
         load_train("ravignaux")
 
 

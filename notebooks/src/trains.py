@@ -114,3 +114,49 @@ fig
 # symkin ratio --train ravigneaux --driver S1 --driven R --fixed S2
 # symkin animate --train ravigneaux --omega S1=1 --omega S2=0 --out ravigneaux.gif
 # ```
+
+# %% [markdown]
+# ## 5. Beyond one plane and one carrier level
+#
+# **Nested carriers.** The ready-made `nested` file is a double-planetary polisher: an arm
+# `C` carries heads `P` that roll on a fixed sun; on each head a gear `G` turns about the
+# head's own axis (`arm = 0`), driven by a second fixed sun, and drives three tools `Q`
+# carried by the head. A tool's point superposes three rotations.
+
+# %%
+nested = load_train("nested")
+print(nested.shift_table().text())
+tool = nested.motion({"C": 1}).particle("Q", (4, 0), relative_to="pole")
+display(Math(r"x_{tool}(t) = " + symkin.latex(tool.position[0])))
+
+from symkin.viz.figures import trajectory_figure
+
+trajectory_figure(nested, {"C": 1}, [("Q", (4, 0)), ("Q", (0, 0))], 2 * sp.pi, relative_to="pole",
+                  labels=["tool point, 4 from the tool's axis", "tool axis"])
+
+# %% [markdown]
+# **Bevel gears.** In the `bevel-differential` file the case `C` carries pinions `P` on a
+# radial axis (`axis = "radial"`); the side gears `L` and `R` meet them above and below. The
+# contact condition is the equality of velocities at the contact point, in space; the case
+# turns at the mean of the side gears:
+
+# %%
+diff = load_train("bevel-differential")
+speeds = diff.speeds({"L": S.omega("L"), "R": S.omega("R")})
+display(Math(symkin.latex([speeds.law("C"), speeds.law("P")])))
+
+# %% [markdown]
+# **A base moving in space.** The 2009 paper's drill head: the manipulator moves the main
+# axis; the planet's teeth superpose that motion on their own. Here the head advances along
+# its axis and tilts slowly; a point on the planet's pitch circle moves in 3-D.
+
+# %%
+from symkin import schemes
+from symkin.particles import SpaceFrame
+from symkin.viz.figures import space_figure
+
+head = schemes.single_row_AI(teeth=(20, 30, 80), module=1)
+motion = head.motion({"4": 0, "H": 1}, frame=SpaceFrame.euler(z=5 * S.t, pitch=S.t / 10))
+tooth = motion.particle("2", (15, 0, 0), relative_to="pole")
+print([sp.count_ops(c) for c in tooth.acceleration], "operations in the acceleration laws")
+space_figure(motion, [("2", (15, 0, 0))], 4 * sp.pi, labels=["a point on the planet's pitch circle"])

@@ -21,6 +21,7 @@ import decimal
 import math
 import numbers
 import re
+import sys
 from collections.abc import Callable, Iterable, Mapping
 from fractions import Fraction
 from typing import Any
@@ -75,6 +76,9 @@ MAX_DIGITS = 300
 _HUGE = sp.Integer(10) ** MAX_DIGITS
 
 _NUMBER = re.compile(r"^[+-]?(\d+(_?\d+)*)?(\.\d*)?([eE][+-]?\d+)?$|^[+-]?\d+\s*/\s*\d+$", re.ASCII)
+
+#: The largest finite float64; an exact input beyond it has no numeric law to go to.
+_FLOAT64_MAX = sys.float_info.max
 
 
 def _check_text(text: object, what: str) -> str:
@@ -295,6 +299,8 @@ def as_real(value: Any, *, what: str = "value", error: type[Exception] = InputEr
         raise error(f"{what} must be a finite real number, got {value!r}")
     if positive and not expr.is_positive:
         raise error(f"{what} must be positive, got {value!r}")
+    if abs(expr.evalf(15)) > _FLOAT64_MAX:  # exact, but no numeric law can take it
+        raise error(f"{what} is {value!r}, beyond the float64 range (about 1.8e308); give a smaller value")
     return expr
 
 

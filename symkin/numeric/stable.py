@@ -426,15 +426,19 @@ def factor_differences(expr: sp.Expr) -> sp.Expr:
     """
 
     def small(node: sp.Expr) -> bool:
-        return (
+        if not (
             node.is_Add
             and not node.has(sp.Function)
             and 0 < len(node.free_symbols) <= 3
             and not all(s.is_integer for s in node.free_symbols)
             and sp.count_ops(node) <= 30
-            and node.is_polynomial()
-            and sp.Poly(node).total_degree() >= 2
-        )
+            and node.is_polynomial(*node.free_symbols)
+        ):
+            return False
+        # rational coefficients and a low degree only: factoring over a domain such as ZZ[E]
+        # with a coefficient E**1000 (a value typed by a user) takes minutes and never helps
+        poly = sp.Poly(node, *sorted(node.free_symbols, key=sp.default_sort_key))
+        return (poly.domain.is_QQ or poly.domain.is_ZZ) and 2 <= poly.total_degree() <= 8
 
     def rewrite(node: sp.Expr) -> sp.Expr:
         f = sp.factor(node)

@@ -25,14 +25,21 @@ Beyond it (all optional):
 
 - top level: ``description``;
 - a gear as a table: ``teeth``, ``internal``, ``module`` (its own), ``radius`` (a pitch
-  radius given directly, e.g. a working one);
+  radius given directly, e.g. a working one), ``bevel = true`` (a bevel gear) and, for a
+  bevel side gear, ``side = 1`` or ``-1`` (it meets the pinions above or below their axes);
 - a planet: ``angle`` (its position on the carrier at t = 0, radians; text such as
-  ``"pi/3"`` is exact), ``arm`` (its distance from the main axis), ``count`` (equal planets
-  of this kind, equally spaced);
+  ``"pi/3"`` is exact), ``arm`` (its distance from its carrier's axis; ``0``: it turns
+  about its carrier's own axis), ``count`` (equal planets of this kind, equally spaced);
+  its ``carrier`` may be a planet (nested carriers, a planet of a planet); ``axis =
+  "radial"`` makes it a bevel pinion (its axis perpendicular to its carrier's);
 - a mesh as a table: ``{ gears = ["p", "s2"], centre_distance = 60 }``: a working centre
   distance other than the pitch circles give, i.e. a profile-shifted mesh (the working
   circles keep the tooth ratio, so the ratio is exact and the planet axis coaxial);
-- a state: ``description``.
+  ``efficiency = 0.985``: the mesh's efficiency for the statics (symkin efficiency);
+- a state: ``description``;
+- ``[base]``: the base (the frame) moving in space, expressions in t: ``x``, ``y``, ``z``
+  of the main axis point O and ``yaw``, ``pitch``, ``roll`` of the frame (the motion the
+  drawing commands use; a drill head on a manipulator).
 
 Numbers are exact as written (``0.8`` is 4/5); text values are parsed from symkin's
 allow-list (never evaluated).  A bad file is a :class:`~symkin.errors.TrainFileError`
@@ -69,10 +76,11 @@ __all__ = ["load_train", "read_train", "ready_made", "READY_MADE", "MAX_FILE_BYT
 #: The largest train file read (a train of hundreds of links is a few kB).
 MAX_FILE_BYTES = 1_000_000
 #: Keys each table may hold.
-_TOP = {"name", "description", "module", "meshes", "links", "states"}
-_LINK = {"gears", "carrier", "angle", "arm", "count"}
-_GEAR = {"teeth", "internal", "module", "radius"}
-_MESH = {"gears", "centre_distance"}
+_TOP = {"name", "description", "module", "meshes", "links", "states", "base"}
+_BASE = {"x", "y", "z", "yaw", "pitch", "roll"}
+_LINK = {"gears", "carrier", "angle", "arm", "count", "axis"}
+_GEAR = {"teeth", "internal", "module", "radius", "bevel", "side"}
+_MESH = {"gears", "centre_distance", "efficiency"}
 _STATE = {"input", "output", "brakes", "clutches", "description"}
 _SYMBOL = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
 #: The link name of the frame in a file.
@@ -86,8 +94,8 @@ def _library() -> Any:
 def ready_made() -> dict[str, str]:
     """The ready-made train files shipped with symkin: name -> description.
 
-    >>> sorted(ready_made())[:3]
-    ['double-pinion', 'ferguson', 'ravigneaux']
+    >>> sorted(ready_made())[:4]
+    ['bevel-differential', 'bevel-epicyclic', 'double-pinion', 'ferguson']
     """
     out = {}
     for entry in sorted(_library().iterdir(), key=lambda e: e.name):
@@ -207,15 +215,22 @@ class _Reader:
             if isinstance(spec, Mapping):
                 spec = self.keys(spec, _GEAR, where)
                 internal = spec.get("internal", False)
-                if not isinstance(internal, bool):
-                    raise self.fail(f"{where} internal", f"must be true or false, got {_show(internal)}")
+                bevel = spec.get("bevel", False)
+                side = spec.get("side", 0)
+                for key, value in (("internal", internal), ("bevel", bevel)):
+                    if not isinstance(value, bool):
+                        raise self.fail(f"{where} {key}", f"must be true or false, got {_show(value)}")
+                if isinstance(side, bool) or side not in (-1, 0, 1):
+                    raise self.fail(f"{where} side", f"is 1 (the side gear meets the bevel pinions above their axes) or "
+                                    f"-1 (below), got {_show(side)}")
                 m = self.number(spec["module"], f"{where} module") if "module" in spec else module
                 z = self.teeth(spec["teeth"], f"{where} teeth") if "teeth" in spec else None
                 if "radius" in spec:
-                    return Gear(name, self.number(spec["radius"], f"{where} radius"), teeth=z, internal=internal, module=m)
+                    return Gear(name, self.number(spec["radius"], f"{where} radius"), teeth=z, internal=internal, module=m,
+                                bevel=bevel, side=side)
                 if z is None:
                     raise self.fail(where, "give the gear's teeth (or its radius)")
-                return Gear.from_teeth(name, z, internal=internal, module=m)
+                return Gear.from_teeth(name, z, internal=internal, module=m, bevel=bevel, side=side)
             return Gear.from_teeth(name, self.teeth(spec, where), module=module)
         except ModelError as err:
             if isinstance(err, TrainFileError):
@@ -265,14 +280,18 @@ class _Reader:
                     count = table.get("count", 1)
                     if isinstance(count, bool) or not isinstance(count, int):
                         raise self.fail(f"{where} count", f"must be a whole number of planets, got {_show(count)}")
+                    axis = table.get("axis", "parallel")
+                    if axis not in ("parallel", "radial"):
+                        raise self.fail(f"{where} axis", f"is \"parallel\" (a planet) or \"radial\" (a bevel pinion), got {_show(axis)}")
                     links.append(Link.planet(
-                        link_name, *gears, carrier=carrier,
-                        arm=self.number(table["arm"], f"{where} arm") if "arm" in table else None,
+                        link_name, *gears, carrier=carrier, axis=axis,
+                        arm=(sp.Integer(0) if table.get("arm") == 0 else self.number(table["arm"], f"{where} arm"))
+                        if "arm" in table else None,
                         position_angle=self.angle(table["angle"], f"{where} angle") if "angle" in table else None,
                         count=count,
                     ))
                 else:
-                    extra = sorted(set(table) & {"angle", "arm", "count"})
+                    extra = sorted(set(table) & {"angle", "arm", "count", "axis"})
                     if extra:
                         raise self.fail(f"{where} {extra[0]}", "only a planet (a link with a carrier) takes this key")
                     links.append(Link.central(link_name, *gears))
@@ -282,13 +301,36 @@ class _Reader:
                 raise self.fail(where, str(err)) from None
         meshes = self.meshes(data.get("meshes"), gear_owner)
         states = self.states(data.get("states", {}), set(links_table) | set(gear_owner))
+        base = self.base(data["base"]) if "base" in data else None
         try:
             return Train(tuple(links), tuple(meshes), name=name, states=tuple(states), description=description,
-                         source=self.path)
+                         source=self.path, base=base)
         except TrainFileError:
             raise
         except ModelError as err:
             raise self.fail(self._where_of(str(err), specs), str(err)) from None
+
+    def base(self, table: Any) -> Any:
+        from symkin.particles import SpaceFrame
+
+        table = self.keys(table, _BASE, "[base]")
+        values = {}
+        for key, value in table.items():
+            where = f"[base] {key}"
+            if isinstance(value, (int, float)) and not isinstance(value, bool):
+                values[key] = self.number(value, where, positive=False)
+            elif isinstance(value, str):
+                try:
+                    values[key] = parse_expression(value, names=("t",), what="the value")
+                except SymkinError as err:
+                    raise self.fail(where, str(err)) from None
+            else:
+                raise self.fail(where, f"must be a number or an expression in t, got {_show(value)}")
+        try:
+            return SpaceFrame.euler(values.get("x", 0), values.get("y", 0), values.get("z", 0), yaw=values.get("yaw", 0),
+                                    pitch=values.get("pitch", 0), roll=values.get("roll", 0))
+        except SymkinError as err:
+            raise self.fail("[base]", str(err)) from None
 
     def _check_carriers(self, specs: Mapping[str, Mapping[str, Any]]) -> None:
         for link_name, table in specs.items():
@@ -316,11 +358,15 @@ class _Reader:
         out = []
         for k, item in enumerate(items, 1):
             where = f"meshes[{k}]"
-            distance = None
+            distance = efficiency = None
             if isinstance(item, Mapping):
                 item = self.keys(item, _MESH, where)
                 if "centre_distance" in item:
                     distance = self.number(item["centre_distance"], f"{where} centre_distance")
+                if "efficiency" in item:
+                    efficiency = self.number(item["efficiency"], f"{where} efficiency")
+                    if not efficiency <= 1:
+                        raise self.fail(f"{where} efficiency", f"must lie in (0, 1], got {_show(item['efficiency'])}")
                 item = item.get("gears")
             if not isinstance(item, list) or len(item) != 2:
                 raise self.fail(where, f"a mesh is a pair of gear names [\"a\", \"b\"], got {_show(item)}")
@@ -328,7 +374,7 @@ class _Reader:
                 if g not in owner:
                     raise self.fail(where, f"names no gear {g!r}; the gears are {', '.join(owner)}")
             try:
-                mesh = Mesh(item[0], item[1], centre_distance=distance)
+                mesh = Mesh(item[0], item[1], centre_distance=distance, efficiency=efficiency)
             except ModelError as err:
                 raise self.fail(where, str(err)) from None
             out.append(mesh)

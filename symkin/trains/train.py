@@ -120,11 +120,14 @@ class Train(Mechanism):
     description : str
     source : str
         Where it was read from (a file, or a ready-made train's name).
+    base : SpaceFrame, optional
+        The base's motion in space the file gives ([base]): the drawing commands use it.
     """
 
     states: tuple[State, ...] = ()
     description: str = ""
     source: str = ""
+    base: Any = None
 
     def __post_init__(self) -> None:
         super().__post_init__()

@@ -106,6 +106,8 @@ class Frames:
         exprs += list(origin.position)
         links = []
         for link in mech.links:
+            if link.axis == "radial":  # a bevel pinion spins across the plane: not drawn as a circle
+                continue
             gears = tuple((g.name, _number(g.radius, subs, f"pitch radius of gear {g.name}"), g.internal) for g in link.gears)
             if not gears and (link.kind is LinkKind.FRAME or not _carries(mech, link.name)):
                 continue
@@ -113,8 +115,8 @@ class Frames:
             marker = motion.particle(link.name, (1, 0), relative_to="pole")
             exprs += list(axis.position) + list(marker.position)
             links.append((link.name, link.kind.value, gears, link.carrier))
-        for link, point in particles:
-            exprs += list(motion.particle(link, point, relative_to=relative_to).position)
+        for link, point in particles:  # seen from +z: a path in space is drawn by its x and y
+            exprs += list(motion.particle(link, point, relative_to=relative_to).position)[:2]
         columns = np.array(on_grid(exprs, t, subs, what="animate the mechanism"))
         main_xy = columns[0:2].T
         n = len(links)
