@@ -32,6 +32,26 @@ def test_simple_planetary_from_the_command_line(capsys):
     assert all(r[-1] == "ok" for r in rows)
 
 
+def test_efficiency_of_each_design_against_the_textbook_formula(capsys):
+    code, out, _ = run(capsys, "synthesize", "--train", "simple", "--driver", "S", "--driven", "C", "--fixed", "R",
+                       "--ratio", "4.5", "--tolerance", "0.05", "--planets", "3", "--zmax", "90", "--top", "all",
+                       "--efficiency", "0.97", "--quiet", "--json")
+    data = json.loads(out)
+    assert code == 0 and len(data["designs"]) > 3
+    eta = Fraction(97, 100)
+    for d in data["designs"]:
+        t = d["teeth"]
+        # sun driving the carrier, ring held, by hand: basic-train efficiency eta0 = eta_sp eta_pr (both meshes
+        # carry power the same way in the carrier's frame), eta = (1 + eta0 z_r/z_s) / (1 + z_r/z_s)
+        u = Fraction(t["r"], t["s"])
+        assert Fraction(d["efficiency"]["exact"]) == (1 + eta * eta * u) / (1 + u)
+    code, out, _ = run(capsys, "synthesize", "--train", "simple", "--driver", "S", "--driven", "C", "--fixed", "R",
+                       "--ratio", "4", "--tolerance", "0", "--planets", "3", "--zmax", "80", "--efficiency", "--quiet")
+    rows = table_rows(out)
+    # default 0.98 external, 0.99 internal: (1 + 0.98*0.99*3)/4 for every 4:1 set
+    assert code == 0 and [r[-2] for r in rows] == ["0.97765"] * 3 and "not a ranking key" in out
+
+
 def test_wolfrom_from_the_command_line_in_json(capsys):
     code, out, _ = run(capsys, "synthesize", "--train", "wolfrom", "--state", "drive", "--ratio", "76", "--tolerance",
                        "0.02", "--planets", "3", "--zmax", "80", "--top", "all", "--quiet", "--json")
@@ -85,6 +105,7 @@ BAD = [
     (["--ratio", "4", "--scheduler", "tcp://127.0.0.1:1"], "no Dask scheduler answered"),
     (["--ratio", "4", "--workers", "2"], "for a local Dask cluster"),
     (["--ratio", "x"], "must be a number"),
+    (["--ratio", "4", "--efficiency", "1.5"], "must lie in (0, 1]"),
 ]
 
 

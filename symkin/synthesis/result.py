@@ -22,7 +22,7 @@ import sympy as sp
 
 from symkin._util.jsonout import exact_json, float_text
 from symkin.errors import CoaxialityWarning, ModelError
-from symkin.model import Gear, LinkKind, Mechanism, Mesh
+from symkin.model import Gear, LinkKind, Mechanism
 from symkin.synthesis.problem import Condition, Problem
 from symkin.synthesis.search import STAGES, ChunkResult, Plan, Record, Target
 
@@ -160,8 +160,34 @@ class Design:
             if L.kind is LinkKind.PLANET:
                 changes["count"] = count[L.name]
             links.append(dataclasses.replace(L, **changes))
-        meshes = tuple(Mesh(m.a, m.b, working.get(frozenset((m.a, m.b)), m.centre_distance)) for m in problem.train.meshes)
+        meshes = tuple(dataclasses.replace(m, centre_distance=working.get(frozenset((m.a, m.b)), m.centre_distance))
+                       for m in problem.train.meshes)
         return dataclasses.replace(problem.train, links=tuple(links), meshes=meshes)
+
+    def efficiency(self, mesh_efficiency: Any = "default") -> sp.Expr:
+        """The efficiency of the searched ratio's power path, exact, from the statics of :meth:`train`.
+
+        ``mesh_efficiency`` is :func:`symkin.statics.statics`' ``efficiency``: ``"default"``
+        (0.98 an external mesh, 0.99 an internal one, or the train file's value), one number
+        for every mesh, or ``{"a-b": value}``.  Driver driving driven with the searched
+        links held (or the state's brakes and clutches).
+
+        >>> from symkin.synthesis import synthesize
+        >>> best = synthesize("simple", driver="S", driven="C", fixed="R", ratio=4, zmax=80).designs[0]
+        >>> best.efficiency(), best.efficiency("0.97")
+        (19553/20000, 38227/40000)
+        """
+        from symkin.statics import statics
+
+        train = self.train()
+        driver, driven, fixed, state = self.problem.request
+        joined: tuple = ()
+        if state is not None:
+            st = train.state(state)  # type: ignore[attr-defined]
+            driver, driven, fixed, joined = st.input, st.output, st.brakes, st.clutches
+        held = tuple(f for f in (fixed or ()) if f is not None)
+        eta = statics(train, input=driver, output=driven, fixed=held, joined=joined, efficiency=mesh_efficiency)
+        return eta.efficiency.rhs
 
     def check(self) -> DesignCheck:
         """Re-derive the ratio, coaxiality and planet positions from :meth:`train` (module docstring).
