@@ -33,6 +33,7 @@ LAYERS: list[tuple[str, ...]] = [
     ("symkin.kinematics", "symkin.particles", "symkin.drives", "symkin.vectorloop"),
     ("symkin.schemes", "symkin.trains"),
     ("symkin.study", "symkin.statics"),
+    ("symkin.synthesis",),
     ("symkin.mechanisms",),
     ("symkin.viz",),
     ("symkin.papers",),
