@@ -4,8 +4,6 @@ from __future__ import annotations
 
 from typing import Any
 
-from symkin._util.jsonout import exact_json
-from symkin._util.parsing import parse_integer, parse_number
 from symkin.cli.common import Progress, add_command, add_quiet_flag, add_train_argument, emit
 from symkin.errors import InputError
 
@@ -64,6 +62,8 @@ def register(sub: Any) -> None:
 
 
 def _ratio_range(text: str) -> tuple[Any, Any]:
+    from symkin._util.parsing import parse_number
+
     parts = [x.strip() for x in text.split(",")]
     if len(parts) != 2:
         raise InputError(f"--ratio-range takes LO,HI (two numbers), got {text!r}")
@@ -71,6 +71,8 @@ def _ratio_range(text: str) -> tuple[Any, Any]:
 
 
 def run_synthesize(args: Any) -> int:
+    from symkin._util.jsonout import exact_json
+    from symkin._util.parsing import parse_integer, parse_number
     from symkin.synthesis import synthesize
 
     if args.ratio is None and args.ratio_range is None:
