@@ -678,6 +678,7 @@ def _solve_factored(A: sp.Matrix, B: sp.Matrix) -> tuple[sp.Matrix, sp.Matrix] |
     back = {d: a for a, d in to_dummy.items()}
     if to_dummy:
         A, B = A.xreplace(to_dummy), B.xreplace(to_dummy)
+    A, B = _without_denominators(A, B)
     blocks = _triangular_blocks(A)
     if blocks is None:
         return None
@@ -711,6 +712,21 @@ def _solve_factored(A: sp.Matrix, B: sp.Matrix) -> tuple[sp.Matrix, sp.Matrix] |
     if back:
         return result.xreplace(back), composed.xreplace(back)
     return result, composed
+
+
+def _without_denominators(A: sp.Matrix, B: sp.Matrix) -> tuple[sp.Matrix, sp.Matrix]:
+    """Each equation (a row of A and B) times the lcm of its entries' denominators, so the
+    blocks are solved over polynomials (working pitch radii of a profile-shifted mesh,
+    ``60 z_p/(z_p + z_s)``, are fractions); the solution is unchanged."""
+    A, B = A.as_mutable(), B.as_mutable()
+    for r in range(A.rows):
+        row = [e for e in [*A.row(r), *B.row(r)] if e != 0]
+        dens = [sp.fraction(sp.together(e))[1] for e in row]
+        den = sp.lcm_list(dens) if any(d != 1 for d in dens) else sp.Integer(1)
+        if den != 1:
+            A[r, :] = (A.row(r) * den).applyfunc(sp.cancel)
+            B[r, :] = (B.row(r) * den).applyfunc(sp.cancel)
+    return A, B
 
 
 def _block_solve(block: list[list[sp.Expr]], rhs: list[list[sp.Expr]]) -> list[list[sp.Expr]] | None:
