@@ -753,6 +753,16 @@ def _drill_head_reference():
 FIGURE_TEETH = {"AI1": (20, 30, 80), "AI": (20, 30, 20, 70), "AA": (54, 45, 44, 55), "II": (200, 99, 100, 201)}
 
 
+#: Captions of the figures in the report, and the checks (label prefixes) each illustrates.
+FIGURE_CAPTIONS = {
+    "alyushin2009_trajectories": ("Planet-particle trajectories of the four schemes, gear 4 fixed, one carrier turn, "
+                                  "from the derived position law (4); gears drawn with involute teeth (m = 1 mm).",
+                                  ("(4)", "(5)", "(6)")),
+    "alyushin2009_drill_head": ("The drill head in space: a bit tooth, the planet axis and the main axis point O "
+                                "while the manipulator feeds and nods the head.", ("drill head",)),
+}
+
+
 def figures(folder: Path) -> list[Path]:
     """Trajectories of a planet particle on the pitch circle of rim 2 and one inside it,
     for each scheme, gear 4 fixed, over one carrier turn (see :func:`trajectories_figure`)."""

@@ -561,6 +561,16 @@ def _synthesis_checks() -> list[Check]:
 
 
 # --------------------------------------------------------------------------- figures
+#: Captions of the figures in the report, and the checks (label prefixes) each illustrates.
+FIGURE_CAPTIONS = {
+    "kladova2010_existence_regions": ("Existence regions of Table 1 derived: the ratios i_1H^(4) realisable with "
+                                      "balanced helical planets against d_w2/d_w3, for k = 3, 4, 6, 12 planets.",
+                                      ("Table 1",)),
+    "kladova2010_synthesis": ("The synthesis example: every design found, its envelope and ratio error, and the helix "
+                              "angles that balance the axial forces.", ("synthesis",)),
+}
+
+
 def figures(folder: Path) -> list[Path]:
     """Existence regions (Table 1) for k = 3, 4, 6, derived and as published; the synthesis example."""
     return _region_figure(folder) + _synthesis_figure(folder)

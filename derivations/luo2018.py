@@ -727,6 +727,21 @@ def _figure_claims() -> list[Check]:
 
 
 # --------------------------------------------------------------------------- figures
+#: Captions of the figures in the report, and the checks (label prefixes) each illustrates.
+FIGURE_CAPTIONS = {
+    "luo2018_paths": ("What the pin traces for four Cardan mechanisms, from the 2009 superposition laws "
+                      "(pitch circles drawn with involute teeth).", ("(22) superposition",)),
+    "luo2018_fig4_constant_speed": ("Fig. 4 / Table 1: displacement, velocity and acceleration of the slider at "
+                                    "constant carrier speed.", ("Table 1", "stroke")),
+    "luo2018_fig7_velocity": ("Fig. 7: slider velocity through elliptical gears for varying e, m and theta_H0.",
+                              ("(26)",)),
+    "luo2018_fig8_acceleration": ("Fig. 8: slider acceleration through elliptical gears for varying e, m and theta_H0.",
+                                  ("(33)-(35)",)),
+    "luo2018_carrier_angle_branches": ("The carrier angle through elliptical gears: the derived continuous angle "
+                                       "beside the principal-arctan form (27)-(28).", ("(27)-(28)",)),
+}
+
+
 def figures(folder: Path) -> list[Path]:
     """Pin paths; Table 1's curves (fig. 4); figures 7 and 8; the carrier angle across a branch point."""
     return _paths_figure(folder) + _table1_figure(folder) + _sweep_figures(folder) + _branch_figure(folder)

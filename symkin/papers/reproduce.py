@@ -42,7 +42,9 @@ SCHEMA_VERSION = "1.0"
 
 @dataclass
 class PaperResult:
-    """One paper's checks, its list of printed items, figures and notes."""
+    """One paper's checks, its list of printed items, figures and notes; ``captions`` maps a
+    figure's name (its file stem) to its caption and the label prefixes of the checks it
+    illustrates (the paper module's ``FIGURE_CAPTIONS``)."""
 
     key: str
     citation: str
@@ -51,6 +53,7 @@ class PaperResult:
     notes: list[str] = field(default_factory=list)
     seconds: float = 0.0
     items: list[PrintedItem] = field(default_factory=list)
+    captions: dict[str, tuple[str, tuple[str, ...]]] = field(default_factory=dict)
 
     @property
     def ok(self) -> bool:
@@ -140,7 +143,7 @@ def run(
             notes = list(getattr(mod, "notes", lambda: [])())
             results.append(
                 PaperResult(name, mod.CITATION, checks, figures, notes, time.perf_counter() - start,
-                            list(getattr(mod, "PRINTED_ITEMS", ())))
+                            list(getattr(mod, "PRINTED_ITEMS", ())), dict(getattr(mod, "FIGURE_CAPTIONS", {})))
             )
         bar.step("writing report.json, report.txt, equations.tex")
         data = report_json(results, tmp)
