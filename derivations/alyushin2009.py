@@ -754,7 +754,7 @@ FIGURE_TEETH = {"AI1": (20, 30, 80), "AI": (20, 30, 20, 70), "AA": (54, 45, 44, 
 
 
 #: Captions of the figures in the report, and the checks (label prefixes) each illustrates.
-FIGURE_CAPTIONS = {
+REPORT_FIGURES = {
     "alyushin2009_trajectories": ("Planet-particle trajectories of the four schemes, gear 4 fixed, one carrier turn, "
                                   "from the derived position law (4); gears drawn with involute teeth (m = 1 mm).",
                                   ("(4)", "(5)", "(6)")),

@@ -479,7 +479,7 @@ def notes() -> list[str]:
 
 
 #: Captions of the figures in the report, and the checks (label prefixes) each illustrates.
-FIGURE_CAPTIONS = {
+REPORT_FIGURES = {
     "khai2014_stages": ("The feasible stages of one ring: Phi/d of each stage error model and the centre distance "
                         "a_w against the stage ratio u.", ("stages:",)),
     "khai2014_split": ("The split of the total ratio over the stages: the least objective with one stage ratio held, "

@@ -562,7 +562,7 @@ def _synthesis_checks() -> list[Check]:
 
 # --------------------------------------------------------------------------- figures
 #: Captions of the figures in the report, and the checks (label prefixes) each illustrates.
-FIGURE_CAPTIONS = {
+REPORT_FIGURES = {
     "kladova2010_existence_regions": ("Existence regions of Table 1 derived: the ratios i_1H^(4) realisable with "
                                       "balanced helical planets against d_w2/d_w3, for k = 3, 4, 6, 12 planets.",
                                       ("Table 1",)),

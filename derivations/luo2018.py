@@ -728,7 +728,7 @@ def _figure_claims() -> list[Check]:
 
 # --------------------------------------------------------------------------- figures
 #: Captions of the figures in the report, and the checks (label prefixes) each illustrates.
-FIGURE_CAPTIONS = {
+REPORT_FIGURES = {
     "luo2018_paths": ("What the pin traces for four Cardan mechanisms, from the 2009 superposition laws "
                       "(pitch circles drawn with involute teeth).", ("(22) superposition",)),
     "luo2018_fig4_constant_speed": ("Fig. 4 / Table 1: displacement, velocity and acceleration of the slider at "

@@ -215,7 +215,7 @@ _Placed = tuple[dict[int, list[tuple[Path, str, str]]], list[tuple[Path, str, st
 
 def _placed_figures(result: Any, root: Path | None) -> _Placed:
     """Each PDF figure of ``result`` with its caption and label: after the last check its
-    caption names (by label prefix, ``FIGURE_CAPTIONS`` of the paper), or unplaced; and the
+    caption names (by label prefix, ``REPORT_FIGURES`` of the paper), or unplaced; and the
     figure each check points to."""
     figure_of: dict[int, str] = {}
     if root is None:
@@ -264,7 +264,7 @@ def equations_document(results: Iterable[Any], root: Path | None = None) -> str:
 
     With ``root`` (the report folder), the papers' PDF figures inside it are included as
     numbered figures with captions, each after the checks it illustrates (the paper's
-    ``FIGURE_CAPTIONS``: figure name -> caption and check-label prefixes), and each of
+    ``REPORT_FIGURES``: figure name -> caption and check-label prefixes), and each of
     those checks points to it.  The document ends with an index of every printed item.
     """
     results = list(results)

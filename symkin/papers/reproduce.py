@@ -44,7 +44,7 @@ SCHEMA_VERSION = "1.0"
 class PaperResult:
     """One paper's checks, its list of printed items, figures and notes; ``captions`` maps a
     figure's name (its file stem) to its caption and the label prefixes of the checks it
-    illustrates (the paper module's ``FIGURE_CAPTIONS``)."""
+    illustrates (the paper module's ``REPORT_FIGURES``)."""
 
     key: str
     citation: str
@@ -143,7 +143,7 @@ def run(
             notes = list(getattr(mod, "notes", lambda: [])())
             results.append(
                 PaperResult(name, mod.CITATION, checks, figures, notes, time.perf_counter() - start,
-                            list(getattr(mod, "PRINTED_ITEMS", ())), dict(getattr(mod, "FIGURE_CAPTIONS", {})))
+                            list(getattr(mod, "PRINTED_ITEMS", ())), dict(getattr(mod, "REPORT_FIGURES", {})))
             )
         bar.step("writing report.json, report.txt, equations.tex")
         data = report_json(results, tmp)
