@@ -169,7 +169,7 @@ class Frames:
             fig.set_dpi(dpi)
             body = anim.to_jshtml(fps=fps, embed_frames=True, default_mode="loop")
         finally:
-            anim._draw_was_started = True  # type: ignore[attr-defined]
+            anim._draw_was_started = True  # no "deleted without rendering" warning (a private attribute)
         return ("<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>" + _html_escape(self.title)
                 + "</title></head><body>\n" + body + "\n</body></html>\n")
 
@@ -415,8 +415,7 @@ def animate(
         with replacing(out) as (tmp,):
             anim.save(str(tmp), writer=writer, dpi=dpi)
     except BaseException:
-        # no "deleted without rendering" warning on top of the error; the attribute is
-        # private to matplotlib, so its stubs (animation.pyi) do not declare it
-        anim._draw_was_started = True  # type: ignore[attr-defined]
+        # no "deleted without rendering" warning on top of the error (a private attribute)
+        anim._draw_was_started = True
         raise
     return out

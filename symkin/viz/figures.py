@@ -93,7 +93,7 @@ def draw_pitch_circles(ax: Any, mech: Mechanism, values: Mapping[Any, Any] | Non
         for gear in link.gears:
             r = float(substitute(gear.radius, named))
             if gear.name in phases:
-                gx, gy = involute_outline(r, int(gear.teeth), internal=gear.internal, phase=phases[gear.name])
+                gx, gy = involute_outline(r, int(sp.sympify(gear.teeth)), internal=gear.internal, phase=phases[gear.name])
                 ax.plot(centre[0] + gx, centre[1] + gy, lw=0.5, color="0.45", ls="-")
                 ax.add_patch(Circle(centre, r, fill=False, lw=0.4, ls=":", color="0.6"))
             else:

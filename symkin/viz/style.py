@@ -113,11 +113,11 @@ def finish(fig: Figure) -> Figure:
     from matplotlib.text import Text
 
     for text in fig.findobj(Text):
-        if text.get_text() and text.get_fontsize() < MIN_FONT:
+        if text.get_text() and float(text.get_fontsize()) < MIN_FONT:
             text.set_fontsize(MIN_FONT)
     for ax in fig.axes:
         for axis in (ax.xaxis, ax.yaxis, getattr(ax, "zaxis", None)):
-            if axis is not None and axis.get_ticklabels() and axis.get_ticklabels()[0].get_fontsize() < MIN_FONT:
+            if axis is not None and axis.get_ticklabels() and float(axis.get_ticklabels()[0].get_fontsize()) < MIN_FONT:
                 axis.set_tick_params(labelsize=MIN_FONT)
     return fig
 
@@ -202,15 +202,15 @@ def layout_problems(fig: Figure, *, width: float = PAGE) -> list[str]:
         if legend is not None and legend.get_visible():
             box = legend.get_window_extent(renderer)
             for line in ax.get_lines():
-                if not line.get_visible() or (line.get_label().startswith("_") and len(line.get_xydata()) < 2):
-                    continue
                 xy = np.asarray(line.get_xydata(), dtype=float)
+                if not line.get_visible() or (str(line.get_label()).startswith("_") and len(xy) < 2):
+                    continue
                 if hasattr(ax, "zaxis") or not len(xy):
                     continue
                 pts = line.get_transform().transform(xy[np.all(np.isfinite(xy), axis=1)])
                 inside = (pts[:, 0] > box.x0) & (pts[:, 0] < box.x1) & (pts[:, 1] > box.y0) & (pts[:, 1] < box.y1)
                 if inside.any():
-                    problems.append(f"{name}: the legend covers a drawn line ({line.get_label()[:30]!r})")
+                    problems.append(f"{name}: the legend covers a drawn line ({str(line.get_label())[:30]!r})")
                     break
     texts = _texts(fig)
     boxes = [t.get_window_extent(renderer) for t in texts]
