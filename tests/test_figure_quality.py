@@ -222,9 +222,10 @@ def test_the_animation_page_runs_in_a_headless_browser(tmp_path):
     out = animate(_frames(4), tmp_path / "a.html", dpi=30)
     dom = subprocess.run([_browser(), "--headless", "--no-sandbox", "--disable-gpu", "--virtual-time-budget=3000",
                           "--dump-dom", out.as_uri()], capture_output=True, text=True, timeout=120).stdout
-    # the script ran: the player set its frame image and its slider
+    # the script ran: the player set its frame image (the page as written has none) and its slider
+    assert not re.search(r'<img id="_anim_img\w+" src=', out.read_text())
     assert re.search(r'<img id="_anim_img\w+" src="data:image/png;base64', dom)
-    assert re.search(r'<input[^>]+type="range"', dom)
+    assert re.search(r'type="range"[^>]+max="3"', dom)       # 4 frames: 0 ... 3
 
 
 def test_the_cli_writes_an_html_animation(tmp_path):
