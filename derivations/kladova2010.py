@@ -603,7 +603,7 @@ def _region_figure(folder: Path) -> list[Path]:
 
             ax.fill_between(d, curve(free_end), curve(k_end), color=style.PALETTE[5], alpha=0.25, lw=0,
                             label="region, k = 3" if first else None)
-            ax.plot(d, curve(free_end), color="k", lw=1.0, label="large central gears ($r_1 \\to \\infty$)" if first else None)
+            ax.plot(d, curve(free_end), color="k", ls="-", lw=1.0, label="large central gears ($r_1 \\to \\infty$)" if first else None)
             for kk, col in colours.items():
                 ax.plot(d, curve(k_end, kk), color=col, ls=dashes[kk], lw=1.0,
                         label=f"neighbour bound, k = {kk}" if first else None)
