@@ -19,11 +19,11 @@ import os
 import sys
 import warnings
 from collections.abc import Sequence
-from typing import NoReturn
+from typing import Any, NoReturn
 
 from symkin.errors import SymkinError, SymkinWarning
 
-__all__ = ["main", "COMMANDS", "ArgumentParser"]
+__all__ = ["main", "COMMANDS", "ArgumentParser", "output_schema", "JSON_SCHEMA_VERSION"]
 
 #: Modules of symkin.cli that define commands, in the order --help lists them.
 COMMANDS = ("reproduce", "gears", "trains", "efficiency", "plots", "cardan", "multistage", "helical")
@@ -48,7 +48,9 @@ class ArgumentParser(argparse.ArgumentParser):
         raise UsageExit(message)
 
 
-def build_parser() -> ArgumentParser:
+def build_parser(command: str | None = None) -> ArgumentParser:
+    """The parser of every command, or (``command`` given) one whose other commands have
+    their names and help only: ``symkin --help`` and ``symkin ratio ...`` need no more."""
     from symkin._version import __version__
 
     parser = ArgumentParser(
@@ -58,9 +60,37 @@ def build_parser() -> ArgumentParser:
     parser.add_argument("--version", action="version", version=f"symkin {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=ArgumentParser)
     sub.required = True
+    target = sub if command is None else _Only(sub, command)
     for name in COMMANDS:
-        importlib.import_module(f"{__name__}.{name}").register(sub)
+        importlib.import_module(f"{__name__}.{name}").register(target)
     return parser
+
+
+class _Only:
+    """Subparsers that fill in the arguments of one command only: the others are added
+    with their name and help, and what their ``register`` adds to them is dropped."""
+
+    def __init__(self, sub: Any, command: str):
+        self._sub, self._command = sub, command
+
+    def add_parser(self, name: str, **kwargs: Any) -> Any:
+        parser = self._sub.add_parser(name, **kwargs)
+        return parser if name == self._command else _Dropped()
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self._sub, name)
+
+
+class _Dropped:
+    """Takes every call a command's ``register`` makes on its parser, and keeps none."""
+
+    def __getattr__(self, name: str) -> Any:
+        return lambda *args, **kwargs: self
+
+
+def _command(argv: Sequence[str]) -> str:
+    """The command a command line names (its first word that is not an option), or ""."""
+    return next((a for a in argv if not a.startswith("-")), "")
 
 
 def one_line(message: object, word: int = 80) -> str:
@@ -86,7 +116,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     """
     argv = list(sys.argv[1:] if argv is None else argv)
     wants_json = "--json" in argv
-    parser = build_parser()
+    parser = build_parser(_command(argv))
     try:
         args = parser.parse_args(argv)
     except UsageExit as exc:
@@ -126,7 +156,35 @@ def _note(w: warnings.WarningMessage) -> str:
     return one_line(f"{w.category.__name__}: {w.message}")
 
 
+#: The version of the layouts of every ``--json`` output (symkin/cli/schemas/*.schema.json).
+JSON_SCHEMA_VERSION = "1.0"
+
+
+def output_schema(command: str) -> dict:
+    """The JSON Schema of ``symkin COMMAND --json``'s output (``"error"``: of any failure).
+
+    ``reproduce`` prints the report, whose schema is
+    :func:`symkin.papers.reproduce.report_schema`.
+
+    >>> schema = output_schema("ratio")
+    >>> schema["properties"]["schema_version"]["const"], "ratio" in schema["required"]
+    ('1.0', True)
+    """
+    from importlib.resources import files
+
+    if command == "reproduce":
+        from symkin.papers.reproduce import report_schema
+
+        return report_schema()
+    path = files("symkin.cli").joinpath("schemas").joinpath(f"{command}.schema.json")
+    if not path.is_file():
+        known = sorted(p.name.removesuffix(".schema.json") for p in files("symkin.cli").joinpath("schemas").iterdir())
+        raise ValueError(f"no output schema for {command!r}; known: {', '.join([*known, 'reproduce'])}")
+    return json.loads(path.read_text())
+
+
 def _print_json(data: dict) -> None:
+    data = {"schema_version": JSON_SCHEMA_VERSION, **data}  # the report carries its own (the same)
     json.dump(data, sys.stdout, indent=2, ensure_ascii=False, allow_nan=False)
     sys.stdout.write("\n")
 

@@ -16,7 +16,6 @@ from symkin.cli.common import (
     link_value,
     mechanism_of,
 )
-from symkin.printing import latex
 
 __all__ = ["register", "SCHEME_HELP"]
 
@@ -49,6 +48,8 @@ def register(sub: Any) -> None:
 
 
 def run_ratio(args: Any) -> int:
+    from symkin.printing import latex
+
     mech, about, title = mechanism_of(args)
     law = mech.ratio(args.driver, args.driven, fixed=args.fixed)
     a, b, c = (mech.link(x).name for x in (args.driver, args.driven, args.fixed))

@@ -11,17 +11,19 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-from symkin._util.parsing import as_integer, parse_expression, parse_number
 from symkin.cli.common import (
     add_command,
     add_omega_argument,
     add_out_argument,
     add_scheme_argument,
     add_teeth_argument,
+    as_integer,
     emit,
     figure_file,
     link_value,
     mechanism_of,
+    parse_expression,
+    parse_number,
     save_figure,
 )
 from symkin.errors import InputError
