@@ -384,6 +384,20 @@ class Speeds(MappingABC):
         known = {n for n, _ in self.known}
         return tuple(self.law(n) for n in self if n not in known)
 
+    def _repr_latex_(self) -> str:
+        """Every link's speed as aligned display math, for Jupyter (:func:`symkin.latex`).
+
+        >>> from symkin import schemes
+        >>> print(schemes.single_row_AI(teeth=(20, 30, 80)).speeds({"1": 1, "4": 0})._repr_latex_())
+        $\\displaystyle \\begin{aligned}
+        \\omega_{2} &= - \\frac{1}{3} \\\\
+        \\omega_{H} &= \\frac{1}{5}
+        \\end{aligned}$
+        """
+        from symkin.printing import latex
+
+        return f"$\\displaystyle {latex(self, aligned=True)}$"
+
     def coefficient(self, link: str, known_link: str) -> sp.Expr:
         """d omega_link / d omega_known: the constant factor in the linear law."""
         names = [n for n, _ in self.known]
