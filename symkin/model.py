@@ -24,6 +24,7 @@ from +z.
 
 from __future__ import annotations
 
+import decimal
 import enum
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
@@ -34,7 +35,7 @@ import sympy as sp
 
 from symkin import symbols as S
 from symkin._util.budget import simplify_within
-from symkin._util.parsing import as_expr
+from symkin._util.parsing import as_expr, as_rational, sign_of
 from symkin.errors import CoaxialityWarning, ModelError, warn_user
 
 __all__ = ["FRAME", "LinkKind", "Gear", "Link", "Mesh", "Mechanism", "as_length", "as_teeth"]
@@ -66,7 +67,14 @@ def as_length(value: Any, what: str) -> sp.Expr:
             raise ModelError(f"{what} must be a finite number, got {value!r}")
         if expr.is_extended_real is False:
             raise ModelError(f"{what} must be real, got {value!r}")
-    if expr.is_positive is False:
+        # decided on intervals, not by SymPy's assumptions (which leave sin(1)**2 + cos(1)**2 - 1 open)
+        sign = sign_of(expr, what=what, error=ModelError)
+        if sign is None:
+            raise ModelError(f"{what} must be positive, got {value!r}, which is 0 to 1233 digits; give a positive "
+                             f"{what.split(' of ')[0]}")
+        if sign != 1:
+            raise ModelError(f"{what} must be positive, got {value!r}; give a positive {what.split(' of ')[0]}")
+    elif expr.is_positive is False:
         raise ModelError(f"{what} must be positive, got {value!r}; give a positive {what.split(' of ')[0]}")
     return expr
 
@@ -81,7 +89,10 @@ def as_teeth(value: Any, what: str) -> sp.Expr:
     ...
     symkin.errors.ModelError: teeth of gear 1 must be a whole number, got 20.5; tooth numbers are positive integers
     """
-    expr = as_expr(value, what=what, text=False, finite=False, error=ModelError)
+    exact = value
+    if isinstance(value, decimal.Decimal):  # an exact decimal, as a Fraction is: Decimal("20") is 20
+        exact = as_rational(value, what=what, text=False, error=ModelError)
+    expr = as_expr(exact, what=what, text=False, finite=False, error=ModelError)
     if expr.is_number:
         if not expr.is_Integer:
             if expr.is_finite and expr.is_integer:  # e.g. Float 20.0: still refuse, it is not exact
