@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import decimal
 import enum
+import re
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
@@ -107,9 +108,32 @@ def as_teeth(value: Any, what: str) -> sp.Expr:
     return expr
 
 
+#: A link or gear name: ASCII letters and digits, joined by single ``_ - .``, maybe ending in
+#: primes.  Names go into symbol names (``omega_<link>``, ``r_<gear>``) and from there into
+#: LaTeX; these characters print as themselves in a subscript with base TeX Live, where a
+#: backslash, a brace, ``% & # $ ^ ~``, a blank or a non-ASCII letter would run a command,
+#: break the document, or need fonts it has not.
+_NAME = re.compile(r"[A-Za-z0-9]+(?:[_.\-][A-Za-z0-9]+)*'*", re.ASCII)
+
+
 def _name(value: Any, what: str) -> str:
-    if not isinstance(value, str) or not value or not value.isprintable() or value.strip() != value:
-        raise ModelError(f"{what} must be a non-empty printable name without surrounding blanks, got {value!r}")
+    r"""``value`` if it is a valid link or gear name (see :data:`_NAME`).
+
+    >>> _name("planet-2", "link name")
+    'planet-2'
+    >>> _name("\\input{/etc/hostname}", "link name")
+    Traceback (most recent call last):
+    ...
+    symkin.errors.ModelError: link name must be ASCII letters and digits, joined by single _ - . and perhaps ending in ', such as 1, H, sun or planet-2; got '\\input{/etc/hostname}' (names are printed in LaTeX)
+    """
+    if not isinstance(value, str) or not value:
+        raise ModelError(f"{what} must be a non-empty name such as 1, H, sun or planet-2, got {value!r}")
+    if not _NAME.fullmatch(value):
+        shown = value if len(value) <= 40 else value[:37] + "..."
+        raise ModelError(
+            f"{what} must be ASCII letters and digits, joined by single _ - . and perhaps ending in ', such as 1, H, "
+            f"sun or planet-2; got {shown!r} (names are printed in LaTeX)"
+        )
     return value
 
 
