@@ -562,19 +562,28 @@ def positive_on(
     while stack:
         a, b = stack.pop()
         tried += 1
+        box = None
         try:
             x = Encloser(prec, {symbol: (a, b)}).enclose(expr)
             if mpf_gt(x[0], fzero):
                 continue
             if mpf_le(x[1], fzero):
                 return (float((a + b) / 2), "it is not positive")
-        except (Unbounded, Undecided, NotReal, OutOfRange):
+        except Unbounded:
+            box = "it is infinite (a pole)"
+        except NotReal:
+            box = "it is not a real number"
+        except Undecided as err:
+            box = "a divisor in it vanishes (a pole)" if err.question == "is zero" else None
+        except OutOfRange:
             pass
         mid = (a + b) / 2
         problem, top = at(mid)
         if problem:
             return (float(mid), problem)
         if tried >= boxes or b - a <= (hi - lo) / 2**60:
+            if box is not None:  # a pole or a domain edge the midpoints straddle without meeting
+                return (float(mid), box)
             near = f" (it comes within {_mpf_float(top):.3g} of 0)" if top is not None else ""
             return (float(mid), f"it is not shown to be positive{near}")
         stack += [(mid, b), (a, mid)]
