@@ -6,7 +6,7 @@ import argparse
 import warnings
 from typing import TYPE_CHECKING, Any
 
-from symkin._util.parsing import as_real, parse_expression, parse_integer
+from symkin._util.parsing import as_real, parse_expression, parse_integer, sign_of
 from symkin.cli.common import add_command, add_teeth_argument, emit, teeth_list
 from symkin.errors import InputError, SymkinWarning
 
@@ -78,7 +78,10 @@ def _drive(args: Any) -> Drive:
     if args.eccentricity is None:
         raise InputError("the elliptical drive needs -e/--eccentricity E with 0 <= E < 1")
     e = as_real(args.eccentricity, what="--eccentricity")
-    if not (e >= 0 and e < 1):
+    if sign_of(e, what="--eccentricity") is None:
+        raise InputError(f"--eccentricity {args.eccentricity!r} is 0 to 1233 digits without being 0; write 0 for "
+                         "circular gears")
+    if sign_of(e, what="--eccentricity") == -1 or sign_of(1 - e, what="--eccentricity") != 1:
         raise InputError(f"--eccentricity must lie in [0, 1), got {args.eccentricity!r}; 0 gives circular gears")
     m = as_real(args.order, what="--order", positive=True) if args.order is not None else 1
     return EllipticalGears(omega, e, m)

@@ -188,6 +188,8 @@ def compile(
         rewritten = [stable_form(e, ranges=ranges, reduce_phase=reduce_phase, applied=applied) for e in exprs]
     else:
         rewritten = list(exprs)
+    if float_backend:
+        _refuse_constants_beyond_floats(rewritten, names, precision)
     plan = Plan(
         tuple(exprs), tuple(rewritten), args, tuple(names),
         precision if float_backend else cls.precisions[0],
@@ -196,6 +198,22 @@ def compile(
     evaluator = cls(plan)
     notes = [note for name, note in RULE_NOTES.items() if name in applied]
     return NumericFunction(evaluator, plan, cls.key, notes, spec, on_pole=on_pole)
+
+
+def _refuse_constants_beyond_floats(exprs: Sequence[sp.Expr], names: Sequence[str], precision: str) -> None:
+    """InputError for a law holding a number no float of ``precision`` can hold (10^600 from
+    a speed of 10^300 squared): float code could not even start, so say so, and how to avoid it."""
+    import numpy as np
+
+    largest = float(np.finfo(np.float32 if precision == "float32" else np.float64).max)
+    for expr, name in zip(exprs, names):
+        for number in expr.atoms(sp.Rational, sp.Float):
+            if abs(number) > largest:
+                exponent = int(abs(int(number)).bit_length() * 0.30103)
+                raise InputError(
+                    f"{name} holds a number of about 10^{exponent}, beyond the {precision} range (at most "
+                    f"{largest:.3g}); give inputs of smaller size (other units), or compile with backend='mpmath'"
+                )
 
 
 def _hashable(v: Any) -> Any:

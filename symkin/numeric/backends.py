@@ -213,7 +213,9 @@ def _all_finite(results: Sequence[np.ndarray]) -> bool:
     value is checked."""
     for r in results:
         flat = r.reshape(-1)
-        if not math.isfinite(np.dot(flat, flat)) and not np.isfinite(flat).all():
+        with np.errstate(over="ignore", invalid="ignore"):  # the squares may overflow: that is the test
+            square = np.dot(flat, flat)
+        if not math.isfinite(square) and not np.isfinite(flat).all():
             return False
     return True
 
