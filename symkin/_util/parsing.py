@@ -41,6 +41,7 @@ __all__ = [
     "as_integer",
     "as_fraction",
     "as_real",
+    "check_numbers",
     "sign_of",
     "parse_number",
     "parse_integer",
@@ -79,6 +80,7 @@ MAX_EXPONENT = 1000
 #: functions included, each checked as it is built (:mod:`symkin._util.bounds`).
 MAX_DIGITS = bounds.MAX_DIGITS
 _HUGE = sp.Integer(10) ** MAX_DIGITS
+_SAFE_BITS = int(MAX_DIGITS * math.log2(10))  # 2^996 < 10^300
 #: Seconds the parsing and bounding of one expression may take.
 SECONDS = 3.0
 
@@ -125,6 +127,8 @@ def parse_number(text: str, *, what: str = "value") -> sp.Rational:
 
 def _bounded(value: sp.Expr, what: str, error: type[Exception] = InputError) -> sp.Expr:
     """``value`` unless it is an exact number too large or too small (but not 0) to use."""
+    if value.is_Rational and int(value.p).bit_length() <= _SAFE_BITS and int(value.q).bit_length() <= _SAFE_BITS:
+        return value  # |p| and q below 2^996 < 10^300: within the bounds, no comparison needed (the common case)
     if value.is_Rational and value != 0:
         size = abs(value)
         if size > _HUGE or size * _HUGE < 1:
@@ -311,7 +315,7 @@ def as_real(value: Any, *, what: str = "value", error: type[Exception] = InputEr
     if not expr.is_number or expr.has(sp.nan, sp.zoo, sp.oo, -sp.oo):
         raise error(f"{what} must be a finite real number, got {_repr(value)}")
     if not expr.is_Rational:
-        _check_numbers(expr, what, error)  # real, finite, and bounded
+        check_numbers(expr, what, error)  # real, finite, and bounded
     if positive and sign_of(expr, what=what, error=error) != 1:
         raise error(f"{what} must be positive, got {_repr(value)}")
     return expr
@@ -326,7 +330,7 @@ def sign_of(expr: sp.Expr, *, what: str = "value", error: type[Exception] = Inpu
     (1, 0, True)
     """
     if expr.is_Rational:
-        return int(sp.sign(expr))
+        return (expr.p > 0) - (expr.p < 0)
     try:
         with time_limit(SECONDS, f"{what} took longer than {SECONDS:g} s to evaluate; give a simpler value", error):
             return bounds.sign(expr)
@@ -549,18 +553,30 @@ def as_expr(
         if finite and expr.is_number:
             raise error(f"{what} must be a finite real number, got {_repr(value)}")
         return expr  # the caller words its own message (finite=False)
-    _check_numbers(expr, what, error)
+    check_numbers(expr, what, error)
     if finite and expr.is_number and expr.is_extended_real is False:
         raise error(f"{what} must be a finite real number, got {_repr(value)}")
     return expr
 
 
-def _check_numbers(expr: sp.Expr, what: str, error: type[Exception]) -> None:
+def check_numbers(expr: sp.Expr, what: str, error: type[Exception] = InputError, *, rationals: bool = True) -> None:
     """Refuse a number in ``expr`` (every constant part of it) that is not real or is beyond
-    1e300 or below 1e-300 in size (and not 0), as :func:`parse_expression` does for text."""
+    1e300 or below 1e-300 in size (and not 0), as :func:`parse_expression` does for text.
+
+    With ``rationals=False`` an exact rational on its own is taken at any size (it is finite
+    and exact; whether a float can hold it is the caller's question, as in ``compile``).
+
+    >>> t = sp.Symbol("t")
+    >>> check_numbers(t * sp.exp(2), "the law")
+    >>> check_numbers(t + sp.tan(sp.pi / 2, evaluate=False), "the law")
+    Traceback (most recent call last):
+    ...
+    symkin.errors.InputError: the law: tan(pi/2) is infinite or cannot be bounded (a pole or an overflow); numbers from 1e-300 to 1e300 in size are accepted
+    """
     if expr.is_Atom:
         if expr.is_Rational:
-            _bounded(expr, what, error)
+            if rationals:
+                _bounded(expr, what, error)
         elif expr.is_Float:
             bounds.check(expr, what, error=error)
         elif expr.is_number and expr.is_extended_real is False:
@@ -569,20 +585,23 @@ def _check_numbers(expr: sp.Expr, what: str, error: type[Exception]) -> None:
     memo: dict[int, bounds.Encloser] = {}
     try:
         with time_limit(SECONDS, f"{what} took longer than {SECONDS:g} s to bound; give a simpler value", error):
-            _constant_parts(expr, what, error, memo)
+            _constant_parts(expr, what, error, memo, rationals)
     except RecursionError:
         raise error(f"{what} is nested too deeply to check") from None
 
 
-def _constant_parts(e: Any, what: str, error: type[Exception], memo: dict[int, bounds.Encloser]) -> bool:
+def _constant_parts(
+    e: Any, what: str, error: type[Exception], memo: dict[int, bounds.Encloser], rationals: bool = True
+) -> bool:
     """Whether ``e`` is a constant; every constant part of it is bounded on the way."""
     if e.is_Atom:
         if e.is_Rational:
-            _bounded(e, what, error)
+            if rationals:
+                _bounded(e, what, error)
         elif e.is_Float:
             bounds.check(e, what, memo=memo, error=error)
         return isinstance(e, sp.Expr) and bool(e.is_number)
-    parts = [_constant_parts(a, what, error, memo) for a in e.args]
+    parts = [_constant_parts(a, what, error, memo, rationals) for a in e.args]
     if isinstance(e, sp.Expr) and all(parts) and e.is_number:
         bounds.check(e, what, memo=memo, error=error)
         return True

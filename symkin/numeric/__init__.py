@@ -30,6 +30,8 @@ from typing import Any
 
 import sympy as sp
 
+from symkin._util.bounds import show
+from symkin._util.parsing import check_numbers
 from symkin.errors import InputError
 from symkin.laws import Law
 from symkin.numeric.backends import BACKENDS, Plan, numba_available, warn_no_numba
@@ -57,13 +59,16 @@ def _exprs(laws: Any) -> tuple[list[sp.Expr], list[str]]:
                 names.append(f"[{k}]")
         elif isinstance(item, sp.Basic) and isinstance(item, sp.Expr):
             exprs.append(item)
-            text = str(item)
+            text = show(item, 41)
             names.append(text if len(text) <= 40 else f"law {len(names)}")
         else:
             raise InputError(f"can only compile laws or SymPy expressions, got {item!r}")
     for e, n in zip(exprs, names):
         if e.has(sp.zoo, sp.nan, sp.oo, -sp.oo):
-            raise InputError(f"{n} is infinite or undefined ({e}); there is nothing finite to compile")
+            raise InputError(f"{n} is infinite or undefined ({show(e)}); there is nothing finite to compile")
+        # every constant part real and bounded (an unevaluated tan(pi/2), 2**(10**6)...); an exact
+        # rational may be of any size here: whether a float holds it is decided after the rewriting
+        check_numbers(e, n, rationals=False)
     return exprs, names
 
 
