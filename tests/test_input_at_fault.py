@@ -109,3 +109,19 @@ def test_an_overflow_is_not_blamed_on_a_vanishing_denominator():
     f = symkin.compile(schemes.two_row("AI", teeth=True).ratio("1", "H", fixed="4"))
     with pytest.warns(PoleWarning, match="a denominator vanishes"):
         f(0.0, 30, 20, 70)
+
+
+def test_zero_in_disguise_prints_the_float_zero_not_a_rounding_residue(capsys):
+    # before: omega_H = -1/5 + cos(1)**2/5 + sin(1)**2/5 = 8.397345134e-140 (SymPy's evalf at 17
+    # digits); the exact value is 0, and the float beside it is decided on intervals
+    zero = "sin(1)**2+cos(1)**2-1"
+    code, out, _, _ = run(capsys, "speeds", "AI1", "--teeth", "20,30,80", "--omega", "4=0", "--omega", f"1={zero}")
+    assert code == 0 and "e-1" not in out
+    assert [line.split("=")[-1].split("(")[0].strip() for line in out.splitlines() if line.startswith("omega_H")] == ["0"]
+    code, out, _, _ = run(capsys, "speeds", "AI1", "--teeth", "20,30,80", "--omega", "4=0", "--omega", f"1={zero}", "--json")
+    speeds = json.loads(out)["speeds"]
+    assert code == 0 and {name: s["float"] for name, s in speeds.items()} == {"1": 0.0, "2": 0.0, "H": 0.0, "4": 0.0}
+    # and a number beside zero is still printed as itself
+    code, out, _, _ = run(capsys, "speeds", "AI1", "--teeth", "20,30,80", "--omega", "4=0", "--omega", "1=sin(1)**2+cos(1)**2-1+1e-200",
+                          "--json")
+    assert code == 0 and json.loads(out)["speeds"]["1"]["float"] == pytest.approx(1e-200, rel=1e-12)
