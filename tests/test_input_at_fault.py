@@ -2,6 +2,7 @@
 internal error (exit 3), a silent -inf, or a message that blames the wrong thing."""
 
 import json
+import re
 import time
 import warnings
 
@@ -125,3 +126,13 @@ def test_zero_in_disguise_prints_the_float_zero_not_a_rounding_residue(capsys):
     code, out, _, _ = run(capsys, "speeds", "AI1", "--teeth", "20,30,80", "--omega", "4=0", "--omega", "1=sin(1)**2+cos(1)**2-1+1e-200",
                           "--json")
     assert code == 0 and json.loads(out)["speeds"]["1"]["float"] == pytest.approx(1e-200, rel=1e-12)
+
+
+@pytest.mark.parametrize("text, char", [("2\u00b7pi", "U+00B7"), ("\u22121", "U+2212"), ("sin\uff081\uff09", "U+FF08"),
+                                        ("1\u00a0+ 1", "U+00A0")])
+def test_a_unicode_look_alike_is_named_in_the_refusal(text, char):
+    # before: "'2·pi' is not a valid expression", which does not say what is wrong with it
+    from symkin._util.parsing import parse_expression
+
+    with pytest.raises(symkin.InputError, match=re.escape(f"({char}) is not allowed; write it in ASCII")):
+        parse_expression(text, what="the speed")

@@ -370,6 +370,12 @@ def parse_expression(
     try:
         tree = ast.parse(source, mode="eval")
     except (SyntaxError, ValueError):
+        odd = next((c for c in source if not c.isascii() or not c.isprintable()), None)
+        if odd is not None:  # a look-alike of an operator or a bracket: name it
+            raise InputError(
+                f"{what} {text!r} is not a valid expression: the character {odd!r} (U+{ord(odd):04X}) is "
+                "not allowed; write it in ASCII (* for a product, - for minus, ( ) for brackets)"
+            ) from None
         raise InputError(f"{what} {text!r} is not a valid expression") from None
     except (RecursionError, MemoryError):
         raise InputError(f"{what} is nested too deeply to read; at most {MAX_DEPTH} levels are accepted") from None
