@@ -226,6 +226,9 @@ def _alarm(seconds: float) -> Iterator[None]:
     def handler(signum, frame):
         raise Hang(f"longer than {seconds} s")
 
+    # an outer timer (pytest-timeout's per-test limit) is put back with what is left of it
+    outer_left, outer_interval = signal.getitimer(signal.ITIMER_REAL)
+    start = time.monotonic()
     previous = signal.signal(signal.SIGALRM, handler)
     signal.setitimer(signal.ITIMER_REAL, seconds)
     try:
@@ -233,6 +236,8 @@ def _alarm(seconds: float) -> Iterator[None]:
     finally:
         signal.setitimer(signal.ITIMER_REAL, 0)
         signal.signal(signal.SIGALRM, previous)
+        if outer_left > 0:
+            signal.setitimer(signal.ITIMER_REAL, max(outer_left - (time.monotonic() - start), 1e-6), outer_interval)
 
 
 def run(argv: tuple[str, ...], folder: Path, limit: float = LIMIT) -> Outcome:
