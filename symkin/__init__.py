@@ -16,7 +16,8 @@ The package, from the bottom up (``docs/architecture.md`` gives the path of data
   and :mod:`~symkin.particles` (eqs. 4-6), :mod:`~symkin.kinematics` (contact conditions,
   speeds, ratios), :mod:`~symkin.vectorloop`, :mod:`~symkin.drives`, with
   :mod:`~symkin.laws`, :mod:`~symkin.symbols` and :mod:`~symkin.errors`;
-- :mod:`~symkin.schemes`: the catalogue of ready-made schemes;
+- :mod:`~symkin.schemes`: the catalogue of ready-made schemes; :mod:`~symkin.trains`: any
+  train from a file, its gear states and shift table (:func:`load_train`);
 - :mod:`~symkin.numeric`: the one place laws become numbers; :mod:`~symkin.printing`:
   LaTeX; :mod:`~symkin.study`: derive, compile and evaluate what a request needs;
 - :mod:`~symkin.statics`, and the families in :mod:`~symkin.mechanisms` (Cardan,
@@ -43,6 +44,7 @@ if TYPE_CHECKING:  # what the lazy attributes below are, for type checkers and I
         schemes,
         statics,
         symbols,
+        trains,
         vectorloop,
         viz,
     )
@@ -53,6 +55,7 @@ if TYPE_CHECKING:  # what the lazy attributes below are, for type checkers and I
     from symkin.particles import FrameMotion, Motion, Particle
     from symkin.printing import latex
     from symkin.study import Study
+    from symkin.trains import Train, load_train
 
 _deprecated.install()  # the module paths of symkin 0.1 keep importing for one release
 
@@ -75,12 +78,14 @@ _LAZY: dict[str, tuple[str, str]] = {
     "Motion": ("particles", "Motion"),
     "Particle": ("particles", "Particle"),
     "latex": ("printing", "latex"),
+    "load_train": ("trains", "load_train"),
+    "Train": ("trains", "Train"),
 }
 
 #: Subpackages and modules reachable as ``symkin.NAME`` without importing them first.
 _SUBMODULES = frozenset({
     "cli", "drives", "errors", "kinematics", "laws", "mechanisms", "model", "numeric", "papers", "particles",
-    "printing", "schemes", "statics", "study", "superposition", "symbols", "vectorloop", "viz",
+    "printing", "schemes", "statics", "study", "superposition", "symbols", "trains", "vectorloop", "viz",
 })
 #: Modules of symkin 0.1 that moved (see :mod:`symkin._deprecated`), as ``symkin.NAME``.
 _MOVED = frozenset(name.split(".")[1] for name in _deprecated.MODULES if name.count(".") == 1)
@@ -118,11 +123,14 @@ __all__ = [
     "FrameMotion",
     "NumericFunction",
     "Study",
+    "Train",
+    "load_train",
     "ratio",
     "solve_speeds",
     "latex",
     "compile",
     "schemes",
+    "trains",
     "drives",
     "vectorloop",
     "mechanisms",

@@ -19,6 +19,7 @@ __all__ = [
     "warn_user",
     "SymkinError",
     "ModelError",
+    "TrainFileError",
     "InputError",
     "DeterminacyError",
     "UnderdeterminedError",
@@ -42,6 +43,22 @@ class SymkinError(Exception):
 
 class ModelError(SymkinError, ValueError):
     """The mechanism description is invalid (teeth, radii, names, meshes)."""
+
+
+class TrainFileError(ModelError):
+    """A train file cannot be read as a train: the message names the file, the table and the key.
+
+    Attributes
+    ----------
+    path : str
+        The file (or the ready-made train's name).
+    where : str
+        The table and key, e.g. ``[links.P1] carrier``.
+    """
+
+    def __init__(self, path: str, where: str, problem: str):
+        super().__init__(f"{path}: {where + ': ' if where else ''}{problem}")
+        self.path, self.where = path, where
 
 
 class InputError(SymkinError, ValueError):

@@ -49,6 +49,8 @@ def contact_condition(mech: Mechanism, mesh: Mesh) -> sp.Eq:
     The mesh is drawn as in the paper's fig. 2: the line of centres along y, the pitch
     point on it, and the tangential component V_x of eq. (5) is equated.  Each gear's
     link has its own axis as pole; a planet axis moves with its carrier (eq. 5 again).
+    For a mesh of a second level (both axes fixed on a planet, which carries planets
+    itself) the velocities are taken in that planet's frame, where both axes stand still.
 
     >>> from symkin import schemes
     >>> ai = schemes.two_row("AI")
@@ -56,7 +58,24 @@ def contact_condition(mech: Mechanism, mesh: Mesh) -> sp.Eq:
     Eq(-omega_1*r_1, omega_23*r_2 + omega_H*(-r_1 - r_2))
     """
     geo = mech.mesh_geometry(mesh)
+    if geo.kind == "bevel":
+        return _bevel_condition(mech, geo)
     A, B, P = vec(0, 0), vec(0, geo.centre_distance), vec(0, geo.pitch_y)
+    holder = mech.link(geo.holder) if geo.holder != FRAME else None
+
+    def direct(link: Any) -> bool:  # on the main axis, or a planet on the holder with an axis of its own
+        return link.kind is not LinkKind.PLANET or (link.carrier == geo.holder and link.arm != 0)
+
+    if holder is not None and (holder.kind is LinkKind.PLANET or not (direct(geo.link_a) and direct(geo.link_b))):
+        # a second level: both axes are fixed on a link (a planet carrying planets, or a
+        # carrier whose planet carries the gear's link); in its frame each gear turns about
+        # its fixed axis at its speed relative to it, and the link's own motion adds the
+        # same velocity to both at the pitch point
+        w_k = S.omega(holder.name)
+        va = velocity(vec(0, 0), _omega(mech, geo.link_a.name) - w_k, P, A)
+        vb = velocity(vec(0, 0), _omega(mech, geo.link_b.name) - w_k, P, B)
+        omegas = [S.omega(n) for n in (geo.link_a.name, geo.link_b.name, holder.name) if n != FRAME]
+        return sp.Eq(*(sp.collect(sp.expand(v[0]), omegas, sp.factor) for v in (va, vb)), evaluate=False)
     # the main axis: where the non-planet gear turns (any point will do for two planets
     # on one carrier: the carrier's own velocity cancels between them)
     main_axis = B if geo.link_a.kind is LinkKind.PLANET and geo.link_b.kind is not LinkKind.PLANET else A
@@ -72,6 +91,27 @@ def contact_condition(mech: Mechanism, mesh: Mesh) -> sp.Eq:
     vb = pitch_velocity(geo.link_b, B)
     omegas = [S.omega(n) for n in (geo.link_a.name, geo.link_b.name, geo.link_a.carrier, geo.link_b.carrier) if n and n != FRAME]
     return sp.Eq(*(sp.collect(sp.expand(v[0]), omegas, sp.factor) for v in (va, vb)), evaluate=False)
+
+
+def _bevel_condition(mech: Mechanism, geo: Any) -> sp.Eq:
+    """Equal velocities of a bevel side gear and a bevel pinion at their contact point.
+
+    In the frame of the pinion's carrier (x along the pinion's radial axis, z along the
+    main axis), the side gear turns about z at its speed relative to the carrier, the
+    pinion about x at its own (relative) speed; the contact is at the side gear's pitch
+    radius along x and the pinion's pitch radius above (+z) or below (-z) its axis.  Both
+    velocities there are along y; the carrier's motion adds the same to both.
+    """
+    pinion, side = (geo.link_a, geo.link_b) if geo.link_a.axis == "radial" else (geo.link_b, geo.link_a)
+    carrier = geo.holder
+    w_side = _omega(mech, side.name) - _omega(mech, carrier)
+    w_pin = S.omega(pinion.name)
+    contact = sp.Matrix([geo.centre_distance, 0, geo.pitch_y])
+    v_side = sp.Matrix([0, 0, w_side]).cross(contact)  # about the carrier's axis, through the origin
+    v_pin = sp.Matrix([w_pin, 0, 0]).cross(contact)  # about the pinion's axis, the x axis through the origin
+    omegas = [S.omega(n) for n in (side.name, pinion.name, carrier) if n != FRAME]
+    sides = (v_side, v_pin) if side is geo.link_a else (v_pin, v_side)
+    return sp.Eq(*(sp.collect(sp.expand(v[1]), omegas, sp.factor) for v in sides), evaluate=False)
 
 
 # --------------------------------------------------------------------------- the system
@@ -322,15 +362,17 @@ def _tidy(expr: sp.Expr) -> sp.Expr:
     return sp.factor_terms(num) / sp.factor_terms(den)
 
 
-def solve_speeds(mech: Mechanism, known: Mapping[str, Any]) -> Speeds:
+def solve_speeds(mech: Mechanism, known: Mapping[str, Any], *, joined: Sequence[tuple[str, str]] = ()) -> Speeds:
     """Every link's angular velocity, in closed form, from the known speeds.
 
     Parameters
     ----------
     mech : Mechanism
     known : mapping of link name to speed
-        Exactly ``mech.dof`` independent links; a fixed link has speed 0.  Values may be
-        numbers, symbols or expressions (of time too).
+        Exactly ``mech.dof`` independent links (fewer with ``joined``); a fixed link has
+        speed 0.  Values may be numbers, symbols or expressions (of time too).
+    joined : sequence of (link, link)
+        Pairs of links made to turn together (an engaged clutch).
 
     Returns
     -------
@@ -360,9 +402,13 @@ def solve_speeds(mech: Mechanism, known: Mapping[str, Any]) -> Speeds:
             raise InputError(f"the speed of link {link} is given twice (as {name!r} too); give it once")
         resolved[link] = as_expr(value, what=f"speed of link {link}", names=("t",))
     names = tuple(resolved)
-    check_known_links(mech, names)
+    pairs = _joined_pairs(mech, joined)
     order = tuple(sorted(names))
-    table = _coefficient_table(mech, order)
+    if pairs:
+        table = _joined_table(mech, order, pairs)
+    else:
+        check_known_links(mech, names)
+        table = _coefficient_table(mech, order)
     permutation = [order.index(n) for n in names]
     coefficients = tuple((n, tuple(table[n][i] for i in permutation)) for n in mech.link_names)
     return Speeds(mech, tuple(resolved.items()), coefficients)
@@ -404,6 +450,75 @@ def _coefficient_table(mech: Mechanism, names: tuple[str, ...]) -> dict[str, tup
         return table
 
     return mech._memo(("coefficients", names), build)
+
+
+def _joined_pairs(mech: Mechanism, joined: Sequence[tuple[str, str]]) -> tuple[tuple[str, str], ...]:
+    pairs = []
+    for pair in joined:
+        if isinstance(pair, (str, bytes)) or not hasattr(pair, "__len__") or len(pair) != 2:
+            raise InputError(f"a clutch joins two links, given as a pair (A, B), got {pair!r}")
+        a, b = (_resolve(mech, x) for x in pair)
+        if a == b:
+            raise InputError(f"a clutch joins two different links, got {a} twice")
+        pairs.append(tuple(sorted((a, b))))
+    return tuple(sorted(set(pairs)))  # type: ignore[arg-type]
+
+
+def _joined_table(
+    mech: Mechanism, names: tuple[str, ...], pairs: tuple[tuple[str, str], ...]
+) -> dict[str, tuple[sp.Expr, ...]]:
+    """d omega_link / d omega_k with the contact conditions and ``omega_a = omega_b`` for each
+    joined pair; the frame (link 0) may be joined too (a brake).  Raises when the known
+    speeds do not set every link, or contradict the joints."""
+
+    def build() -> dict[str, tuple[sp.Expr, ...]]:
+        system = kinematic_system(mech)
+        links = list(system.links)
+        column = {n: i for i, n in enumerate(links)}
+        rows = [list(system.matrix.row(i)) for i in range(system.matrix.rows)]
+        for a, b in pairs:
+            row = [sp.Integer(0)] * len(links)
+            if a != FRAME:
+                row[column[a]] += 1
+            if b != FRAME:
+                row[column[b]] -= 1
+            rows.append(row)
+        N = sp.Matrix(rows) if rows else sp.zeros(0, len(links))
+        unknown = [n for n in links if n not in names]
+        A = N.extract(list(range(N.rows)), [column[u] for u in unknown])
+        B = -N.extract(list(range(N.rows)), [column[k] for k in names])
+        generic = _generic_values(N.free_symbols, 1)
+        Ag, Bg = A.subs(generic), B.subs(generic)
+        rank = Ag.rank() if unknown else 0
+        joints = ", ".join(f"{a} = {b}" for a, b in pairs)
+        if rank < len(unknown):
+            free = sorted({unknown[i] for v in Ag.nullspace() for i, x in enumerate(v) if x != 0})
+            raise UnderdeterminedError(
+                f"with {_fmt_links(names) if names else 'no link'} given and {joints} turning together, "
+                f"{_fmt_links(free)} can still turn freely: hold or join more links",
+                dof=system.dof, admissible=(),
+            )
+        if Ag.row_join(Bg).rank() > rank:
+            raise OverdeterminedError(
+                f"{_fmt_links(names)} cannot turn as given with {joints} turning together: the joints and the "
+                "contact conditions hold them (the train is locked); release a clutch or a brake",
+                dof=system.dof, admissible=(),
+            )
+        table = {n: tuple(sp.Integer(int(n == k)) for k in names) for n in names}
+        if not unknown:
+            return table
+        chosen = _independent_rows(A)
+        X = _solve_rational(A.extract(chosen, list(range(A.cols))), B.extract(chosen, list(range(B.cols))))
+        if X is None:
+            raise SingularConfigurationError(
+                f"the joints {joints} and the contact conditions cannot be solved for these dimensions",
+                dof=system.dof, admissible=(),
+            )
+        for i, n in enumerate(unknown):
+            table[n] = tuple(sp.cancel(X[i, j]) for j in range(len(names)))
+        return table
+
+    return mech._memo(("joined", names, pairs), build)
 
 
 def _independent_rows(A: sp.Matrix) -> list[int]:
@@ -483,11 +598,15 @@ def ratio(mech: Mechanism, driver: str, driven: str, fixed: str | Sequence[str] 
         raise InputError(f"driver and driven are the same link {a}; name two different links")
     if a in cs or b in cs:
         raise InputError(f"link {a if a in cs else b} cannot be both fixed and {'driver' if a in cs else 'driven'}")
-    known = {c: 0 for c in cs if c != FRAME}
     if a == FRAME:
         raise InputError("the frame (link 0) cannot drive; name a moving link as driver")
     if b == FRAME:
         raise InputError("the frame (link 0) does not turn, so it cannot be driven; name a moving link as driven")
+    return mech._memo(("ratio", a, b, cs), lambda: _ratio(mech, a, b, cs))
+
+
+def _ratio(mech: Mechanism, a: str, b: str, cs: tuple[str, ...]) -> Law:
+    known: dict[str, Any] = {c: 0 for c in cs if c != FRAME}
     fixed_links = tuple(known)
     system = kinematic_system(mech)
 
@@ -511,6 +630,5 @@ def ratio(mech: Mechanism, driver: str, driven: str, fixed: str | Sequence[str] 
         raise SingularConfigurationError(  # pragma: no cover - check_known_links has raised
             f"neither {a} nor {b} moves with {_fmt_links(cs)} fixed", dof=system.dof, admissible=()
         )
-    label = [mech.link(x).name for x in (driver, driven)]
-    desc = f"ratio omega_{label[0]}/omega_{label[1]} with {_fmt_links(cs) if cs else 'nothing'} fixed"
+    desc = f"ratio omega_{a}/omega_{b} with {_fmt_links(cs) if cs else 'nothing'} fixed"
     return Law(S.ratio_symbol(a, b, cs), value, desc)

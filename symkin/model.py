@@ -27,6 +27,7 @@ from __future__ import annotations
 import decimal
 import enum
 import re
+from collections import OrderedDict
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
@@ -39,10 +40,14 @@ from symkin._util.budget import simplify_within
 from symkin._util.parsing import as_expr, as_rational, sign_of
 from symkin.errors import CoaxialityWarning, ModelError, warn_user
 
-__all__ = ["FRAME", "LinkKind", "Gear", "Link", "Mesh", "Mechanism", "as_length", "as_teeth"]
+__all__ = ["FRAME", "MAIN_AXIS", "LinkKind", "Gear", "Link", "Mesh", "Mechanism", "as_length", "as_teeth"]
 
 #: Name of the mechanism frame (the fixed link that holds the main axis).
 FRAME = "0"
+#: The most equal planets of one kind a carrier may hold.
+MAX_PLANETS = 64
+#: The name of the main axis in :meth:`Mechanism.axis_of`.
+MAIN_AXIS = "O"
 
 
 # --------------------------------------------------------------------------- checks
@@ -154,6 +159,12 @@ class Gear:
         True for an internal (ring) gear.
     module : sympy expression, optional
         Module of a gear built from its tooth number.
+    bevel : bool
+        A bevel gear: it meshes a bevel gear whose axis crosses its own (a pinion on a
+        radial axis, :attr:`Link.axis`); ``radius`` is its pitch radius at the contact.
+    side : {+1, -1, 0}
+        For a bevel gear turning about its carrier's axis (a side gear): whether it meets
+        the pinions above (+1, towards +z) or below (-1) the plane of their axes.
 
     Notes
     -----
@@ -172,6 +183,8 @@ class Gear:
     teeth: sp.Expr | None = None
     internal: bool = False
     module: sp.Expr | None = None
+    bevel: bool = False
+    side: int = 0
 
     def __post_init__(self) -> None:
         _name(self.name, "gear name")
@@ -182,9 +195,19 @@ class Gear:
             raise ModelError(f"internal of gear {self.name} must be True or False, got {self.internal!r}")
         if self.module is not None:
             object.__setattr__(self, "module", as_length(self.module, f"module of gear {self.name}"))
+        if not isinstance(self.bevel, bool):
+            raise ModelError(f"bevel of gear {self.name} must be True or False, got {self.bevel!r}")
+        if self.side not in (-1, 0, 1) or isinstance(self.side, bool):
+            raise ModelError(f"side of gear {self.name} is +1 (above the bevel pinions), -1 (below) or 0, got {self.side!r}")
+        if self.side and not self.bevel:
+            raise ModelError(f"gear {self.name} has a side but is not a bevel gear; a side belongs to a bevel side gear")
+        if self.bevel and self.internal:
+            raise ModelError(f"gear {self.name}: symkin's bevel gears are external (a crown or an internal bevel gear "
+                             "is not modelled)")
 
     @classmethod
-    def from_teeth(cls, name: str, teeth: Any, *, internal: bool = False, module: Any = None) -> Gear:
+    def from_teeth(cls, name: str, teeth: Any, *, internal: bool = False, module: Any = None, bevel: bool = False,
+                   side: int = 0) -> Gear:
         """A gear of ``teeth`` teeth and pitch radius ``module * teeth / 2``.
 
         The module defaults to the symbol ``m``; it cancels from every ratio.
@@ -194,14 +217,14 @@ class Gear:
         """
         z = as_teeth(teeth, f"tooth number of gear {name}")
         m = S.module() if module is None else as_length(module, f"module of gear {name}")
-        return cls(name, m * z / 2, teeth=z, internal=internal, module=m)
+        return cls(name, m * z / 2, teeth=z, internal=internal, module=m, bevel=bevel, side=side)
 
     @classmethod
     def symbolic(cls, name: str, *, internal: bool = False) -> Gear:
         """A gear whose pitch radius is the symbol ``r_name``.
 
         >>> Gear.symbolic("4", internal=True)
-        Gear(name='4', radius=r_4, teeth=None, internal=True, module=None)
+        Gear(name='4', radius=r_4, teeth=None, internal=True, module=None, bevel=False, side=0)
         """
         return cls(name, S.radius(name), internal=internal)
 
@@ -230,10 +253,24 @@ class Link:
     carrier : str or None
         For a planet: the link that carries its axis (a central link or the frame).
     arm : sympy expression or None
-        For a planet: the distance of its axis from the main axis.  ``None`` derives it
-        from the planet's first mesh with a gear that turns about the main axis.
-    position_angle : sympy expression
+        For a planet: the distance of its axis from its carrier's axis (the main axis for
+        a carrier on the main axis).  ``None`` derives it from the planet's first mesh with
+        a gear that turns about the carrier's axis; ``0`` puts its axis on the carrier's:
+        a link carried by a planet that turns about that planet's axis (the sun of a
+        second level).
+    position_angle : sympy expression or None
         For a planet: the angle of its axis on the carrier at t = 0 (0 = +x axis).
+        ``None`` lets the mechanism place it (:meth:`Mechanism.position_angle`): from
+        its mesh with a planet already placed (the triangle of the two arms and their
+        centre distance), or at 0.
+    count : int
+        For a planet: how many equal planets of this kind the carrier holds, equally
+        spaced (one link for kinematics; they share the load and are drawn).
+    axis : {"parallel", "radial"}
+        For a planet: its axis is parallel to the carrier's (the usual planet), or radial:
+        perpendicular to it, pointing away from it at the position angle (a bevel pinion,
+        whose gears are bevel gears).  The angular velocity of a radial planet is its spin
+        about its own axis relative to its carrier.
     """
 
     name: str
@@ -241,7 +278,9 @@ class Link:
     gears: tuple[Gear, ...] = ()
     carrier: str | None = None
     arm: sp.Expr | None = None
-    position_angle: sp.Expr = sp.Integer(0)
+    position_angle: sp.Expr | None = None
+    count: int = 1
+    axis: str = "parallel"
 
     def __post_init__(self) -> None:
         _name(self.name, "link name")
@@ -258,13 +297,30 @@ class Link:
             _name(self.carrier, f"carrier of planet {self.name}")
             if self.carrier == self.name:
                 raise ModelError(f"planet {self.name} cannot carry its own axis; name another link as its carrier")
-            if self.arm is not None:
+            if self.arm is not None and not (isinstance(self.arm, (int, sp.Integer)) and self.arm == 0):
                 object.__setattr__(self, "arm", as_length(self.arm, f"arm of planet {self.name}"))
-            object.__setattr__(
-                self, "position_angle", as_expr(self.position_angle, what=f"position angle of planet {self.name}", text=False, error=ModelError)
+            elif self.arm is not None:  # arm 0: the link turns about its carrier's own axis
+                object.__setattr__(self, "arm", sp.Integer(0))
+            if self.position_angle is not None:
+                object.__setattr__(
+                    self, "position_angle",
+                    as_expr(self.position_angle, what=f"position angle of planet {self.name}", text=False, error=ModelError),
+                )
+            if isinstance(self.count, bool) or not isinstance(self.count, int) or not 1 <= self.count <= MAX_PLANETS:
+                raise ModelError(f"count of planet {self.name} must be a whole number from 1 to {MAX_PLANETS}, got {self.count!r}")
+            if self.axis not in ("parallel", "radial"):
+                raise ModelError(f"axis of planet {self.name} is 'parallel' or 'radial', got {self.axis!r}")
+            if self.axis == "radial":
+                if not all(g.bevel for g in gears):
+                    raise ModelError(f"planet {self.name} has a radial axis (a bevel pinion): its gears must be bevel gears")
+                if self.arm is not None:
+                    raise ModelError(f"bevel pinion {self.name} takes no arm: its axis passes through its carrier's axis")
+        elif (self.carrier is not None or self.arm is not None or self.position_angle is not None or self.count != 1
+              or self.axis != "parallel"):
+            raise ModelError(
+                f"{self.kind.value} link {self.name} turns about the main axis: it takes no carrier, arm, position "
+                "angle or planet count"
             )
-        elif self.carrier is not None or self.arm is not None:
-            raise ModelError(f"{self.kind.value} link {self.name} turns about the main axis: it takes no carrier or arm")
         if self.kind is LinkKind.FRAME and self.name != FRAME:
             raise ModelError(f"the frame must be named {FRAME!r}, got {self.name!r}")
 
@@ -275,10 +331,17 @@ class Link:
 
     @classmethod
     def planet(
-        cls, name: str, *gears: Gear, carrier: str = "H", arm: Any = None, position_angle: Any = 0
+        cls, name: str, *gears: Gear, carrier: str = "H", arm: Any = None, position_angle: Any = None, count: int = 1,
+        axis: str = "parallel",
     ) -> Link:
-        """A planet (satellite) carried by ``carrier``; a stepped planet has two gears."""
-        return cls(name, LinkKind.PLANET, gears, carrier=carrier, arm=arm, position_angle=position_angle)
+        """A planet (satellite) carried by ``carrier``; a stepped planet has two gears.
+
+        ``position_angle`` places its axis on the carrier at t = 0; left out, the
+        mechanism places it (at 0, or from its mesh with another planet).  ``count``
+        equal planets of this kind are equally spaced on the carrier.
+        """
+        return cls(name, LinkKind.PLANET, gears, carrier=carrier, arm=arm,
+                   position_angle=position_angle, count=count, axis=axis)
 
     @classmethod
     def frame(cls, *gears: Gear) -> Link:
@@ -288,16 +351,38 @@ class Link:
 
 @dataclass(frozen=True)
 class Mesh:
-    """Two gears in mesh, by name."""
+    """Two gears in mesh, by name, and optionally their working centre distance.
+
+    ``efficiency`` (optional) is the mesh's efficiency for :mod:`symkin.statics`; the
+    kinematics ignores it.  Without ``centre_distance`` the gears work on their pitch
+    circles (their radii).  A
+    ``centre_distance`` other than that reference distance is a profile-shifted mesh:
+    both gears then work on circles in the ratio of their pitch radii (of their teeth,
+    for a common module) that fit that distance.  Only positions change: the ratio of a
+    mesh is the ratio of its working radii, which is that of its pitch radii.
+
+    >>> Mesh("p", "s2", centre_distance=60).centre_distance
+    60
+    """
 
     a: str
     b: str
+    centre_distance: sp.Expr | None = None
+    efficiency: sp.Expr | None = None
 
     def __post_init__(self) -> None:
         _name(self.a, "gear name in a mesh")
         _name(self.b, "gear name in a mesh")
         if self.a == self.b:
             raise ModelError(f"a gear cannot mesh with itself ({self.a}); name two different gears")
+        if self.centre_distance is not None:
+            object.__setattr__(self, "centre_distance",
+                               as_length(self.centre_distance, f"centre distance of mesh {self.a}-{self.b}"))
+        if self.efficiency is not None:
+            eta = as_expr(self.efficiency, what=f"efficiency of mesh {self.a}-{self.b}", text=False, error=ModelError)
+            if eta.is_number and not (0 < eta <= 1):
+                raise ModelError(f"the efficiency of mesh {self.a}-{self.b} must lie in (0, 1], got {self.efficiency!r}")
+            object.__setattr__(self, "efficiency", eta)
 
 
 @dataclass(frozen=True)
@@ -316,6 +401,13 @@ class MeshGeometry:
     link_b: Link
     centre_distance: sp.Expr
     pitch_y: sp.Expr
+    #: The link on which both gears' axes are fixed: the mesh's contact condition holds in
+    #: its frame (a planet's carrier, the frame for fixed axes, a planet for a second level).
+    holder: str = FRAME
+    #: ``"bevel"`` for a bevel side gear and a radial pinion: the pinion's axis crosses the
+    #: side gear's; ``centre_distance`` is then the contact's distance from the side gear's
+    #: axis and ``pitch_y`` the pinion's pitch radius there, times the side (+1 or -1).
+    kind: str = "parallel"
 
 
 # --------------------------------------------------------------------------- mechanism
@@ -359,7 +451,9 @@ class Mechanism:
         object.__setattr__(self, "links", links)
         object.__setattr__(self, "meshes", meshes)
         self._validate()
+        object.__setattr__(self, "_cache", _shared_cache((links, meshes)))
         self._warn_coaxiality()
+        self.position_angles  # noqa: B018  (places every planet now: a contradiction is a ModelError here)
 
     # ---- lookups
     @cached_property
@@ -425,15 +519,29 @@ class Mechanism:
                 c = by_name.get(L.carrier)
                 if c is None:
                     raise ModelError(f"planet {L.name} names carrier {L.carrier!r}, which is not a link of this mechanism")
-                if c.kind is LinkKind.PLANET:
-                    raise ModelError(
-                        f"planet {L.name} is carried by planet {c.name}; symkin carries planets on links "
-                        "that turn about the main axis (a carrier or the frame)"
-                    )
+                chain = [L.name]
+                while c.kind is LinkKind.PLANET:  # a planet of a planet: the chain must end on the main axis
+                    chain.append(c.name)
+                    if c.name in chain[:-1]:
+                        raise ModelError(f"carrier cycle: {' -> '.join(chain)}; a chain of carriers must end on a link "
+                                         "that turns about the main axis")
+                    assert c.carrier is not None
+                    c = by_name[c.carrier]
         if len({(frozenset((m.a, m.b))) for m in self.meshes}) != len(self.meshes):
             raise ModelError("a mesh is listed twice; list each pair of gears once")
+        cones: dict[str, list[tuple[str, sp.Expr]]] = {}
         for mesh in self.meshes:
-            self.mesh_geometry(mesh)  # raises on an impossible mesh
+            geo = self.mesh_geometry(mesh)  # raises on an impossible mesh
+            if geo.kind == "bevel":
+                pinion_gear = geo.gear_a if geo.link_a.axis == "radial" else geo.gear_b
+                side_gear = geo.gear_b if pinion_gear is geo.gear_a else geo.gear_a
+                cones.setdefault(pinion_gear.name, []).append((side_gear.name, side_gear.radius))
+        for pin, sides in cones.items():  # one pitch cone (apex on the carrier's axis) meets side gears of one size
+            for other, radius in sides[1:]:
+                if sp.expand(radius - sides[0][1]) != 0:
+                    raise ModelError(
+                        f"bevel pinion gear {pin} meshes side gears {sides[0][0]} and {other} of different pitch radii "
+                        f"({sides[0][1]} and {radius}): one pitch cone cannot; give the pinion a gear for each")
 
     def mesh_geometry(self, mesh: Mesh) -> MeshGeometry:
         """Centre distance and pitch point of a mesh (see :class:`MeshGeometry`)."""
@@ -441,20 +549,24 @@ class Mechanism:
         gb, lb = self._gear_and_link(mesh.b)
         if la.name == lb.name:
             raise ModelError(f"gears {ga.name} and {gb.name} are on the same link {la.name}; they cannot mesh")
+        if ga.bevel or gb.bevel or la.axis == "radial" or lb.axis == "radial":
+            return self._bevel_geometry(mesh, ga, la, gb, lb)
         if ga.internal and gb.internal:
             raise ModelError(
                 f"gears {ga.name} and {gb.name} are both internal and cannot mesh; "
                 "an internal gear meshes with an external one"
             )
-        if la.kind is not LinkKind.PLANET and lb.kind is not LinkKind.PLANET:
+        if self.axis_of(la.name) == self.axis_of(lb.name):
+            where = "the main axis" if self.axis_of(la.name) == MAIN_AXIS else f"the axis of {self.axis_of(la.name)}"
             raise ModelError(
-                f"gears {ga.name} and {gb.name} both turn about the main axis and cannot mesh; "
+                f"gears {ga.name} and {gb.name} both turn about {where} and cannot mesh; "
                 "put one of them on a planet"
             )
-        if la.kind is LinkKind.PLANET and lb.kind is LinkKind.PLANET and la.carrier != lb.carrier:
+        holder = self._holder(la, lb)
+        if holder is None:
             raise ModelError(
-                f"planets {la.name} and {lb.name} have different carriers; symkin meshes two planets "
-                "only when one carrier holds both"
+                f"gears {ga.name} (link {la.name}) and {gb.name} (link {lb.name}) cannot stay in mesh: no link holds "
+                "both their axes (two planets mesh when one carrier holds both, or one turns about the other's carrier)"
             )
         # sigma = -1 flips a pitch point to the far side when the partner is internal
         sa = -1 if gb.internal else 1
@@ -466,7 +578,74 @@ class Mechanism:
                 f"internal gear {big.name} (pitch radius {big.radius}) must be larger than gear {small.name} "
                 f"(pitch radius {small.radius}) that meshes inside it"
             )
-        return MeshGeometry(mesh, ga, gb, la, lb, d, sa * ga.radius)
+        if mesh.centre_distance is None:
+            return MeshGeometry(mesh, ga, gb, la, lb, d, sa * ga.radius, holder)
+        # profile shift: the working circles keep the ratio of the pitch circles and fit the distance
+        scale = sp.cancel(mesh.centre_distance / d)
+        return MeshGeometry(mesh, ga, gb, la, lb, mesh.centre_distance, sa * ga.radius * scale, holder)
+
+    def _bevel_geometry(self, mesh: Mesh, ga: Gear, la: Link, gb: Gear, lb: Link) -> MeshGeometry:
+        """A bevel side gear on its carrier's axis and a bevel pinion on a radial axis."""
+        if not (ga.bevel and gb.bevel):
+            spur = ga.name if not ga.bevel else gb.name
+            raise ModelError(f"gears {ga.name} and {gb.name}: gear {spur} is not a bevel gear; a bevel gear meshes a "
+                             "bevel gear (give both bevel = true)")
+        radial = [L for L in (la, lb) if L.axis == "radial"]
+        if len(radial) != 1:
+            raise ModelError(f"bevel gears {ga.name} and {gb.name}: one must be on a bevel pinion (a planet with a radial "
+                             f"axis) and the other on its carrier's axis; {'both are' if radial else 'neither is'}")
+        (pinion,) = radial
+        side_gear, side_link, pin_gear = (gb, lb, ga) if pinion is la else (ga, la, gb)
+        assert pinion.carrier is not None
+        if self.axis_of(side_link.name) != self.axis_of(pinion.carrier):
+            raise ModelError(f"bevel gear {side_gear.name} must turn about the axis of pinion {pinion.name}'s carrier "
+                             f"{pinion.carrier} to mesh it")
+        if side_gear.side == 0:
+            raise ModelError(f"bevel side gear {side_gear.name} needs side = +1 (it meets the pinions above their "
+                             "axes, towards +z) or -1 (below)")
+        if mesh.centre_distance is not None:
+            raise ModelError(f"mesh {mesh.a}-{mesh.b} is a bevel mesh: it takes no centre distance")
+        return MeshGeometry(mesh, ga, gb, la, lb, side_gear.radius, side_gear.side * pin_gear.radius, pinion.carrier,
+                            "bevel")
+
+    # ---- axes
+    def axis_of(self, link: str) -> str:
+        """Which axis a link turns about: ``"O"`` (the main axis) for the frame and central
+        links, a planet's own name, or its carrier's axis for a planet with ``arm = 0``.
+
+        >>> from symkin import schemes
+        >>> schemes.two_row("AI").axis_of("H"), schemes.two_row("AI").axis_of("23")
+        ('O', '23')
+        """
+        L = self._links_by_name[link] if link in self._links_by_name else self.link(link)
+        if L.kind is not LinkKind.PLANET:
+            return MAIN_AXIS
+        assert L.carrier is not None  # a planet has a carrier (Link.__post_init__)
+        if L.arm is not None and L.arm == 0:
+            return self.axis_of(L.carrier)
+        return L.name
+
+    def _fixed_axes(self, link: Link) -> set[str]:
+        """The axes that stay fixed on ``link``: its own and those of the links it carries."""
+        return {self.axis_of(link.name)} | {self.axis_of(X.name) for X in self.links
+                                            if X.kind is LinkKind.PLANET and X.carrier == link.name}
+
+    def _holder(self, la: Link, lb: Link) -> str | None:
+        """A link on which both links' axes are fixed (their mesh's frame), or None."""
+        axes = {self.axis_of(la.name), self.axis_of(lb.name)}
+        candidates: list[str] = []
+        for link in (la, lb):  # each link and the chain of its carriers
+            at: Link | None = link
+            while at is not None:
+                candidates.append(at.name)
+                at = self._links_by_name.get(at.carrier) if at.carrier is not None else None
+        for name in dict.fromkeys(candidates):
+            if axes <= self._fixed_axes(self._links_by_name[name]):
+                return name
+        if axes == {MAIN_AXIS}:
+            return FRAME
+        frame = self._links_by_name[FRAME]
+        return FRAME if axes <= self._fixed_axes(frame) else None
 
     def _gear_and_link(self, name: str) -> tuple[Gear, Link]:
         self.gear(name)
@@ -475,38 +654,140 @@ class Mechanism:
     # ---- geometry
     @cached_property
     def planet_centre_distances(self) -> dict[str, tuple[tuple[Mesh, sp.Expr], ...]]:
-        """For each planet, the distance of its axis from the main axis implied by each of
-        its meshes with a gear turning about the main axis."""
+        """For each planet with an axis of its own, the distance of its axis from its
+        carrier's axis implied by each mesh between a gear on its axis (its own, or of a link
+        turning about it) and a gear on the carrier's axis."""
         out: dict[str, list[tuple[Mesh, sp.Expr]]] = {}
         for mesh in self.meshes:
             geo = self.mesh_geometry(mesh)
-            for planet, other in ((geo.link_a, geo.link_b), (geo.link_b, geo.link_a)):
-                if planet.kind is LinkKind.PLANET and other.kind is not LinkKind.PLANET:
-                    out.setdefault(planet.name, []).append((mesh, geo.centre_distance))
+            if geo.kind == "bevel":
+                continue
+            axes = (self.axis_of(geo.link_a.name), self.axis_of(geo.link_b.name))
+            for planet, other in (axes, axes[::-1]):
+                if planet == MAIN_AXIS:
+                    continue
+                carrier = self._links_by_name[planet].carrier  # an axis of its own is a planet's name
+                assert carrier is not None
+                if self.axis_of(carrier) == other:
+                    out.setdefault(planet, []).append((mesh, geo.centre_distance))
         return {k: tuple(v) for k, v in out.items()}
 
     def arm(self, planet: str) -> sp.Expr:
-        """Distance of a planet's axis from the main axis.
+        """Distance of a planet's axis from its carrier's axis (the main axis for a carrier on it).
 
         The planet's own ``arm`` if given, else the centre distance of its first mesh with
-        a gear turning about the main axis.
+        a gear turning about its carrier's axis.
 
         >>> from symkin import schemes
         >>> schemes.two_row("AI").arm("23")
         r_1 + r_2
         """
         L = self.link(planet)
-        if L.kind is not LinkKind.PLANET:
+        if L.kind is not LinkKind.PLANET or L.axis == "radial":  # a bevel pinion's axis meets its carrier's
             return sp.Integer(0)
         if L.arm is not None:
             return L.arm
         dists = self.planet_centre_distances.get(L.name)
         if not dists:
             raise ModelError(
-                f"planet {L.name} meshes with no gear on the main axis, so its arm is unknown; "
-                "give it with Link.planet(..., arm=...)"
+                f"planet {L.name} meshes with no gear on its carrier's axis, so its arm is unknown; "
+                "give it with Link.planet(..., arm=...) (arm in a train file)"
             )
         return dists[0][1]
+
+    @cached_property
+    def position_angles(self) -> dict[str, sp.Expr]:
+        """Where each planet's axis is on its carrier at t = 0: angle from the +x axis.
+
+        A planet's given ``position_angle`` is kept.  Otherwise a planet that meshes a
+        planet already placed is put where the two centre distances and the arms form a
+        triangle (counter-clockwise from it: give the angle for the other solution), and
+        any other planet at 0.  Every mesh between two planets is then checked: a given
+        angle that puts two meshing planets at the wrong distance, or arms that no
+        triangle can join, are a :class:`~symkin.errors.ModelError`.
+
+        >>> from symkin.model import Gear, Link, Mechanism
+        >>> m = Mechanism([Link.central("S", Gear("s", 4)), Link.central("C"), Link.central("R", Gear("r", 12, internal=True)),
+        ...                Link.planet("A", Gear("a", 2), carrier="C"), Link.planet("B", Gear("b", 3), carrier="C")],
+        ...               [("s", "a"), ("a", "b"), ("b", "r")])
+        >>> m.position_angles["B"]   # arms 6 and 9, centre distance 5: cos = (36 + 81 - 25)/(2 6 9)
+        acos(23/27)
+        """
+        planets = [L for L in self.links if L.kind is LinkKind.PLANET]
+        angles: dict[str, sp.Expr] = {L.name: L.position_angle for L in planets if L.position_angle is not None}
+        neighbours: dict[str, list[tuple[str, sp.Expr]]] = {L.name: [] for L in planets}
+        for mesh in self.meshes:
+            geo = self.mesh_geometry(mesh)
+            la, lb = geo.link_a, geo.link_b
+            if (geo.kind != "bevel" and la.kind is LinkKind.PLANET and lb.kind is LinkKind.PLANET and la.carrier == lb.carrier
+                    and la.arm != 0 and lb.arm != 0):
+                neighbours[la.name].append((lb.name, geo.centre_distance))
+                neighbours[lb.name].append((la.name, geo.centre_distance))
+        pending = [L.name for L in planets if L.name not in angles]
+        while pending:
+            for name in pending:
+                placed = [(other, d) for other, d in neighbours[name] if other in angles]
+                if placed:
+                    other, d = placed[0]
+                    angles[name] = angles[other] + self._triangle_angle(name, other, d)
+                    break
+            else:  # nothing to place from: start a group of meshing planets at 0
+                angles[pending[0]] = sp.Integer(0)
+                name = pending[0]
+            pending.remove(name)
+        for L in planets:
+            for other, d in neighbours[L.name]:
+                if L.name < other:
+                    self._check_planet_distance(L.name, other, d, angles)
+        return angles
+
+    def axis_position(self, link: str) -> tuple[sp.Expr, sp.Expr]:
+        """Where a link's axis is at t = 0, in the mechanism's own coordinates (the main axis
+        at the origin): a planet's carrier's axis plus its arm at its position angle.
+
+        >>> from symkin.trains import load_train
+        >>> load_train("nested").axis_position("Q")   # a tool on a head: 45 + 15 along x
+        (60, 0)
+        """
+        L = self.link(link)
+        if L.kind is not LinkKind.PLANET:
+            return sp.Integer(0), sp.Integer(0)
+        assert L.carrier is not None
+        x0, y0 = self.axis_position(L.carrier)
+        arm, angle = self.arm(L.name), self.position_angle(L.name)
+        return x0 + arm * sp.cos(angle), y0 + arm * sp.sin(angle)
+
+    def position_angle(self, planet: str) -> sp.Expr:
+        """The angle of a planet's axis on its carrier at t = 0 (see :attr:`position_angles`)."""
+        L = self.link(planet)
+        if L.kind is not LinkKind.PLANET:
+            return sp.Integer(0)
+        return self.position_angles[L.name]
+
+    def _triangle_angle(self, planet: str, other: str, d: sp.Expr) -> sp.Expr:
+        """The angle at the main axis between two meshing planets' axes (law of cosines)."""
+        a, b = self.arm(planet), self.arm(other)
+        cosine = sp.cancel((a**2 + b**2 - d**2) / (2 * a * b))
+        if cosine.is_number and not (-1 <= cosine <= 1):
+            raise ModelError(
+                f"planets {other} and {planet} cannot mesh: their axes are at {b} and {a} from the main axis, "
+                f"and no position puts them {d} apart (the arms differ by more than the centre distance, or add "
+                "up to less); change the gears or the arms"
+            )
+        return sp.acos(cosine)
+
+    def _check_planet_distance(self, p: str, q: str, d: sp.Expr, angles: Mapping[str, sp.Expr]) -> None:
+        a, b = self.arm(p), self.arm(q)
+        gap = a**2 + b**2 - 2 * a * b * sp.cos(angles[p] - angles[q]) - d**2
+        if gap.is_number and gap.free_symbols == set():
+            value = sp.N(gap, 30)
+            if value.is_real and abs(value) > sp.Float(1e-20) * (1 + abs(sp.N(d**2, 30))):
+                wanted = sp.acos(sp.cancel((a**2 + b**2 - d**2) / (2 * a * b)))
+                raise ModelError(
+                    f"planets {p} and {q} mesh but their given position angles put their axes "
+                    f"{sp.N(sp.sqrt(gap + d**2), 6)} apart instead of the centre distance {d}; leave one angle out "
+                    f"to have it placed, or make their angles differ by +-{wanted} = +-{sp.N(wanted, 6)} rad"
+                )
 
     def _centre_distance_pairs(self) -> list[tuple[str, sp.Expr, sp.Expr]]:
         """(planet, reference distance, another distance) for every planet with two or more."""
@@ -595,15 +876,39 @@ class Mechanism:
         """The motion of every link for given input drives; see :class:`symkin.particles.Motion`."""
         from symkin.particles import Motion
 
-        return Motion.build(self, inputs, frame)
+        motion = Motion.build(self, inputs, frame)
+        try:
+            return self._memo(("motion", motion.inputs, motion.frame, motion.space), lambda: motion)
+        except TypeError:  # an input that cannot be hashed: not shared
+            return motion
 
     def _memo(self, key: Any, compute: Any) -> Any:
-        """Return ``compute()`` for ``key``, computing it once per mechanism."""
+        """Return ``compute()`` for ``key``, computing it once per mechanism value: equal
+        mechanisms (the same links and meshes) share what is derived from them."""
         try:
             return self._cache[key]
         except KeyError:
             value = self._cache[key] = compute()
             return value
+
+
+#: Derived laws of mechanisms by value (links, meshes): the most recently used are kept.
+_CACHES: OrderedDict[Any, dict] = OrderedDict()
+_CACHE_SIZE = 256
+
+
+def _shared_cache(key: Any) -> dict:
+    """The cache of derived laws shared by every mechanism equal to ``key``."""
+    try:
+        cache = _CACHES.pop(key)
+    except KeyError:
+        cache = {}
+    except TypeError:  # unhashable parts: a cache of its own
+        return {}
+    _CACHES[key] = cache
+    while len(_CACHES) > _CACHE_SIZE:
+        _CACHES.popitem(last=False)
+    return cache
 
 
 def _pair(m: Iterable[str]) -> tuple[str, str]:

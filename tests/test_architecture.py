@@ -31,7 +31,7 @@ LAYERS: list[tuple[str, ...]] = [
     ("symkin.numeric", "symkin.printing", "symkin.superposition"),
     ("symkin.model",),
     ("symkin.kinematics", "symkin.particles", "symkin.drives", "symkin.vectorloop"),
-    ("symkin.schemes",),
+    ("symkin.schemes", "symkin.trains"),
     ("symkin.study", "symkin.statics"),
     ("symkin.mechanisms",),
     ("symkin.viz",),

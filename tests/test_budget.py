@@ -128,11 +128,11 @@ def test_the_tracer_is_restored_after_a_budgeted_simplification(monkeypatch):
 
 def test_the_cardan_path_for_a_slow_angle_is_decided_within_the_budget():
     # unbudgeted, deciding the installation condition for this pin angle took 69 s
-    start = time.perf_counter()
+    start = time.process_time()  # CPU time: a loaded machine slows the wall clock, not the work
     slider = CardanSlider.build(1, drive=1, pin_angle=parse_expression("(sin(1)+cos(1)+tan(1)+sqrt(3))**30"))
     with pytest.warns(SimplificationBudgetWarning, match="kept as derived"):
         path = slider.path()
-    assert time.perf_counter() - start < 15
+    assert time.process_time() - start < 15
     # the pin must sit at angle 0 (mod 2 pi) for the slider to follow; this angle (about 1.2e20 rad) is
     # 0.41 turns away from a whole number of turns, so the pin draws a line off the guide
     assert sp.N(SLOW, 60) % 1 == pytest.approx(0.4096, abs=1e-3)

@@ -172,7 +172,7 @@ def test_bad_geometry():
 def test_laws_are_fast_to_derive_and_compile():
     import time
 
-    start = time.perf_counter()
+    start = time.process_time()  # CPU time of this process: other jobs on a shared machine do not count
     slider = CardanSlider.build(sp.Rational(1, 50), drive=EllipticalGears(sp.Rational(4, 5) * sp.pi, sp.Rational(2, 5), 2))
     slider.evaluate(np.linspace(0, 2.5, 1000))
-    assert time.perf_counter() - start < 2.0  # typically ~0.1 s; generous for a shared machine
+    assert time.process_time() - start < 2.0  # typically ~0.1 s

@@ -24,6 +24,8 @@ def test_the_table_covers_every_command():
 
 @pytest.mark.parametrize("name", list(COMMANDS))
 def test_hostile_values_give_an_answer_or_one_line_and_exit_2(name, tmp_path):
+    if not COMMANDS[name].positions():
+        pytest.skip(f"{name} takes no values to replace (only flags)")
     problems, tried = [], 0
     for n, (i, value, argv) in enumerate(cases(name)):
         folder = tmp_path / str(n)

@@ -7,6 +7,7 @@ import sympy as sp
 
 from symkin.cli import main
 from symkin.derivations import khai2014
+from symkin.papers.checks import Kind, Verdict
 from symkin.papers.reproduce import run
 
 
@@ -18,9 +19,16 @@ def checks():
 def test_every_check_is_reproduced_and_the_slips_are_the_known_ones(checks):
     bad = [(c.label, c.comparison.detail) for c in checks if not c.verdict.ok]
     assert not bad
-    slips = {c.label for c in checks if c.verdict.value.startswith("paper slip")}
-    assert slips == {"(2) closed sum", "fig. 4 FF value", "(6)"}
+    explained = {c.label: c.verdict for c in checks if c.verdict in (Verdict.SLIP, Verdict.ERROR)}
+    assert explained == {
+        "fig. 4 FF value": Verdict.SLIP, "(6)": Verdict.SLIP, "(2) closed sum": Verdict.ERROR,
+        "fig. 1 regression line": Verdict.ERROR, "fig. 3 optimisation result": Verdict.ERROR,
+    }
     by_label = {c.label: c for c in checks}
+    # checks that do not reproduce a printed item are kept apart
+    assert by_label["(6)"].kind is Kind.EXTENSION and by_label["(8)"].kind is Kind.EXTENSION
+    assert {c.label for c in checks if c.kind is Kind.CONSISTENCY} == {"fig. 4 optimum (MathCAD)"}
+    assert all(by_label[f"KKT g_{j} - g_{j + 1}"].kind is Kind.EXTENSION for j in (1, 2, 3))
     assert by_label["stages: count"].derived == 22
     assert by_label["fig. 4 u_1"].derived == sp.Rational(6000, 1331)
     assert by_label["fig. 4 u_1"].verdict.value == "match (published value rounded)"
@@ -32,10 +40,35 @@ def test_the_gap_in_the_objective_value_is_the_frozen_mathcad_assignment(checks)
     u1 = sp.Rational(6000, 1331)
     partial = 1 + u1 + u1 * 11 + u1 * 121  # 1 + u1 + u1 u2 + u1 u2 u3
     # the objective as (5) defines it, and as MathCAD evaluated it with Fd = a + 3 b for every stage
-    assert by_label["fig. 4 FF value"].derived == b + (a + (a + b) * (partial - 1)) / U
-    assert by_label["fig. 4 FF value (MathCAD)"].derived == (a + 3 * b) * partial / U
-    assert round(float(by_label["fig. 4 FF value (MathCAD)"].derived), 3) == 0.343
-    assert float(by_label["fig. 4 FF value"].derived) == pytest.approx(1.0292137, abs=1e-7)
+    value = by_label["fig. 4 FF value"]
+    assert value.derived == b + (a + (a + b) * (partial - 1)) / U
+    assert value.comparison.alternative.value == (a + 3 * b) * partial / U
+    assert value.comparison.alternative.matches_published
+    assert round(float(value.comparison.alternative.value), 3) == 0.343
+    assert float(value.derived) == pytest.approx(1.0292137, abs=1e-7)
+
+
+def test_the_printed_closed_sum_is_a_confirmed_error(checks):
+    by_label = {c.label: c for c in checks}
+    c = by_label["(2) closed sum"]
+    assert c.verdict is Verdict.ERROR and c.comparison.confirmation.agrees_with_derived
+    # by hand for two stages: Phi_1/(d_1 u_1 u_2) + Phi_2/(d_4 u_2); the printed limit j <= i gives Phi_2/d_4 instead
+    u1, u2, p1, p2, d1, d4 = sp.symbols("u_1 u_2 Phi_1 Phi_2 d_1 d_4", positive=True)
+    printed = (p1 / d1 + p2 / d4 * u1 * u2) / (u1 * u2)
+    assert sp.simplify(printed - (p1 / (d1 * u1 * u2) + p2 / (d4 * u2))) != 0
+
+
+def test_the_backlash_sum_3_and_the_centre_distances(checks):
+    by_label = {c.label: c for c in checks}
+    assert by_label["(3)"].verdict is Verdict.MATCH
+    assert by_label["step 1 centre distances"].verdict is Verdict.MATCH
+    assert by_label["(4)"].verdict is Verdict.MATCH
+
+
+def test_figure_references_are_checked_against_the_captions(checks):
+    by_label = {c.label: c for c in checks}
+    assert (by_label["fig. 1 regression line"].derived, by_label["fig. 1 regression line"].published) == (2, 1)
+    assert (by_label["fig. 3 optimisation result"].derived, by_label["fig. 3 optimisation result"].published) == (4, 3)
 
 
 def test_reproduce_writes_report_and_figures(tmp_path):

@@ -7,7 +7,7 @@ import pytest
 import sympy as sp
 
 from symkin.derivations import luo2018
-from symkin.papers.checks import Verdict, compare_rounded, compare_symbolic
+from symkin.papers.checks import Kind, Verdict, compare_rounded, compare_symbolic
 from symkin.papers.reproduce import run
 
 
@@ -19,12 +19,17 @@ def checks():
 def test_every_check_is_reproduced_or_an_explained_slip(checks):
     bad = [(k, c.comparison.detail) for k, c in checks.items() if not c.verdict.ok]
     assert not bad
-    for label in ["(2)", "(13)-(14) ratio", "(14)", "(12) identity", "(13)", "(16)", "(19)", "(20)", "(21)", "(22)",
-                  "(22) superposition", "(23)", "(24)", "(25)", "(26)", "(27)-(28)", "(29)", "(30)-(31)", "(32)",
-                  "(33)-(35)", "e = 0: (22)", "e = 0: (23)", "e = 0: (24)", "stroke", "period"]:
+    for label in ["(2)", "(3)", "(13)-(14) ratio", "(14)", "(12) identity", "(13)", "(16)", "(18)", "(19)", "(20)", "(21)",
+                  "(22)", "(22) superposition", "(23)", "(24)", "(25)", "(26)", "(27)-(28)", "(29)", "(30)-(31)", "(32)",
+                  "(33)-(35)", "e = 0: (22)", "e = 0: (23)", "e = 0: (24)", "stroke", "period", "fig. 5"]:
         assert label in checks, label
     slips = {k for k, c in checks.items() if c.verdict is Verdict.SLIP}
-    assert slips == {"(13)", "Table 1 v max", "Table 1 v min", "period", "(27)-(28)", "fig. 7(b)/8(b)"}
+    assert slips == {"Table 1 v max", "Table 1 v min", "period", "fig. 7(b)"}
+    assert {k for k, c in checks.items() if c.verdict is Verdict.ERROR} == {"(13)"}
+    assert {k for k, c in checks.items() if c.kind is Kind.CONSISTENCY} == {
+        "(12) identity", "(22) superposition", "e = 0: (22)", "e = 0: (23)", "e = 0: (24)"}
+    reconstructed = {k for k, c in checks.items() if c.source == "reconstructed"}
+    assert reconstructed == {"(2)", "(22)", "(24)", "(25)", "(26)", "(27)-(28)", "(29)", "(30)-(31)", "(32)", "(33)-(35)"}
 
 
 def test_table1_values(checks):
@@ -41,12 +46,21 @@ def test_table1_values(checks):
         assert checks[label].verdict is verdict, label
     assert checks["Table 1 v max"].published == "100.52e-3"
     # the slip is explained by sampling: a 0.01 s grid reproduces the printed value, a fine grid does not
-    detail = checks["Table 1 v max"].comparison.detail
-    assert "0.01 s: 100.52/-100.52" in detail and "0.001 s: 100.53/-100.53" in detail
+    alt = checks["Table 1 v max"].comparison.alternative
+    assert alt.matches_published and round(alt.value * 1e5) / 100 == 100.52
+    assert "0.001 s: 100.531/-100.531e-3" in alt.assumption
     # 100.52 is not the rounding of the exact value, 100.53 would have been
     assert not compare_rounded(4 * sp.pi / 125 * 1000, "100.52").verdict.ok
     assert compare_rounded(4 * sp.pi / 125 * 1000, "100.53").verdict is Verdict.ROUNDED
     assert checks["period"].derived == sp.Rational(5, 2)
+    assert checks["period"].comparison.alternative.value == 2 * sp.pi
+
+
+def test_the_period_verdict_is_computed(monkeypatch):
+    """At omega_H = 1 rad/s the derived period is the printed 2 pi s, and the verdict is a match."""
+    monkeypatch.setattr(luo2018, "TABLE1_OMEGA", sp.Integer(1))
+    period = {c.label: c for c in luo2018._table1()}["period"]
+    assert period.derived == 2 * sp.pi and period.verdict is Verdict.MATCH
 
 
 def test_a_wrong_published_law_would_be_reported(checks):
@@ -55,15 +69,24 @@ def test_a_wrong_published_law_would_be_reported(checks):
     assert not compare_symbolic(derived, 2 * l * sp.sin(th2 - thH)).verdict.ok
 
 
-def test_installation_slip_evidence(checks):
-    detail = checks["(13)"].comparison.detail
-    assert "2*l*sin(omega_H*t)" in detail and "theta_1(0) = pi/3" in detail
+def test_installation_error_evidence(checks):
+    c = checks["(13)"]
+    assert c.verdict is Verdict.ERROR and c.comparison.confirmation.agrees_with_derived
+    assert c.comparison.confirmation.value["theta_2 = pi/6, theta_H(0) = 0"] == [sp.pi / 3]
+    # by hand: theta_1(0) = pi, which (13) allows, takes the pin off the guide
+    assert luo2018.pin_deviation_by_hand(sp.pi, 0, 0) != 0 and luo2018.pin_deviation_by_hand(0, 0, 0) == 0
 
 
 def test_figure_claims_are_measured(checks):
     a, c = checks["fig. 7(a)/8(a)"], checks["fig. 7(c)/8(c)"]
     assert a.verdict is Verdict.MATCH and c.verdict is Verdict.MATCH
     assert "quick return (K grows from 1): shown" in a.comparison.detail
+    # the chosen parameters and the sensitivity are stated: at theta_H(0) = 0 there is no quick return
+    assert a.extra["parameters"] == {"e": "2/5", "m": "1", "theta_H0": "pi/6"}
+    at_zero = next(row for row in a.extra["sensitivity"] if row["theta_H0"] == "0")
+    assert at_zero["quick return (K grows from 1)"] is False
+    b = checks["fig. 7(b)"]
+    assert b.verdict is Verdict.SLIP and "principal-branch" in b.comparison.alternative.assumption
     rows = luo2018.curves()
     ratios = [stroke.ratio for _, _, _, stroke, _ in rows["a"]]
     assert ratios[0] == pytest.approx(1) and all(b > a for a, b in itertools.pairwise(ratios))

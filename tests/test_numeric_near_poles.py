@@ -5,6 +5,7 @@ References: mpmath at 50 digits on the same binary inputs."""
 
 from __future__ import annotations
 
+import time
 import warnings
 
 import mpmath
@@ -170,3 +171,18 @@ def test_every_two_row_ratio_and_speed_law_has_only_guaranteed_denominators():
                     assert _guaranteed(add), (kind, teeth, law, add)
                 checked += 1
     assert checked == 3 * 2 * (6 + 3 * 4)
+
+
+def test_factoring_splits_small_rational_polynomials_and_skips_huge_exact_coefficients():
+    e, x = sp.symbols("e x", positive=True)
+    for poly, factor in ((1 - e**2, e - 1), (x**2 - 2 * x * e + e**2, e - x)):
+        split = st.factor_differences(poly)
+        assert split != poly and sp.expand(split - poly) == 0
+        assert any(sp.expand(f.as_base_exp()[0] - factor) == 0 or sp.expand(f.as_base_exp()[0] + factor) == 0
+                   for f in sp.Mul.make_args(split))
+    # a coefficient such as E**1000 (an angle typed by a user) once sent factor() into
+    # Wang's algorithm for 20 s; such sums are left as they are
+    huge = sp.E**1000 * e**2 - 1
+    start = time.process_time()
+    assert st.factor_differences(huge) == huge
+    assert time.process_time() - start < 1

@@ -3,20 +3,115 @@
 import json
 
 import pytest
+import sympy as sp
 
+from symkin import schemes
+from symkin import symbols as S
 from symkin.derivations import alyushin2009
-from symkin.papers.reproduce import run, write_atomically
+from symkin.papers.checks import Kind, Verdict
+from symkin.papers.reproduce import report_schema, run, write_atomically
 
 
-def test_every_alyushin2009_check_is_reproduced():
-    checks = alyushin2009.checks()
-    bad = [(c.label, c.comparison.detail) for c in checks if not c.verdict.ok]
+@pytest.fixture(scope="module")
+def checks():
+    return {c.label: c for c in alyushin2009.checks()}
+
+
+def test_every_alyushin2009_check_is_reproduced(checks):
+    bad = [(c.label, c.comparison.detail) for c in checks.values() if not c.verdict.ok]
     assert not bad
-    labels = {c.label.split()[0] for c in checks}
-    for eq in ["(2)", "(3)", "(10)", "(13)", "(13a)", "(13b)", "(14a)", "(17)", "(19)", "(22)", "(22a)", "(23a)", "(24a)", "(25a)"]:
+    labels = {label.split()[0] for label in checks}
+    for eq in ["(1)", "(2)", "(3)", "(4)", "(5)", "(6)", "(7)", "(8)", "(9)", "(10)", "(11)", "(13)", "(13a)", "(13b)",
+               "(14)", "(14a)", "(15)", "(17)", "(18)", "(19)", "(20)", "(22)", "(22a)", "(23a)", "(24a)", "(25a)"]:
         assert eq in labels, eq
-    slips = [c for c in checks if c.verdict.value.startswith("paper slip")]
-    assert {c.label for c in slips} == {"example AA 100/99/100/101 centre-distance gap", "example II z1"}
+    not_plain = {label: c.verdict for label, c in checks.items() if c.verdict is not Verdict.MATCH}
+    assert not_plain == {
+        "example AA 100/99/100/101 centre-distance gap": Verdict.SLIP,
+        "example AA 54/45/44/55 (i_1H)": Verdict.ROUNDED,
+        "example II 200/99/100/201": Verdict.ROUNDED,
+    }
+
+
+def test_checks_of_the_engine_against_itself_are_not_paper_items(checks):
+    kinds = {label: c.kind for label, c in checks.items()}
+    assert {k for k, v in kinds.items() if v is Kind.CONSISTENCY} == {
+        *(f"({n}) {s}" for n in (1, 2) for s in ("AI1", "AI", "AA", "II")), "(5)-(6) engine"}
+    assert {k for k, v in kinds.items() if v is Kind.EXTENSION} == {
+        "coaxiality AI1", "(24a) at omega_4 = 0", "(25a) at omega_4 = 0", "drill head in space"}
+
+
+def test_the_gap_slip_rests_on_a_computed_alternative(checks):
+    gap = checks["example AA 100/99/100/101 centre-distance gap"]
+    m = S.module()
+    assert gap.derived == m and gap.published == 2 * m
+    alt = gap.comparison.alternative
+    assert alt.matches_published and alt.value == 2 * m  # the pitch-diameter sums m(z1 + z2), m(z3 + z4)
+    # by hand: centre distances m (z1 + z2)/2 and m (z3 + z4)/2 for z = 100, 99, 100, 101
+    assert abs(m * (100 + 99) / 2 - m * (100 + 101) / 2) == m
+
+
+def test_fifty_times_is_an_inequality_of_the_paper(checks):
+    c = checks["example AA 100/100/101/99"]
+    assert c.published == "i_H1 > 50" and c.derived == sp.Rational(101, 2) and c.verdict is Verdict.MATCH
+    assert "50.5" not in repr(alyushin2009.EXAMPLES)
+
+
+def test_ii_tooth_numbers_come_from_the_legible_data(checks):
+    assert checks["example II z1"].derived == 200 and checks["example II z1"].verdict is Verdict.MATCH
+    assert checks["example II z4"].derived == 201 and checks["example II z4"].verdict is Verdict.MATCH
+    # by hand: i_H1 = 100 z1/(z1 - 99) with z4 = z1 + 1, z2 = 99, z3 = 100; only z1 = 200 rounds to 198
+    assert [z for z in range(100, 1000) if round(100 * z / (z - 99)) == 198] == [200]
+
+
+def test_paper_point_velocities_are_the_particle_laws(checks):
+    r1, r2, r3 = (S.radius(str(i)) for i in (1, 2, 3))
+    wH, w23 = S.omega("H"), S.omega("23")
+    # (11) by hand: V_A = V_C - omega_23 (y_A - y_C) with y_A - y_C = -r2 (the paper's fig. 2)
+    assert sp.expand(checks["(11)"].derived - (-wH * (r1 + r2) + w23 * r2)) == 0
+    assert sp.expand(checks["(9)"].derived - (-wH * (r1 + r2) - w23 * r3)) == 0
+
+
+def test_the_54_45_44_55_conditions(checks):
+    c = checks["example AA 54/45/44/55 conditions"]
+    assert c.verdict is Verdict.MATCH and "both for k = [3]" in c.derived
+    # by hand: with the carrier driving, efficiency eta0 (i - 1)/(i - eta0), i = i_14^(H) = 2475/2376 > 1
+    m = schemes.two_row("AA", teeth=(54, 45, 44, 55), module=1)
+    i = sp.Rational(45 * 55, 54 * 44)
+    eta0 = alyushin2009.ETA0
+    assert sp.cancel(alyushin2009.basic_train_law(m, "H", "1") - eta0 * (i - 1) / (i - eta0)) == 0
+
+
+# ---------------------------------------------------------------------------- efficiency statements
+def test_the_efficiency_laws_are_the_textbook_ones():
+    """The basic-train method by hand (Kudryavtsev): K = i_14^(H), gear 4 held."""
+    eta0, K = alyushin2009.ETA0, sp.Rational(99 * 201, 200 * 100)
+    ii = schemes.two_row("II", teeth=(200, 99, 100, 201))
+    # 0 < K < 1: the sun driving the carrier passes (1 - K/eta0)/(1 - K); the carrier driving the sun (1 - K)/(1 - K eta0)
+    assert sp.cancel(alyushin2009.basic_train_law(ii, "1", "H") - (1 - K / eta0) / (1 - K)) == 0
+    assert sp.cancel(alyushin2009.basic_train_law(ii, "H", "1") - (1 - K) / (1 - K * eta0)) == 0
+    # AI, K < 0: the sun driving the carrier, 1 - (1 - eta0)(1 - 1/i_1H)
+    ai = schemes.two_row("AI", teeth=(20, 30, 20, 70))
+    i = 1 + sp.Rational(30 * 70, 20 * 20)
+    assert sp.cancel(alyushin2009.basic_train_law(ai, "1", "H") - (1 - (1 - eta0) * (1 - 1 / i))) == 0
+
+
+def test_the_efficiency_statements_have_computed_verdicts(checks):
+    ai, ii, vs = checks["AI ratios and efficiency"], checks["II efficiency"], checks["II against AA efficiency"]
+    assert ai.verdict is ii.verdict is vs.verdict is Verdict.MATCH
+    # by hand at the default meshes (0.98 external, 0.99 internal): eta0 = 0.9702, (1 + eta0 (i - 1))/i
+    assert "0.9801 at i_1H = 3 and 0.9722 at i_1H = 15" in ai.derived
+    assert "no one basic-train efficiency gives both printed ends" in ai.comparison.detail
+    # II: (20000 eta0 - 19899)/(101 eta0) at eta0 = 0.99^2 is below zero: the siren direction locks
+    assert "-3.0003" in ii.derived and "0.2032" in ii.derived
+    assert "9801/10000" in vs.derived and "2401/2500" in vs.derived
+
+
+def test_the_drill_head_follows_the_paper_recipe_and_sympy_mechanics(checks):
+    assert checks["drill head"].verdict is Verdict.MATCH and checks["drill head"].kind is Kind.PAPER
+    assert checks["drill head in space"].verdict is Verdict.MATCH
+    # the tooth is at its place at t = 0: planet axis at r1 + r2 = 36 mm, the tooth 10 mm further, 30 mm ahead
+    assert list(alyushin2009.drill_head_motion().particle("2", (10, 0, 30), relative_to="pole").position.subs(S.t, 0)) \
+        == [46, 0, 30]
 
 
 def test_a_wrong_published_form_is_reported_as_differs():
@@ -29,12 +124,16 @@ def test_a_wrong_published_form_is_reported_as_differs():
 
 
 def test_reproduce_writes_the_report(tmp_path):
+    import jsonschema
+
     out = tmp_path / "report"
     results = run(["alyushin2009"], out, quiet=True)
     assert all(r.ok for r in results)
     data = json.loads((out / "report.json").read_text())
     assert data["summary"]["differs"] == 0 and data["summary"]["checks"] == len(results[0].checks)
+    jsonschema.validate(data, report_schema())
     assert (out / "figures" / "alyushin2009_trajectories.png").stat().st_size > 10_000
+    assert (out / "figures" / "alyushin2009_drill_head.png").stat().st_size > 10_000
     tex = (out / "equations.tex").read_text()
     assert r"\begin{document}" in tex and "(13a)" in tex
 

@@ -42,3 +42,12 @@ def test_bad_time_spans_and_mappings_are_symkin_errors(particle, bad):
 def test_as_values_refuses_strange_keys():
     with pytest.raises(InputError, match="key"):
         as_values({3.5: 1})
+
+
+@pytest.mark.parametrize("text", ["E**1000", "-exp(800)"])
+def test_exact_values_beyond_float64_are_refused_with_the_range(text):
+    from symkin._util.parsing import as_real
+
+    with pytest.raises(InputError, match="beyond the float64 range"):
+        as_real(text, what="--carrier-angle")
+    assert as_real("E**690") == sp.E**690  # large, still within the 1e300 bound on every number (E**700 is 1e304)

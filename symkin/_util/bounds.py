@@ -19,7 +19,7 @@ each step costs microseconds whatever the expression.
     >>> check(sp.exp(sp.exp(9), evaluate=False), "the speed")
     Traceback (most recent call last):
     ...
-    symkin.errors.InputError: the speed: exp(exp(9)) is about 10^3519; numbers from 1e-300 to 1e300 in size are accepted
+    symkin.errors.InputError: the speed: exp(exp(9)) is about 10^3519; numbers from 1e-300 to 1e300 in size are accepted (this one is beyond the float64 range, about 1.8e308)
     >>> sign(sp.sin(1)**2 + sp.cos(1)**2 - 1) is None    # zero to 1233 digits: undecided
     True
     >>> sign(sp.pi - sp.Rational(314159265358979, 10**14))
@@ -29,6 +29,7 @@ each step costs microseconds whatever the expression.
 from __future__ import annotations
 
 import math
+import sys
 from collections.abc import Callable, Mapping
 from typing import Any
 
@@ -116,6 +117,9 @@ class Undecided(Exception):
         self.question = question
 
 
+_FLOAT64_LOG10 = math.log10(sys.float_info.max)  # 308.25
+
+
 class OutOfRange(Exception):
     """The value is certainly larger than 1e300 or smaller than 1e-300 (and not 0) in size."""
 
@@ -128,6 +132,11 @@ class OutOfRange(Exception):
     def size(self) -> str:
         small, big = _sizes(self.interval)
         return f"about 10^{math.floor(_log10(small if self.large else big) + 1e-9)}"
+
+    def beyond(self) -> str:
+        """' (beyond the float64 range ...)' for a number no float can hold, else ''."""
+        large = self.large and _log10(_sizes(self.interval)[0]) > _FLOAT64_LOG10
+        return " (this one is beyond the float64 range, about 1.8e308)" if large else ""
 
 
 class NotConstant(Exception):
@@ -435,7 +444,7 @@ def check(expr: Any, what: str, *, memo: dict[int, Encloser] | None = None, erro
         except NotReal as err:
             raise error(f"{what}: {show(err.node)} is not a real number: {err.reason}") from None
         except OutOfRange as err:
-            raise error(f"{what}: {show(err.node)} is {err.size()}; {_limits()}") from None
+            raise error(f"{what}: {show(err.node)} is {err.size()}; {_limits()}{err.beyond()}") from None
         except (Undecided, Unbounded) as err:
             last = err
             continue

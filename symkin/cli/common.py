@@ -33,6 +33,8 @@ from symkin.errors import InputError
 __all__ = [
     "teeth_list",
     "scheme_mechanism",
+    "mechanism_of",
+    "add_train_argument",
     "link_value",
     "exact_json",
     "emit",
@@ -70,8 +72,18 @@ def add_quiet_flag(parser: Any) -> None:
     parser.add_argument("--quiet", action="store_true", help="no progress display")
 
 
-def add_scheme_argument(parser: Any) -> None:
-    parser.add_argument("scheme", help=SCHEME_HELP)
+def add_scheme_argument(parser: Any, *, train: bool = False) -> None:
+    """The SCHEME positional; with ``train``, optional, and ``--train FILE`` beside it."""
+    if not train:
+        parser.add_argument("scheme", help=SCHEME_HELP)
+        return
+    parser.add_argument("scheme", nargs="?", default=None, help=SCHEME_HELP + "; or give --train")
+    add_train_argument(parser)
+
+
+def add_train_argument(parser: Any, *, required: bool = False) -> None:
+    parser.add_argument("--train", required=required, metavar="FILE",
+                        help="a train file (TOML), or a ready-made train by name (symkin trains lists them)")
 
 
 def add_teeth_argument(parser: Any, example: str, *, required: bool = True, default: str | None = None,
@@ -112,6 +124,29 @@ def save_figure(fig: Any, out: Path) -> list[Path]:
     from symkin.viz.figures import save
 
     return save(fig, out, formats=(out.suffix.lstrip(".").lower(),))
+
+
+def mechanism_of(args: Any, module: Any = None) -> tuple[Any, dict[str, Any], str]:
+    """The mechanism a command names: a ready-made scheme with ``--teeth`` (and ``--module``),
+    or a train with ``--train``; with what to say about it in JSON, and a title.
+    """
+    train = getattr(args, "train", None)
+    if train is not None:
+        if args.scheme is not None or getattr(args, "teeth", None) is not None:
+            raise InputError("give either SCHEME --teeth ... or --train FILE, not both")
+        if module is not None and module != 1:
+            raise InputError("--module applies to a scheme; a train file gives its own module")
+        from symkin.trains import load_train
+
+        mech = load_train(train)
+        return mech, {"train": mech.name or train, "source": mech.source}, mech.name or str(train)
+    if args.scheme is None:
+        raise InputError("name a scheme (AI1, AI, AA, II) with --teeth, or a train with --train FILE")
+    if getattr(args, "teeth", None) is None:
+        raise InputError(f"the scheme {args.scheme} needs --teeth, e.g. --teeth 20,30,20,70")
+    mech, teeth = scheme_mechanism(args.scheme, args.teeth, module)
+    return mech, {"scheme": args.scheme, "teeth": [int(z) for z in teeth]}, \
+        f"{args.scheme} z = {', '.join(map(str, teeth))}"
 
 
 def scheme_mechanism(scheme: str, teeth_text: str, module: Any = None) -> tuple[Any, list[Any]]:

@@ -1,4 +1,4 @@
-"""``symkin ratio`` and ``symkin speeds``: the 2009 paper's schemes from tooth numbers."""
+"""``symkin ratio`` and ``symkin speeds``: the 2009 paper's schemes from tooth numbers, or any train file."""
 
 from __future__ import annotations
 
@@ -14,7 +14,7 @@ from symkin.cli.common import (
     exact_json,
     float_text,
     link_value,
-    scheme_mechanism,
+    mechanism_of,
 )
 from symkin.printing import latex
 
@@ -26,11 +26,12 @@ def register(sub: Any) -> None:
         sub, "ratio",
         help="ratio i_ab^(c) = omega_a/omega_b of a scheme with link c fixed",
         description="The ratio i_ab^(c) = omega_a / omega_b (a = driver, b = driven) with link c fixed, "
-        "exact and as a float. Links: 1, 2, 3, 4, H (2 and 3 name the planet).",
+        "exact and as a float. Links of a scheme: 1, 2, 3, 4, H (2 and 3 name the planet); of a train: its "
+        "link names (or a gear's name for the link that holds it).",
         run=run_ratio,
     )
-    add_scheme_argument(p)
-    add_teeth_argument(p, "100,100,101,99")
+    add_scheme_argument(p, train=True)
+    add_teeth_argument(p, "100,100,101,99", required=False)
     p.add_argument("--driver", required=True, help="link a")
     p.add_argument("--driven", required=True, help="link b")
     p.add_argument("--fixed", required=True, help="link c, held still")
@@ -42,19 +43,18 @@ def register(sub: Any) -> None:
         "degrees of freedom; a fixed link has speed 0). Values are exact: 100, 0.5, 3/4, 2*pi.",
         run=run_speeds,
     )
-    add_scheme_argument(q)
-    add_teeth_argument(q, "54,45,44,55")
+    add_scheme_argument(q, train=True)
+    add_teeth_argument(q, "54,45,44,55", required=False)
     add_omega_argument(q)
 
 
 def run_ratio(args: Any) -> int:
-    mech, teeth = scheme_mechanism(args.scheme, args.teeth)
+    mech, about, title = mechanism_of(args)
     law = mech.ratio(args.driver, args.driven, fixed=args.fixed)
     a, b, c = (mech.link(x).name for x in (args.driver, args.driven, args.fixed))
     value = law.rhs
     data = {
-        "scheme": args.scheme,
-        "teeth": [int(z) for z in teeth],
+        **about,
         "driver": a,
         "driven": b,
         "fixed": c,
@@ -62,7 +62,7 @@ def run_ratio(args: Any) -> int:
         "latex": latex(law),
         "coaxial": not mech.coaxiality_defects(),
     }
-    text = f"{args.scheme} z = {', '.join(map(str, teeth))}\ni_{a}{b}^({c}) = omega_{a}/omega_{b} = {value}"
+    text = f"{title}\ni_{a}{b}^({c}) = omega_{a}/omega_{b} = {value}"
     f = float_text(value)
     if f and f != str(value):
         text += f" = {f}"
@@ -75,7 +75,7 @@ def run_speeds(args: Any) -> int:
     for item in args.omega:
         link, value = link_value(item)
         known[link] = value
-    mech, teeth = scheme_mechanism(args.scheme, args.teeth)
+    mech, about, title = mechanism_of(args)
     speeds = mech.speeds(known)
     given = {mech.link(k).name for k in known}
     rows, data_links = [], {}
@@ -83,14 +83,13 @@ def run_speeds(args: Any) -> int:
         tag = "given" if name in given else "derived"
         f = float_text(value)
         rows.append(f"omega_{name:<3} = {value}" + (f" = {f}" if f and f != str(value) else "") + f"   ({tag})")
-        exact = exact_json(value)
-        assert exact is not None  # a speed is a SymPy expression, never None
-        data_links[name] = {**exact, "given": name in given}
+        speed = exact_json(value)
+        assert speed is not None  # a speed is never None
+        data_links[name] = {**speed, "given": name in given}
     data = {
-        "scheme": args.scheme,
-        "teeth": [int(z) for z in teeth],
+        **about,
         "speeds": data_links,
         "coaxial": not mech.coaxiality_defects(),
     }
-    emit(args, f"{args.scheme} z = {', '.join(map(str, teeth))}\n" + "\n".join(rows), data)
+    emit(args, f"{title}\n" + "\n".join(rows), data)
     return 0

@@ -21,8 +21,8 @@ from symkin.cli.common import (
     emit,
     figure_file,
     link_value,
+    mechanism_of,
     save_figure,
-    scheme_mechanism,
 )
 from symkin.errors import InputError
 
@@ -32,14 +32,19 @@ MAX_FRAMES = 5000
 
 
 def _common(p: Any, out_help: str) -> None:
-    add_scheme_argument(p)
-    add_teeth_argument(p, "20,30,20,70")
+    add_scheme_argument(p, train=True)
+    add_teeth_argument(p, "20,30,20,70", required=False)
     add_omega_argument(p, "a known angular velocity LINK=VALUE in rad/s (repeat; as many as the scheme's degrees of "
                        "freedom, 0 fixes a link)")
     p.add_argument("--point", action="append", default=[], metavar="LINK:a,b",
-                   help="a particle of LINK at (a, b) from the link's axis at t = 0 (repeat); default: planet "
-                   "particles on the pitch circle of its first rim and at half its radius")
-    p.add_argument("--module", default="1", help="gear module: pitch radius = module * teeth / 2 (default 1)")
+                   help="a particle of LINK at (a, b) from the link's axis at t = 0, or (a, b, c) with a height c "
+                   "(repeat); default: planet particles on the pitch circle of its first rim and at half its radius")
+    base = p.add_argument_group("a base moving in space (the main axis point O and the frame's turn, in t)")
+    for key, what in (("x", "x of O"), ("y", "y of O"), ("z", "z of O"), ("yaw", "turn about z, rad"),
+                      ("pitch", "then about the new y, rad"), ("roll", "then about the newest x, rad")):
+        base.add_argument(f"--base-{key}", metavar="EXPR", help=f"{what}, an expression in t (default 0; a train "
+                          "file's [base] table otherwise)")
+    p.add_argument("--module", default=None, help="gear module of a scheme: pitch radius = module * teeth / 2 (default 1)")
     span = p.add_mutually_exclusive_group()
     span.add_argument("--turns", default=None, help="time span: turns of the carrier H (or of the fastest link), default 1")
     span.add_argument("--t-end", default=None, help="time span in seconds")
@@ -80,16 +85,15 @@ def register(sub: Any) -> None:
 
 
 # --------------------------------------------------------------------------- parsing
-def _point(text: str, mech: Any) -> tuple[str, tuple[Any, Any]]:
+def _point(text: str, mech: Any) -> tuple[str, tuple[Any, ...]]:
     if not isinstance(text, str) or ":" not in text:
         raise InputError(f"--point takes LINK:a,b (for example 23:-15,0), got {text!r}")
     link, _, coords = text.partition(":")
     link = link.strip()
     parts = [c.strip() for c in coords.split(",")]
-    if len(parts) != 2 or not all(parts):
-        raise InputError(f"--point {text!r} needs two coordinates after the colon, as in 23:-15,0")
-    a, b = (parse_expression(c, what=f"--point coordinate {c!r}") for c in parts)
-    values = (a, b)
+    if len(parts) not in (2, 3) or not all(parts):
+        raise InputError(f"--point {text!r} needs two coordinates after the colon (three with a height), as in 23:-15,0")
+    values = tuple(parse_expression(c, what=f"--point coordinate {c!r}") for c in parts)
     for v in values:
         if not v.is_number or not v.is_real:
             raise InputError(f"--point {text!r}: coordinates are real numbers, got {v}")
@@ -97,18 +101,21 @@ def _point(text: str, mech: Any) -> tuple[str, tuple[Any, Any]]:
     return link, values
 
 
-def _setup(args: Any) -> tuple[Any, Any, list, float, list[str]]:
+def _setup(args: Any) -> tuple[Any, Any, list, float, list[str], dict[str, Any], str]:
     known: dict[str, Any] = {}
     for item in args.omega:
         link, value = link_value(item)
         if not value.is_number:
             raise InputError(f"--omega {item!r}: give a number (rad/s)")
         known[link] = value
-    module = parse_number(args.module, what="--module")
-    if module <= 0:
-        raise InputError(f"--module must be positive, got {args.module}")
-    mech, _teeth = scheme_mechanism(args.scheme, args.teeth, module)
-    motion = mech.motion(known)
+    module: Any = None if getattr(args, "train", None) is not None else 1
+    if args.module is not None:
+        module = parse_number(args.module, what="--module")
+        if module <= 0:
+            raise InputError(f"--module must be positive, got {args.module}")
+    mech, about, title = mechanism_of(args, module)
+    frame = _base(args, mech)
+    motion = mech.motion(known, frame)
     from symkin.viz.figures import default_particles
 
     points = [_point(p, mech) for p in args.point] or default_particles(mech)
@@ -119,8 +126,28 @@ def _setup(args: Any) -> tuple[Any, Any, list, float, list[str]]:
         t_end = float(t_end)
     else:
         t_end = motion.turn_time(_turns(args))
-    labels = [f"link {mech.link(name).name} at ({_fmt(a)}, {_fmt(b)}) from its axis" for name, (a, b) in points]
-    return mech, motion, points, t_end, labels
+    labels = [f"link {mech.link(name).name} at ({', '.join(_fmt(c) for c in xy)}) from its axis" for name, xy in points]
+    return mech, motion, points, t_end, labels, about, title
+
+
+def _base(args: Any, mech: Any) -> Any:
+    """The frame's motion in space from --base-* (over a train file's [base] table), or None."""
+    given = {k: getattr(args, f"base_{k}") for k in ("x", "y", "z", "yaw", "pitch", "roll")}
+    train_base = getattr(mech, "base", None)
+    if all(v is None for v in given.values()):
+        return train_base
+    from symkin.particles import SpaceFrame
+
+    values = {k: parse_expression(v, names=("t",), what=f"--base-{k}") for k, v in given.items() if v is not None}
+    if train_base is not None:
+        raise InputError("the train file gives its base's motion ([base]); change it there, or leave out --base-*")
+    return SpaceFrame.euler(values.get("x", 0), values.get("y", 0), values.get("z", 0), yaw=values.get("yaw", 0),
+                            pitch=values.get("pitch", 0), roll=values.get("roll", 0))
+
+
+def _in_space(motion: Any, points: list) -> bool:
+    """Whether the paths leave the plane: the base moves in space, or a point is on a bevel pinion."""
+    return motion.space is not None or any(motion.mechanism.link(name).axis == "radial" for name, _ in points)
 
 
 def _turns(args: Any) -> float:
@@ -136,16 +163,17 @@ def _fmt(v: Any) -> str:
     return f"{float(v):g}"
 
 
-def _report(args: Any, kind: str, out: Path, mech: Any, points: list, t_end: float, extra: dict | None = None) -> None:
+def _report(args: Any, kind: str, out: Path, mech: Any, points: list, t_end: float, about: dict[str, Any], title: str,
+            extra: dict | None = None) -> None:
     data = {
         "command": kind,
-        "scheme": args.scheme,
+        **about,
         "file": str(out),
         "t_end": t_end,
-        "particles": [{"link": mech.link(name).name, "a": float(a), "b": float(b)} for name, (a, b) in points],
+        "particles": [{"link": mech.link(name).name, **{k: float(c) for k, c in zip("abc", xy)}} for name, xy in points],
         **(extra or {}),
     }
-    emit(args, f"{kind} of {args.scheme} over t = 0 ... {t_end:.4g} s written to {out}", data)
+    emit(args, f"{kind} of {title} over t = 0 ... {t_end:.4g} s written to {out}", data)
 
 
 # --------------------------------------------------------------------------- commands
@@ -155,16 +183,24 @@ def run_trajectory(args: Any) -> int:
     from symkin.viz.figures import draw_pitch_circles, draw_trajectories
 
     out = figure_file(args.out)
-    mech, motion, points, t_end, labels = _setup(args)
+    mech, motion, points, t_end, labels, about, title = _setup(args)
+    if _in_space(motion, points):
+        from symkin.viz.figures import space_figure
+
+        fig = space_figure(motion, points, t_end, relative_to="pole", labels=labels,
+                           title=f"{title}: particle paths in space, t = 0 ... {t_end:.3g} s")
+        save_figure(fig, out)
+        _report(args, "trajectory", out, mech, points, t_end, about, title)
+        return 0
     fig = Figure(figsize=(5.5, 5.5))
     ax = fig.add_subplot()
     draw_pitch_circles(ax, mech)
     draw_trajectories(ax, motion, points, t_end, relative_to="pole", labels=labels)
     ax.set_aspect("equal")
-    ax.set_title(f"{args.scheme}, z = {args.teeth}: particle paths, t = 0 ... {t_end:.3g} s", fontsize=9)
+    ax.set_title(f"{title}: particle paths, t = 0 ... {t_end:.3g} s", fontsize=9)
     ax.legend(fontsize=7, loc="upper right")
     save_figure(fig, out)
-    _report(args, "trajectory", out, mech, points, t_end)
+    _report(args, "trajectory", out, mech, points, t_end, about, title)
     return 0
 
 
@@ -172,11 +208,11 @@ def run_curves(args: Any) -> int:
     from symkin.viz.figures import kinematics_figure
 
     out = figure_file(args.out)
-    mech, motion, points, t_end, labels = _setup(args)
+    mech, motion, points, t_end, labels, about, title = _setup(args)
     fig = kinematics_figure(motion, points, t_end, relative_to="pole", labels=labels,
-                            title=f"{args.scheme}, z = {args.teeth}: speed and acceleration, eqs. (5), (6)")
+                            title=f"{title}: speed and acceleration, eqs. (5), (6)")
     save_figure(fig, out)
-    _report(args, "curves", out, mech, points, t_end)
+    _report(args, "curves", out, mech, points, t_end, about, title)
     return 0
 
 
@@ -189,12 +225,17 @@ def run_animate(args: Any) -> int:
     fps = int(as_integer(args.fps, what="--fps", minimum=1, maximum=MAX_FPS))
     dpi = int(as_integer(args.dpi, what="--dpi", minimum=10, maximum=MAX_DPI))
     frames = int(as_integer(args.frames, what="--frames", minimum=2, maximum=MAX_FRAMES)) if args.frames is not None else None
-    mech, motion, points, t_end, labels = _setup(args)
+    mech, motion, points, t_end, labels, about, title = _setup(args)
+    if motion.space is not None:
+        from symkin.errors import UnsupportedError
+
+        raise UnsupportedError("animate draws the mechanism's plane; for a base moving in space use trajectory, "
+                               "which draws the paths in 3-D")
     if frames is None:
         turns = _turns(args) if args.t_end is None else 1.0
         frames = max(2, min(2000, round(4 * fps * turns)))
     sampled = Frames.build(motion, points, t_end=t_end, frames=frames, labels=labels,
-                           title=f"{args.scheme}, z = {args.teeth}")
+                           title=title)
     animate(sampled, out, fps=fps, dpi=dpi)
-    _report(args, "animation", out, mech, points, t_end, {"frames": frames, "fps": fps})
+    _report(args, "animation", out, mech, points, t_end, about, title, {"frames": frames, "fps": fps})
     return 0

@@ -23,8 +23,10 @@ def register(sub: Any) -> None:
         description="Derive and compare every result of one paper or all, print the verification table and "
         "write DIR/report.json, DIR/report.txt, DIR/equations.tex, DIR/equations.pdf (with pdflatex) and "
         "DIR/figures/. The folder is replaced only when the run completes: an interrupted or failed run "
-        "leaves the previous report as it was. Exit 0 when every check matches or is an explained paper "
-        "slip, 1 otherwise, 2 on bad input. With --json the report is printed instead of the table.",
+        "leaves the previous report as it was. Every verdict is computed: match, match (published value "
+        "rounded), paper slip (explained: an alternative reproduces the printed item), paper error "
+        "(confirmed by an independent route), or differs. Exit 1 when a check differs, 0 otherwise, 2 on "
+        "bad input. With --json the report (symkin/papers/report.schema.json) is printed instead of the table.",
         run=run_reproduce,
     )
     p.add_argument("papers", nargs="*", default=["all"], metavar="PAPER", help=f"all (default) or any of: {', '.join(paper_names())}")

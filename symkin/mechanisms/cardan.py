@@ -337,7 +337,7 @@ class CardanSlider:
         guide = as_expr(guide_angle, what="guide angle theta_2")
         if pin_angle is None:
             rule = line_conditions().installation
-            pin_angle = rule.rhs.subs({theta_2: guide, theta_H0: mech.link("1").position_angle})
+            pin_angle = rule.rhs.subs({theta_2: guide, theta_H0: mech.position_angle("1")})
         drive = as_drive(S.omega("H") if drive is None else drive, "carrier drive")
         return cls(mech, drive, radius, as_expr(pin_angle, what="pin angle theta_1(0)"), guide, (z1, z3))
 
@@ -350,7 +350,7 @@ class CardanSlider:
     @property
     def carrier_angle0(self) -> sp.Expr:
         """``theta_H(0)``."""
-        return self.mechanism.link("1").position_angle
+        return self.mechanism.position_angle("1")
 
     @cached_property
     def ring_ratio(self) -> sp.Expr:

@@ -189,6 +189,8 @@ def compile(
     if not isinstance(chunk, int) or chunk < 1:
         raise InputError(f"chunk must be a positive number of points, got {chunk!r}")
     applied: list[str] = []
+    if float_backend:  # a function of numbers alone (sin(10**100)) is a number: evaluate it here, to 30 digits
+        exprs = [_constants(e) for e in exprs]
     if float_backend and stable:
         rewritten = [stable_form(e, ranges=ranges, reduce_phase=reduce_phase, applied=applied) for e in exprs]
     else:
@@ -219,6 +221,20 @@ def _refuse_constants_beyond_floats(exprs: Sequence[sp.Expr], names: Sequence[st
                     f"{name} holds a number of about 10^{exponent}, beyond the {precision} range (at most "
                     f"{largest:.3g}); give inputs of smaller size (other units), or compile with backend='mpmath'"
                 )
+
+
+def _constants(e: sp.Expr) -> sp.Expr:
+    """``e`` with every function of numbers alone replaced by its value (a Float of 30
+    digits): float code then never meets an integer too large for a float inside a sine."""
+    found = [n for n in sp.preorder_traversal(e) if isinstance(n, sp.Function) and not n.free_symbols]
+    if not found:
+        return e
+    values = {}
+    for n in found:
+        value = sp.N(n, 30)
+        if value.is_Float:
+            values[n] = value
+    return e.xreplace(values) if values else e
 
 
 def _hashable(v: Any) -> Any:

@@ -213,9 +213,9 @@ def _all_finite(results: Sequence[np.ndarray]) -> bool:
     value is checked."""
     for r in results:
         flat = r.reshape(-1)
-        with np.errstate(over="ignore", invalid="ignore"):  # the squares may overflow: that is the test
-            square = np.dot(flat, flat)
-        if not math.isfinite(square) and not np.isfinite(flat).all():
+        with np.errstate(over="ignore", invalid="ignore"):  # squares of huge finite values overflow: checked below
+            square_sum = np.dot(flat, flat)
+        if not math.isfinite(square_sum) and not np.isfinite(flat).all():
             return False
     return True
 

@@ -431,17 +431,19 @@ def factor_differences(expr: sp.Expr) -> sp.Expr:
     """
 
     def small(node: sp.Expr) -> bool:
-        return (
+        if not (
             node.is_Add
             and not node.has(sp.Function)
             and 0 < len(node.free_symbols) <= 3
             and not all(s.is_integer for s in node.free_symbols)
             and sp.count_ops(node) <= 30
             and node.is_polynomial(*node.free_symbols)
-            # degree in the symbols only: pi or E is a coefficient (4*pi*t/5 - 1e-300 is linear in t,
-            # and factoring it over ZZ[pi, t] with its 300-digit denominator takes minutes)
-            and sp.Poly(node, *sorted(node.free_symbols, key=sp.default_sort_key)).total_degree() >= 2
-        )
+        ):
+            return False
+        # rational coefficients and a low degree only: factoring over a domain such as ZZ[E]
+        # with a coefficient E**1000 (a value typed by a user) takes minutes and never helps
+        poly = sp.Poly(node, *sorted(node.free_symbols, key=sp.default_sort_key))
+        return (poly.domain.is_QQ or poly.domain.is_ZZ) and 2 <= poly.total_degree() <= 8
 
     def rewrite(node: sp.Expr) -> sp.Expr:
         f = sp.factor(node)

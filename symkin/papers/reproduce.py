@@ -14,6 +14,8 @@ import json
 import time
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
+from functools import cache
+from importlib import resources
 from pathlib import Path
 from typing import Any, TextIO
 
@@ -21,26 +23,56 @@ from symkin._util.atomic import check_replaceable, recover, write_atomically
 from symkin._util.progress import Progress
 from symkin._version import __version__
 from symkin.errors import InputError
-from symkin.papers.checks import Check
+from symkin.papers.checks import Check, ItemResult, PrintedItem, Verdict
 from symkin.papers.document import equations_document
 from symkin.papers.registry import load, paper_names
+from symkin.papers.summary import Summary, paper_items, summarize
 from symkin.papers.texbuild import compile_pdf, find_pdflatex
 
-__all__ = ["paper_names", "load", "PaperResult", "run", "check_target", "write_atomically", "format_table"]
+__all__ = [
+    "paper_names", "load", "PaperResult", "Summary", "summarize", "run", "check_target", "write_atomically",
+    "format_table", "report_json", "report_schema", "SCHEMA_VERSION",
+]
+
+#: The version of the layout of report.json, described by ``report.schema.json`` beside this
+#: module (:func:`report_schema`).  A new key raises the minor number, a changed or removed
+#: one the major number.
+SCHEMA_VERSION = "1.0"
 
 
 @dataclass
 class PaperResult:
+    """One paper's checks, its list of printed items, figures and notes."""
+
     key: str
     citation: str
     checks: list[Check]
     figures: list[Path] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
     seconds: float = 0.0
+    items: list[PrintedItem] = field(default_factory=list)
 
     @property
     def ok(self) -> bool:
+        """True when no check differs (``differs`` is the only failing verdict)."""
         return all(c.verdict.ok for c in self.checks)
+
+    @property
+    def item_results(self) -> list[ItemResult]:
+        """Every printed item with its paper checks (see :func:`~symkin.papers.summary.paper_items`)."""
+        return paper_items(self)
+
+
+@cache
+def report_schema() -> dict[str, Any]:
+    """The JSON Schema of report.json (``symkin/papers/report.schema.json``).
+
+    >>> report_schema()["properties"]["schema_version"]["const"] == SCHEMA_VERSION
+    True
+    """
+    text = resources.files("symkin.papers").joinpath("report.schema.json").read_text(encoding="utf-8")
+    schema: dict[str, Any] = json.loads(text)
+    return schema
 
 
 def run(
@@ -83,7 +115,8 @@ def run(
             figures = list(mod.figures(figures_dir))
             notes = list(getattr(mod, "notes", lambda: [])())
             results.append(
-                PaperResult(name, mod.CITATION, checks, figures, notes, time.perf_counter() - start)
+                PaperResult(name, mod.CITATION, checks, figures, notes, time.perf_counter() - start,
+                            list(getattr(mod, "PRINTED_ITEMS", ())))
             )
         bar.step("writing report.json, report.txt, equations.tex")
         data = report_json(results, tmp)
@@ -108,20 +141,27 @@ _POST_BUILD: list[Callable[[Path, list[PaperResult]], None]] = []
 
 
 def report_json(results: list[PaperResult], root: Path) -> dict[str, Any]:
+    """The content of report.json (``root``: the folder the figure paths are relative to).
+
+    Every check carries its kind, verdict, derived and published objects as text and
+    LaTeX (and as floats when they are numbers), and the alternative or confirmation a
+    slip or an error rests on; every paper lists its printed items with their verdicts.
+    ``report.schema.json`` (:func:`report_schema`) describes the whole layout.
+    """
     checks = [c for r in results for c in r.checks]
+    summary = summarize(results).to_json()
+    summary["by_verdict"] = {v: sum(c.verdict.value == v for c in checks) for v in sorted({c.verdict.value for c in checks})}
     return {
+        "schema_version": SCHEMA_VERSION,
         "symkin_version": __version__,
-        "summary": {
-            "checks": len(checks),
-            "ok": sum(c.verdict.ok for c in checks),
-            "differs": sum(not c.verdict.ok for c in checks),
-            "by_verdict": {v: sum(c.verdict.value == v for c in checks) for v in sorted({c.verdict.value for c in checks})},
-        },
+        "summary": summary,
         "papers": {
             r.key: {
                 "citation": r.citation,
                 "ok": r.ok,
                 "seconds": round(r.seconds, 3),
+                "summary": summarize([r]).to_json(),
+                "items": [i.to_json() for i in r.item_results],
                 "checks": [c.to_json() for c in r.checks],
                 "figures": [str(p.relative_to(root)) for p in r.figures],
                 "notes": r.notes,
@@ -169,25 +209,31 @@ def _short(text: str, width: int) -> str:
 
 
 def format_table(results: list[PaperResult]) -> str:
-    """The verification table: paper, equation, derived, published, verdict."""
-    rows = [("paper", "result", "derived", "published", "verdict")]
+    """The verification table (paper, kind, result, derived, published, verdict), the
+    summary line, the evidence of every verdict other than a plain match, and the printed
+    items no check compares."""
+    rows = [("paper", "kind", "result", "derived", "published", "verdict")]
     for r in results:
         for c in r.checks:
-            rows.append((r.key, c.label, _short(_plain(c.derived), 38), _short(_plain(c.published), 38), c.verdict.value))
-    widths = [max(len(row[i]) for row in rows) for i in range(5)]
+            rows.append((r.key, c.kind.value, c.label, _short(_plain(c.derived), 38), _short(_plain(c.published), 38),
+                         c.verdict.value))
+    widths = [max(len(row[i]) for row in rows) for i in range(len(rows[0]))]
     lines = ["  ".join(cell.ljust(w) for cell, w in zip(row, widths)).rstrip() for row in rows]
     lines.insert(1, "  ".join("-" * w for w in widths))
-    checks = [c for r in results for c in r.checks]
-    bad = [c for c in checks if not c.verdict.ok]
+    summary = summarize(results)
     lines.append("")
-    lines.append(
-        f"{len(checks)} checks: {len(checks) - len(bad)} reproduced"
-        + (f", {len(bad)} differ: " + ", ".join(f"{c.paper} {c.label}" for c in bad) if bad else "")
-    )
+    lines.append(summary.line())
+    bad = [c for r in results for c in r.checks if not c.verdict.ok]
+    if bad:
+        lines.append("differ: " + ", ".join(f"{c.paper} {c.label}" for c in bad))
     for r in results:
-        slips = [c for c in r.checks if c.verdict.value.startswith("paper slip") or c.verdict.value.startswith("match (")]
-        for c in slips:
-            lines.append(f"  {r.key} {c.label}: {c.verdict.value}: {c.comparison.detail}")
+        for c in r.checks:
+            if c.verdict is not Verdict.MATCH:
+                lines.append(f"  {r.key} {c.label} [{c.kind.value}]: {c.verdict.value}: {c.comparison.detail}")
+    unchecked = [(r.key, i) for r in results for i in r.item_results if i.verdict is None]
+    if unchecked:
+        lines.append("printed items not checked:")
+        lines += [f"  {key} {i.item.item} ({i.item.what}): {i.item.not_checked or 'no reason given'}" for key, i in unchecked]
     return "\n".join(lines) + "\n"
 
 

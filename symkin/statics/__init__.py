@@ -1,5 +1,10 @@
 """Statics: torques and tooth forces, derived from the model where they can be.
 
+:mod:`.power` holds the statics of any train: every link's torque per unit input torque
+and every tooth force from the equilibrium of the links (virtual power on the contact
+conditions), the power through each mesh, and the efficiency in closed form by the
+basic-train method, both ways, with self-locking and circulating power (:func:`statics`).
+
 :mod:`.planet` holds the statics of a stepped planet: its torque balance and helical
 axial forces derived from the mesh geometry (:func:`planet_statics`), the hands that
 cancel the axial forces (:func:`balancing_hands`, :func:`mesh_hand_relation`), and an
@@ -20,5 +25,6 @@ from symkin.statics.planet import (
     planet_forces,
     planet_statics,
 )
+from symkin.statics.power import DEFAULT_EFFICIENCY, MeshPower, Statics, efficiency_symbol, mesh_efficiencies, statics
 
-__all__ = ["PlanetStatics", "planet_statics", "mesh_hand_relation", "balancing_hands", "PlanetForces", "planet_forces"]
+__all__ = ["statics", "Statics", "MeshPower", "efficiency_symbol", "mesh_efficiencies", "DEFAULT_EFFICIENCY", "PlanetStatics", "planet_statics", "mesh_hand_relation", "balancing_hands", "PlanetForces", "planet_forces"]

@@ -106,6 +106,8 @@ class Frames:
         exprs += list(origin.position)
         links = []
         for link in mech.links:
+            if link.axis == "radial":  # a bevel pinion spins across the plane: not drawn as a circle
+                continue
             gears = tuple((g.name, _number(g.radius, subs, f"pitch radius of gear {g.name}"), g.internal) for g in link.gears)
             if not gears and (link.kind is LinkKind.FRAME or not _carries(mech, link.name)):
                 continue
@@ -113,8 +115,8 @@ class Frames:
             marker = motion.particle(link.name, (1, 0), relative_to="pole")
             exprs += list(axis.position) + list(marker.position)
             links.append((link.name, link.kind.value, gears, link.carrier))
-        for link, point in particles:
-            exprs += list(motion.particle(link, point, relative_to=relative_to).position)
+        for link, point in particles:  # seen from +z: a path in space is drawn by its x and y
+            exprs += list(motion.particle(link, point, relative_to=relative_to).position)[:2]
         columns = np.array(on_grid(exprs, t, subs, what="animate the mechanism"))
         main_xy = columns[0:2].T
         n = len(links)
@@ -123,6 +125,7 @@ class Frames:
         angle = np.unwrap(np.arctan2(block[:, 3] - block[:, 1], block[:, 2] - block[:, 0]), axis=-1)
         rest = columns[2 + 4 * n :].reshape(len(particles), 2, frames)
         particle_xy = np.stack([rest[:, 0], rest[:, 1]], axis=-1)
+        links, axis_xy, angle = _copies(mech, links, axis_xy, angle, main_xy)
         names = tuple(labels) if labels else tuple(f"link {name}, point {tuple(p)}" for name, p in particles)
         return cls(t, tuple(links), axis_xy, angle, main_xy, particle_xy, names, title or mech.name or "mechanism")
 
@@ -140,6 +143,29 @@ class Frames:
         cx, cy = (lo + hi) / 2
         half = max(hi - lo) / 2 + pad
         return cx - half, cx + half, cy - half, cy + half
+
+
+def _copies(mech: Any, links: list, axis_xy: np.ndarray, angle: np.ndarray, main_xy: np.ndarray) -> tuple[list, np.ndarray, np.ndarray]:
+    """The other planets of each kind (``count`` equally spaced): the drawn planet turned
+    about the main axis by 2 pi j / count, with its orientation (the set of planets is
+    symmetric, so each copy moves as the first one turned)."""
+    extra_links, extra_xy, extra_angle = [], [], []
+    for i, (name, kind, gears, carrier) in enumerate(links):
+        count = mech.link(name).count if kind == "planet" else 1
+        carried_by_main = carrier is None or mech.link(carrier).kind is not LinkKind.PLANET
+        if count < 2 or not carried_by_main:
+            continue
+        offset = axis_xy[i] - main_xy
+        for j in range(1, count):
+            phi = 2 * np.pi * j / count
+            c, s = np.cos(phi), np.sin(phi)
+            turned = np.stack([c * offset[:, 0] - s * offset[:, 1], s * offset[:, 0] + c * offset[:, 1]], axis=-1)
+            extra_links.append((f"{name}#{j + 1}", kind, gears, carrier))
+            extra_xy.append(main_xy + turned)
+            extra_angle.append(angle[i] + phi)
+    if not extra_links:
+        return links, axis_xy, angle
+    return links + extra_links, np.concatenate([axis_xy, np.array(extra_xy)]), np.concatenate([angle, np.array(extra_angle)])
 
 
 def _number(expr: Any, subs: Mapping[Any, Any], what: str) -> float:
@@ -162,8 +188,8 @@ class _Artists:
         self.gear_lines: list[tuple[int, float, bool, Line2D, Line2D]] = []
         self.arms: list[tuple[int, int, Line2D]] = []
         index = {name: i for i, (name, *_rest) in enumerate(frames.links)}
-        for i, (_name, kind, gears, carrier) in enumerate(frames.links):
-            colour = _COLOURS[i % len(_COLOURS)]
+        for i, (name, kind, gears, carrier) in enumerate(frames.links):
+            colour = _COLOURS[index[name.split("#")[0]] % len(_COLOURS)]  # a planet's copies in its colour
             for _gname, radius, internal in gears:
                 (circle,) = ax.plot([], [], color=colour, lw=1.6 if internal else 1.2)
                 (marks,) = ax.plot([], [], color=colour, lw=0.9)

@@ -29,6 +29,7 @@ from symkin.errors import InputError
 from symkin.model import LinkKind, Mechanism
 
 __all__ = [
+    "space_figure",
     "default_particles",
     "draw_pitch_circles",
     "draw_trajectories",
@@ -60,14 +61,35 @@ def draw_pitch_circles(ax: Any, mech: Mechanism, values: Mapping[Any, Any] | Non
     named = as_values(values)
     for link in mech.links:
         centre = (0.0, 0.0)
+        if link.axis == "radial":  # a bevel pinion's pitch circle stands across the plane: seen edge on
+            _draw_pinion(ax, mech, link, named)
+            continue
         if link.kind is LinkKind.PLANET:
-            arm = float(substitute(sp.sympify(mech.arm(link.name)), named))
-            ang = float(substitute(sp.sympify(link.position_angle), named))
-            centre = (arm * np.cos(ang), arm * np.sin(ang))
+            x, y = (float(substitute(sp.sympify(c), named)) for c in mech.axis_position(link.name))
+            centre = (x, y)
         for gear in link.gears:
             r = float(substitute(gear.radius, named))
             ax.add_patch(Circle(centre, r, fill=False, lw=0.6, ls="--" if gear.internal else "-", color="0.6"))
             ax.annotate(gear.name, (centre[0] + r * 0.7071, centre[1] + r * 0.7071), color="0.45", fontsize=7)
+
+
+def _draw_pinion(ax: Any, mech: Mechanism, link: Any, named: Mapping[str, Any]) -> None:
+    """A bevel pinion seen from +z: its pitch circle edge on, a segment across its axis at
+    the side gears' radius."""
+    alpha = float(substitute(sp.sympify(mech.position_angle(link.name)), named))
+    x0, y0 = (float(substitute(sp.sympify(c), named)) for c in mech.axis_position(link.carrier))
+    for mesh in mech.meshes:
+        geo = mech.mesh_geometry(mesh)
+        if geo.kind != "bevel" or link.name not in (geo.link_a.name, geo.link_b.name):
+            continue
+        reach = float(substitute(geo.centre_distance, named))
+        cx, cy = x0 + reach * np.cos(alpha), y0 + reach * np.sin(alpha)
+        half = abs(float(substitute(geo.pitch_y, named)))
+        dx, dy = -np.sin(alpha) * half, np.cos(alpha) * half
+        ax.plot([cx - dx, cx + dx], [cy - dy, cy + dy], lw=0.8, color="0.6")
+        ax.plot([x0, cx], [y0, cy], lw=0.5, ls=":", color="0.6")
+        gear = geo.gear_a if geo.link_a.name == link.name else geo.gear_b
+        ax.annotate(gear.name, (cx + dx, cy + dy), color="0.45", fontsize=7)
 
 
 def draw_trajectories(
@@ -84,7 +106,7 @@ def draw_trajectories(
     """Draw the path of each (link, point) particle from t = 0 to ``t_end``."""
     for i, (link, point) in enumerate(particles):
         p = motion.particle(link, point, relative_to=relative_to)
-        _, x, y = p.trajectory(t_end, samples=samples, values=values)
+        x, y = p.trajectory(t_end, samples=samples, values=values)[1:3]  # seen from +z for a path in space
         label = labels[i] if labels else f"link {link}, point {tuple(point)}"
         (line,) = ax.plot(x, y, lw=1.1, label=label)
         ax.plot(x[:1], y[:1], "o", ms=3, color=line.get_color())
@@ -109,6 +131,50 @@ def trajectory_figure(
     ax.set_aspect("equal")
     ax.set_title(title or mech.name)
     ax.legend(fontsize=7, loc="upper right")
+    return fig
+
+
+def space_figure(
+    motion: Any,
+    particles: Sequence[tuple[str, Sequence[Any]]],
+    t_end: float,
+    *,
+    relative_to: str = "pole",
+    values: Mapping[Any, Any] | None = None,
+    labels: Sequence[str] | None = None,
+    title: str | None = None,
+    samples: int = 1441,
+) -> Figure:
+    """Particle paths in space (the frame moving in space, or bevel pinions), in 3-D axes,
+    with the path of the main axis point O when the frame moves.
+
+    >>> from symkin import schemes, symbols as S
+    >>> from symkin.particles import SpaceFrame
+    >>> motion = schemes.single_row_AI(radii=(1, 1, 3)).motion({"4": 0, "H": 1}, frame=SpaceFrame(z=S.t))
+    >>> fig = space_figure(motion, [("2", (1, 0))], 6.3)
+    >>> fig.axes[0].name
+    '3d'
+    """
+    fig = Figure(figsize=(6, 5.5))
+    ax = fig.add_subplot(projection="3d")
+    space = getattr(motion, "space", None)
+    if space is not None and not space.still:
+        from symkin.numeric.sampling import on_grid, time_grid
+
+        t = time_grid(t_end, samples=samples)
+        ox, oy, oz = on_grid([space.x, space.y, space.z], t, values, what="sample the frame's motion")
+        ax.plot(ox, oy, oz, lw=0.8, ls="--", color="0.5", label="main axis point O")
+    for i, (link, point) in enumerate(particles):
+        p = motion.particle(link, tuple(point) + ((0,) if len(point) == 2 else ()), relative_to=relative_to)
+        _, x, y, z = p.trajectory(t_end, samples=samples, values=values)
+        label = labels[i] if labels else f"link {link}, point {tuple(point)}"
+        (line,) = ax.plot(x, y, z, lw=1.0, label=label)
+        ax.plot(x[:1], y[:1], z[:1], "o", ms=3, color=line.get_color())
+    ax.set_xlabel("x")
+    ax.set_ylabel("y")
+    ax.set_zlabel("z")
+    ax.set_title(title or motion.mechanism.name or "paths in space", fontsize=9)
+    ax.legend(fontsize=7, loc="upper left")
     return fig
 
 

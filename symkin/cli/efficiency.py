@@ -1,0 +1,91 @@
+"""``symkin efficiency``: torques, tooth forces, power flow and efficiency of a scheme or a train."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from symkin.cli.common import add_command, add_scheme_argument, add_teeth_argument, emit, mechanism_of
+from symkin.errors import InputError
+
+__all__ = ["register"]
+
+
+def register(sub: Any) -> None:
+    p = add_command(
+        sub, "efficiency",
+        help="efficiency (both ways), torques, tooth forces and power flow, in closed form",
+        description="The efficiency of a scheme or a train with one link driving another while links are held "
+        "(and clutches joined), by the basic-train method: each mesh's efficiency applies to the power it carries "
+        "relative to the carrier, in the direction the kinematics and the load give. Prints the efficiency both "
+        "ways (exact and as a float), whether the train locks itself when driven from the output, every link's "
+        "torque and every tooth force per unit input torque, and the power through each mesh; --latex adds the "
+        "law with the mesh efficiencies as symbols.",
+        run=run_efficiency,
+    )
+    add_scheme_argument(p, train=True)
+    add_teeth_argument(p, "200,99,100,201", required=False)
+    p.add_argument("--state", metavar="NAME", help="a train file's gear state (its input, output, brakes, clutches)")
+    p.add_argument("--driver", help="the input link (not with --state)")
+    p.add_argument("--driven", help="the output link (not with --state)")
+    p.add_argument("--fixed", action="append", default=[], metavar="LINK", help="a held link (repeat)")
+    p.add_argument("--mesh-efficiency", action="append", default=[], metavar="ETA or A-B=ETA",
+                   help="every mesh's efficiency (one number), or one mesh's (A-B=0.97, repeat); default: the train "
+                   "file's, else 0.98 external and 0.99 internal")
+    p.add_argument("--latex", action="store_true", help="print the efficiency law in LaTeX, mesh efficiencies as symbols")
+
+
+def run_efficiency(args: Any) -> int:
+    from symkin._util.parsing import parse_number
+    from symkin.printing import latex
+    from symkin.statics import statics
+
+    mech, about, title = mechanism_of(args)
+    joined: tuple = ()
+    if args.state is not None:
+        if args.driver or args.driven or args.fixed:
+            raise InputError("give either --state NAME or --driver/--driven/--fixed, not both")
+        if not hasattr(mech, "state"):
+            raise InputError("--state belongs to a train file (--train FILE)")
+        st = mech.state(args.state)
+        inp, out, fixed, joined = st.input, st.output, st.brakes, st.clutches
+    else:
+        if not args.driver or not args.driven:
+            raise InputError("name the input and the output: --driver LINK --driven LINK (and --fixed LINK), or --state")
+        inp, out, fixed = args.driver, args.driven, tuple(args.fixed)
+    efficiency: Any = "default"
+    per_mesh: dict[str, Any] = {}
+    for item in args.mesh_efficiency:
+        if "=" in item:
+            key, _, value = item.partition("=")
+            per_mesh[key.strip()] = parse_number(value, what=f"--mesh-efficiency {key.strip()}")
+        else:
+            if len(args.mesh_efficiency) > 1:
+                raise InputError("give one --mesh-efficiency ETA for every mesh, or A-B=ETA for each mesh, not both")
+            efficiency = parse_number(item, what="--mesh-efficiency")
+    if per_mesh:
+        from symkin.statics.power import DEFAULT_EFFICIENCY, _sides
+
+        filled = {}
+        for s in _sides(mech):
+            key = f"{s.mesh.a}-{s.mesh.b}"
+            default = s.mesh.efficiency or DEFAULT_EFFICIENCY["internal" if s.internal else "external"]
+            filled[key] = per_mesh.pop(key, per_mesh.pop(f"{s.mesh.b}-{s.mesh.a}", default))
+        if per_mesh:
+            raise InputError(f"no mesh {sorted(per_mesh)[0]!r}; the meshes are {', '.join(filled)}")
+        efficiency = filled
+    elif efficiency == "default" and any(m.efficiency is not None for m in mech.meshes):
+        efficiency = None  # the train file's own values (the rest default below)
+        from symkin.statics.power import DEFAULT_EFFICIENCY, _sides
+
+        efficiency = {f"{s.mesh.a}-{s.mesh.b}": s.mesh.efficiency or DEFAULT_EFFICIENCY["internal" if s.internal else "external"]
+                      for s in _sides(mech)}
+    result = statics(mech, input=inp, output=out, fixed=fixed, joined=joined, efficiency=efficiency)
+    data = {**about, **result.to_json()}
+    text = f"{title}\n{result.text()}"
+    if args.latex:
+        symbolic = statics(mech, input=inp, output=out, fixed=fixed, joined=joined)
+        data["latex"] = latex(symbolic.efficiency)
+        data["latex_backward"] = latex(symbolic.backward.efficiency)
+        text += f"\nLaTeX: {data['latex']}\nLaTeX, driven back: {data['latex_backward']}"
+    emit(args, text, data)
+    return 0

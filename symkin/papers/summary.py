@@ -1,0 +1,121 @@
+"""Counts of a reproduction: printed items by verdict, checks by kind, and the summary line.
+
+    >>> from symkin.papers.checks import Check, PrintedItem, compare_exact
+    >>> from types import SimpleNamespace
+    >>> paper = SimpleNamespace(checks=[Check.make("p", "(1)", "", 2, 2, compare_exact(2, 2))],
+    ...                         items=[PrintedItem("(1)", "a law"), PrintedItem("(2)", "a claim", "not derivable")])
+    >>> summarize([paper]).line()
+    '1 of 2 paper items reproduced, 0 slips explained, 0 paper errors confirmed, 0 differ, 1 not checked; 0 consistency checks; 0 extensions'
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from dataclasses import dataclass
+from typing import Any
+
+from symkin.papers.checks import ItemResult, Kind, PrintedItem, Verdict, item_results
+
+__all__ = ["Summary", "summarize", "paper_items"]
+
+
+def paper_items(result: Any) -> list[ItemResult]:
+    """A paper's printed items with their checks (``result`` has ``checks`` and ``items``).
+
+    A paper that lists no items gets one per distinct ``item`` of its paper checks.
+    """
+    items = list(getattr(result, "items", None) or [])
+    if not items:
+        items = [
+            PrintedItem(name, "(not listed by the paper module)")
+            for name in dict.fromkeys(c.item for c in result.checks if c.kind is Kind.PAPER)
+        ]
+    return item_results(items, result.checks)
+
+
+@dataclass(frozen=True)
+class Summary:
+    """Counts over papers: printed items by verdict, and checks by kind.
+
+    >>> Summary(items=3, reproduced=2, slips=1).line()
+    '2 of 3 paper items reproduced, 1 slip explained, 0 paper errors confirmed, 0 differ; 0 consistency checks; 0 extensions'
+    """
+
+    items: int = 0
+    reproduced: int = 0
+    slips: int = 0
+    errors: int = 0
+    differ: int = 0
+    not_checked: int = 0
+    paper_checks: int = 0
+    consistency: int = 0
+    consistency_differ: int = 0
+    extensions: int = 0
+    extensions_differ: int = 0
+    checks: int = 0
+    differs: int = 0
+
+    def line(self) -> str:
+        """The one-line summary: paper items apart from consistency checks and extensions."""
+
+        def plural(n: int, word: str, words: str | None = None) -> str:
+            return f"{n} {word if n == 1 else (words or word + 's')}"
+
+        def more(n: int, bad: int) -> str:
+            return f" ({bad} differ)" if bad else ""
+
+        parts = [
+            f"{self.reproduced} of {self.items} paper items reproduced",
+            plural(self.slips, "slip") + " explained",
+            plural(self.errors, "paper error") + " confirmed",
+            f"{self.differ} differ",
+        ]
+        if self.not_checked:
+            parts.append(f"{self.not_checked} not checked")
+        return (
+            ", ".join(parts)
+            + "; " + plural(self.consistency, "consistency check") + more(self.consistency, self.consistency_differ)
+            + "; " + plural(self.extensions, "extension") + more(self.extensions, self.extensions_differ)
+        )
+
+    def to_json(self) -> dict[str, Any]:
+        return {
+            "line": self.line(),
+            "paper_items": {"total": self.items, "reproduced": self.reproduced, "slips": self.slips,
+                            "errors": self.errors, "differ": self.differ, "not_checked": self.not_checked},
+            "paper_checks": self.paper_checks,
+            "consistency": {"checks": self.consistency, "differ": self.consistency_differ},
+            "extension": {"checks": self.extensions, "differ": self.extensions_differ},
+            "checks": self.checks,
+            "ok": self.checks - self.differs,
+            "differs": self.differs,
+        }
+
+
+def summarize(results: Iterable[Any]) -> Summary:
+    """Count printed items by their combined verdict and checks by kind (``results``: objects with
+    ``checks`` and ``items``, such as :class:`~symkin.papers.reproduce.PaperResult`)."""
+    results = list(results)
+    items = [r for res in results for r in paper_items(res)]
+    checks = [c for res in results for c in res.checks]
+
+    def count(kind: Kind, bad: bool = False) -> int:
+        return sum(c.kind is kind and (not bad or not c.verdict.ok) for c in checks)
+
+    return Summary(
+        items=len(items),
+        reproduced=sum(r.verdict is not None and r.verdict.agrees for r in items),
+        slips=sum(r.verdict is Verdict.SLIP for r in items),
+        errors=sum(r.verdict is Verdict.ERROR for r in items),
+        differ=sum(r.verdict is Verdict.DIFFERS for r in items),
+        not_checked=sum(r.verdict is None for r in items),
+        paper_checks=count(Kind.PAPER),
+        consistency=count(Kind.CONSISTENCY),
+        consistency_differ=count(Kind.CONSISTENCY, True),
+        extensions=count(Kind.EXTENSION),
+        extensions_differ=count(Kind.EXTENSION, True),
+        checks=len(checks),
+        differs=sum(not c.verdict.ok for c in checks),
+    )
+
+

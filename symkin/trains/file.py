@@ -1,0 +1,426 @@
+"""Train files: any train symkin can model, written as TOML and read into a :class:`Train`.
+
+The file reads like a stick diagram: the links, the gears each holds, which link carries
+each planet, which gears mesh, and the gear states.  The minimal form::
+
+    name = "Ravigneaux"
+    module = 1                        # pitch radius = module * teeth / 2 unless a gear gives radius
+    meshes = [["s1", "p1"], ["p1", "p2"], ["p2", "s2"], ["p2", "r"]]
+    [links.S1]                        # a link turning about the main axis
+    gears = { s1 = 30 }               # gear name = teeth (an integer, or a string naming a symbol)
+    [links.C]                         # a carrier needs no gears
+    [links.P1]
+    carrier = "C"                     # a planet, carried by C; its position is solved from its meshes
+    gears = { p1 = 18 }
+    [links.R]
+    gears = { r = { teeth = 72, internal = true } }
+    [links.frame]                     # gears fixed to the frame, if any
+    [states.first]                    # a gear state: brakes hold links, clutches join links
+    input = "S1"
+    output = "R"
+    brakes = ["S2"]
+    clutches = []                     # e.g. [["S1", "S2"]]
+
+Beyond it (all optional):
+
+- top level: ``description``;
+- a gear as a table: ``teeth``, ``internal``, ``module`` (its own), ``radius`` (a pitch
+  radius given directly, e.g. a working one), ``bevel = true`` (a bevel gear) and, for a
+  bevel side gear, ``side = 1`` or ``-1`` (it meets the pinions above or below their axes);
+- a planet: ``angle`` (its position on the carrier at t = 0, radians; text such as
+  ``"pi/3"`` is exact), ``arm`` (its distance from its carrier's axis; ``0``: it turns
+  about its carrier's own axis), ``count`` (equal planets of this kind, equally spaced);
+  its ``carrier`` may be a planet (nested carriers, a planet of a planet); ``axis =
+  "radial"`` makes it a bevel pinion (its axis perpendicular to its carrier's);
+- a mesh as a table: ``{ gears = ["p", "s2"], centre_distance = 60 }``: a working centre
+  distance other than the pitch circles give, i.e. a profile-shifted mesh (the working
+  circles keep the tooth ratio, so the ratio is exact and the planet axis coaxial);
+  ``efficiency = 0.985``: the mesh's efficiency for the statics (symkin efficiency);
+- a state: ``description``;
+- ``[base]``: the base (the frame) moving in space, expressions in t: ``x``, ``y``, ``z``
+  of the main axis point O and ``yaw``, ``pitch``, ``roll`` of the frame (the motion the
+  drawing commands use; a drill head on a manipulator).
+
+Numbers are exact as written (``0.8`` is 4/5); text values are parsed from symkin's
+allow-list (never evaluated).  A bad file is a :class:`~symkin.errors.TrainFileError`
+naming the file, the table and the key.
+
+    >>> train = load_train("double-pinion")
+    >>> train.ratio("S", "R", fixed="C").rhs     # two external meshes and an internal one: positive
+    3
+"""
+
+from __future__ import annotations
+
+import importlib.resources
+import re
+import sys
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Any
+
+import sympy as sp
+
+from symkin._util.parsing import as_rational, parse_expression
+from symkin.errors import ModelError, SymkinError, TrainFileError
+from symkin.model import FRAME, Gear, Link, Mesh
+from symkin.trains.train import State, Train
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover - Python 3.10
+    import tomli as tomllib  # type: ignore[import-not-found]  # (Python 3.10 only)
+
+__all__ = ["load_train", "read_train", "ready_made", "READY_MADE", "MAX_FILE_BYTES"]
+
+#: The largest train file read (a train of hundreds of links is a few kB).
+MAX_FILE_BYTES = 1_000_000
+#: Keys each table may hold.
+_TOP = {"name", "description", "module", "meshes", "links", "states", "base"}
+_BASE = {"x", "y", "z", "yaw", "pitch", "roll"}
+_LINK = {"gears", "carrier", "angle", "arm", "count", "axis"}
+_GEAR = {"teeth", "internal", "module", "radius", "bevel", "side"}
+_MESH = {"gears", "centre_distance", "efficiency"}
+_STATE = {"input", "output", "brakes", "clutches", "description"}
+_SYMBOL = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
+#: The link name of the frame in a file.
+FRAME_TABLE = "frame"
+
+
+def _library() -> Any:
+    return importlib.resources.files("symkin.trains") / "library"
+
+
+def ready_made() -> dict[str, str]:
+    """The ready-made train files shipped with symkin: name -> description.
+
+    >>> sorted(ready_made())[:4]
+    ['bevel-differential', 'bevel-epicyclic', 'double-pinion', 'ferguson']
+    """
+    out = {}
+    for entry in sorted(_library().iterdir(), key=lambda e: e.name):
+        if entry.name.endswith(".toml"):
+            data = tomllib.loads(entry.read_text(encoding="utf-8"))
+            out[entry.name[: -len(".toml")]] = str(data.get("description", "")).split("\n")[0]
+    return out
+
+
+#: Names of the ready-made trains (``--train NAME``).
+READY_MADE = tuple(ready_made())
+
+
+def load_train(source: str | Path) -> Train:
+    """A train from a TOML file, or a ready-made one by name (:func:`ready_made`).
+
+    A path to an existing file is read; a bare name such as ``"ravigneaux"`` is a
+    ready-made train.  Raises :class:`~symkin.errors.TrainFileError` with the file, the
+    table and the key when the file is not a train.
+
+    >>> load_train("wolfrom").shift("drive").ratio.rhs
+    76
+    """
+    if isinstance(source, Path) or (isinstance(source, str) and (source.endswith(".toml") or _exists(source))):
+        path = Path(source)
+        try:
+            if path.is_dir():
+                raise TrainFileError(str(path), "", "is a folder; give a train file (TOML)")
+            if path.stat().st_size > MAX_FILE_BYTES:
+                raise TrainFileError(str(path), "", f"the file is larger than {MAX_FILE_BYTES} bytes; a train file is a few kB")
+            text = path.read_text(encoding="utf-8")
+        except (OSError, UnicodeDecodeError) as err:
+            raise TrainFileError(str(path), "", f"cannot be read ({type(err).__name__}: {err}); give a readable "
+                                 "UTF-8 TOML file") from None
+        return read_train(text, str(path))
+    if not isinstance(source, str):
+        raise TrainFileError(repr(source), "", "a train is a file path or a ready-made name")
+    entry = _library() / f"{source}.toml"
+    if len(source) > 100 or not _SYMBOL.match(source.replace("-", "_")) or not entry.is_file():
+        raise TrainFileError(source, "", f"no such file, and no ready-made train of that name; the ready-made "
+                             f"trains are {', '.join(READY_MADE)}")
+    return read_train(entry.read_text(encoding="utf-8"), source)
+
+
+def _exists(path: str) -> bool:
+    try:
+        return Path(path).exists()
+    except (OSError, ValueError):  # a name too long for a path, or with a NUL: not a file
+        return False
+
+
+def read_train(text: str, path: str = "<train>") -> Train:
+    """A train from the text of a train file (``path`` names it in errors)."""
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as err:
+        raise TrainFileError(path, "", f"not valid TOML ({err})") from None
+    return _Reader(path, data).train()
+
+
+class _Reader:
+    def __init__(self, path: str, data: Mapping[str, Any]):
+        self.path, self.data = path, data
+
+    def fail(self, where: str, problem: str) -> TrainFileError:
+        return TrainFileError(self.path, where, problem)
+
+    # ---- values
+    def keys(self, table: Any, allowed: set[str], where: str) -> Mapping[str, Any]:
+        if not isinstance(table, Mapping):
+            raise self.fail(where, f"must be a table (key = value lines), got {_show(table)}")
+        unknown = sorted(set(table) - allowed)
+        if unknown:
+            raise self.fail(where, f"unknown key {unknown[0]!r}; the keys here are {', '.join(sorted(allowed))}")
+        return table
+
+    def number(self, value: Any, where: str, *, positive: bool = True) -> sp.Expr:
+        try:
+            if isinstance(value, str):
+                expr = parse_expression(value, what="the value")
+                if not expr.is_number or expr.is_extended_real is False:
+                    raise self.fail(where, f"must be a number, got {value!r}")
+            elif isinstance(value, bool) or not isinstance(value, (int, float)):
+                raise self.fail(where, f"must be a number, got {_show(value)}")
+            else:
+                expr = as_rational(value, what="the value")
+        except TrainFileError:
+            raise
+        except SymkinError as err:
+            raise self.fail(where, str(err)) from None
+        if positive and not expr.is_positive:
+            raise self.fail(where, f"must be positive, got {_show(value)}")
+        return expr
+
+    def angle(self, value: Any, where: str) -> sp.Expr:
+        return self.number(value, where, positive=False)
+
+    def teeth(self, value: Any, where: str) -> sp.Expr:
+        if isinstance(value, str):
+            if not _SYMBOL.match(value):
+                raise self.fail(where, f"a symbolic tooth number is a name such as \"z1\", got {value!r}")
+            return sp.Symbol(value, positive=True, integer=True)
+        if isinstance(value, bool) or not isinstance(value, int):
+            raise self.fail(where, f"a tooth number is a whole number (or a name such as \"z1\"), got {_show(value)}")
+        if value < 1 or value > 10**9:
+            raise self.fail(where, f"a tooth number is from 1 to 10^9, got {value}")
+        return sp.Integer(value)
+
+    def name(self, value: Any, where: str) -> str:
+        if not isinstance(value, str) or not value:
+            raise self.fail(where, f"must be a name (a string), got {_show(value)}")
+        return value
+
+    # ---- tables
+    def gear(self, name: str, spec: Any, module: sp.Expr, where: str) -> Gear:
+        try:
+            if isinstance(spec, Mapping):
+                spec = self.keys(spec, _GEAR, where)
+                internal = spec.get("internal", False)
+                bevel = spec.get("bevel", False)
+                side = spec.get("side", 0)
+                for key, value in (("internal", internal), ("bevel", bevel)):
+                    if not isinstance(value, bool):
+                        raise self.fail(f"{where} {key}", f"must be true or false, got {_show(value)}")
+                if isinstance(side, bool) or side not in (-1, 0, 1):
+                    raise self.fail(f"{where} side", f"is 1 (the side gear meets the bevel pinions above their axes) or "
+                                    f"-1 (below), got {_show(side)}")
+                m = self.number(spec["module"], f"{where} module") if "module" in spec else module
+                z = self.teeth(spec["teeth"], f"{where} teeth") if "teeth" in spec else None
+                if "radius" in spec:
+                    return Gear(name, self.number(spec["radius"], f"{where} radius"), teeth=z, internal=internal, module=m,
+                                bevel=bevel, side=side)
+                if z is None:
+                    raise self.fail(where, "give the gear's teeth (or its radius)")
+                return Gear.from_teeth(name, z, internal=internal, module=m, bevel=bevel, side=side)
+            return Gear.from_teeth(name, self.teeth(spec, where), module=module)
+        except ModelError as err:
+            if isinstance(err, TrainFileError):
+                raise
+            raise self.fail(where, str(err)) from None
+
+    def train(self) -> Train:
+        data = self.keys(self.data, _TOP, "top level")
+        name = data.get("name", "")
+        if not isinstance(name, str):
+            raise self.fail("name", f"must be a string, got {_show(name)}")
+        description = data.get("description", "")
+        if not isinstance(description, str):
+            raise self.fail("description", f"must be a string, got {_show(description)}")
+        module = self.number(data["module"], "module") if "module" in data else sp.Integer(1)
+        links_table = data.get("links")
+        if not isinstance(links_table, Mapping) or not links_table:
+            raise self.fail("[links]", "the file names no links; add a [links.NAME] table for each link")
+        gear_owner: dict[str, str] = {}
+        specs: dict[str, Mapping[str, Any]] = {}
+        for link_name, table in links_table.items():
+            where = f"[links.{link_name}]"
+            specs[link_name] = self.keys(table, _LINK, where)
+            gears = specs[link_name].get("gears", {})
+            if not isinstance(gears, Mapping):
+                raise self.fail(f"{where} gears", f"must be a table of gear = teeth, got {_show(gears)}")
+            for g in gears:
+                if g in gear_owner:
+                    raise self.fail(f"{where} gears", f"gear {g!r} is also on link {gear_owner[g]!r}; give every gear its own name")
+                if g in links_table:
+                    raise self.fail(f"{where} gears", f"gear {g!r} has the name of a link; give gears and links different names")
+                gear_owner[g] = link_name
+        self._check_carriers(specs)
+        links = []
+        for link_name, table in specs.items():
+            where = f"[links.{link_name}]"
+            gears = [self.gear(g, spec, module, f"{where} gears.{g}") for g, spec in table.get("gears", {}).items()]
+            try:
+                if link_name in (FRAME_TABLE, FRAME):
+                    extra = sorted(set(table) - {"gears"})
+                    if extra:
+                        raise self.fail(f"{where} {extra[0]}", "the frame holds fixed gears only")
+                    links.append(Link.frame(*gears))
+                elif "carrier" in table:
+                    carrier = self.name(table["carrier"], f"{where} carrier")
+                    carrier = FRAME if carrier == FRAME_TABLE else carrier
+                    count = table.get("count", 1)
+                    if isinstance(count, bool) or not isinstance(count, int):
+                        raise self.fail(f"{where} count", f"must be a whole number of planets, got {_show(count)}")
+                    axis = table.get("axis", "parallel")
+                    if axis not in ("parallel", "radial"):
+                        raise self.fail(f"{where} axis", f"is \"parallel\" (a planet) or \"radial\" (a bevel pinion), got {_show(axis)}")
+                    links.append(Link.planet(
+                        link_name, *gears, carrier=carrier, axis=axis,
+                        arm=(sp.Integer(0) if table.get("arm") == 0 else self.number(table["arm"], f"{where} arm"))
+                        if "arm" in table else None,
+                        position_angle=self.angle(table["angle"], f"{where} angle") if "angle" in table else None,
+                        count=count,
+                    ))
+                else:
+                    extra = sorted(set(table) & {"angle", "arm", "count", "axis"})
+                    if extra:
+                        raise self.fail(f"{where} {extra[0]}", "only a planet (a link with a carrier) takes this key")
+                    links.append(Link.central(link_name, *gears))
+            except TrainFileError:
+                raise
+            except ModelError as err:
+                raise self.fail(where, str(err)) from None
+        meshes = self.meshes(data.get("meshes"), gear_owner)
+        states = self.states(data.get("states", {}), set(links_table) | set(gear_owner))
+        base = self.base(data["base"]) if "base" in data else None
+        try:
+            return Train(tuple(links), tuple(meshes), name=name, states=tuple(states), description=description,
+                         source=self.path, base=base)
+        except TrainFileError:
+            raise
+        except ModelError as err:
+            raise self.fail(self._where_of(str(err), specs), str(err)) from None
+
+    def base(self, table: Any) -> Any:
+        from symkin.particles import SpaceFrame
+
+        table = self.keys(table, _BASE, "[base]")
+        values = {}
+        for key, value in table.items():
+            where = f"[base] {key}"
+            if isinstance(value, (int, float)) and not isinstance(value, bool):
+                values[key] = self.number(value, where, positive=False)
+            elif isinstance(value, str):
+                try:
+                    values[key] = parse_expression(value, names=("t",), what="the value")
+                except SymkinError as err:
+                    raise self.fail(where, str(err)) from None
+            else:
+                raise self.fail(where, f"must be a number or an expression in t, got {_show(value)}")
+        try:
+            return SpaceFrame.euler(values.get("x", 0), values.get("y", 0), values.get("z", 0), yaw=values.get("yaw", 0),
+                                    pitch=values.get("pitch", 0), roll=values.get("roll", 0))
+        except SymkinError as err:
+            raise self.fail("[base]", str(err)) from None
+
+    def _check_carriers(self, specs: Mapping[str, Mapping[str, Any]]) -> None:
+        for link_name, table in specs.items():
+            if "carrier" not in table:
+                continue
+            carrier = table["carrier"]
+            where = f"[links.{link_name}] carrier"
+            if not isinstance(carrier, str):
+                raise self.fail(where, f"must name a link, got {_show(carrier)}")
+            if carrier not in specs and carrier != FRAME_TABLE:
+                raise self.fail(where, f"names no link {carrier!r}; the links are {', '.join(specs)}")
+            chain, at = [link_name], carrier
+            while at in specs and "carrier" in specs[at]:
+                chain.append(at)
+                if at == link_name or len(chain) > len(specs):
+                    raise self.fail(where, "carrier cycle: " + " -> ".join(chain + [specs[at]["carrier"]]) +
+                                    "; a chain of carriers must end on a link about the main axis")
+                at = specs[at]["carrier"]
+
+    def meshes(self, items: Any, owner: Mapping[str, str]) -> list[Mesh]:
+        if items is None:
+            raise self.fail("meshes", "the file lists no meshes; add meshes = [[\"a\", \"b\"], ...] before the first [table]")
+        if not isinstance(items, list):
+            raise self.fail("meshes", f"must be a list of gear pairs, got {_show(items)}")
+        out = []
+        for k, item in enumerate(items, 1):
+            where = f"meshes[{k}]"
+            distance = efficiency = None
+            if isinstance(item, Mapping):
+                item = self.keys(item, _MESH, where)
+                if "centre_distance" in item:
+                    distance = self.number(item["centre_distance"], f"{where} centre_distance")
+                if "efficiency" in item:
+                    efficiency = self.number(item["efficiency"], f"{where} efficiency")
+                    if not efficiency <= 1:
+                        raise self.fail(f"{where} efficiency", f"must lie in (0, 1], got {_show(item['efficiency'])}")
+                item = item.get("gears")
+            if not isinstance(item, list) or len(item) != 2:
+                raise self.fail(where, f"a mesh is a pair of gear names [\"a\", \"b\"], got {_show(item)}")
+            for g in item:
+                if g not in owner:
+                    raise self.fail(where, f"names no gear {g!r}; the gears are {', '.join(owner)}")
+            try:
+                mesh = Mesh(item[0], item[1], centre_distance=distance, efficiency=efficiency)
+            except ModelError as err:
+                raise self.fail(where, str(err)) from None
+            out.append(mesh)
+        return out
+
+    def states(self, table: Any, names: set[str]) -> list[State]:
+        if not isinstance(table, Mapping):
+            raise self.fail("[states]", f"must be tables [states.NAME], got {_show(table)}")
+        out = []
+        for state_name, spec in table.items():
+            where = f"[states.{state_name}]"
+            spec = self.keys(spec, _STATE, where)
+            for key in ("input", "output"):
+                if key not in spec:
+                    raise self.fail(where, f"give the {key} link ({key} = \"LINK\")")
+            brakes = spec.get("brakes", [])
+            clutches = spec.get("clutches", [])
+            if not isinstance(brakes, list) or not all(isinstance(b, str) for b in brakes):
+                raise self.fail(f"{where} brakes", f"must be a list of link names, got {_show(brakes)}")
+            if not isinstance(clutches, list) or not all(
+                    isinstance(c, list) and len(c) == 2 and all(isinstance(x, str) for x in c) for c in clutches):
+                raise self.fail(f"{where} clutches", f"must be a list of link pairs [[\"A\", \"B\"], ...], got {_show(clutches)}")
+            used = [spec["input"], spec["output"], *brakes, *(x for c in clutches for x in c)]
+            for n in used:
+                if not isinstance(n, str) or (n not in names and n != FRAME_TABLE):
+                    raise self.fail(where, f"names no link {n!r}; the links are {', '.join(sorted(names))}")
+            description = spec.get("description", "")
+            if not isinstance(description, str):
+                raise self.fail(f"{where} description", f"must be a string, got {_show(description)}")
+            frame = lambda n: FRAME if n == FRAME_TABLE else n  # noqa: E731
+            out.append(State(state_name, spec["input"], spec["output"], tuple(frame(b) for b in brakes),
+                             tuple((frame(a), frame(b)) for a, b in clutches), description))
+        return out
+
+    def _where_of(self, message: str, specs: Mapping[str, Any]) -> str:
+        """The table an error of the model is about, when it names a link or a state."""
+        state = re.match(r"state '([^']+)'", message)
+        if state:
+            return f"[states.{state.group(1)}]"
+        named = [(m.start(), name) for name in specs
+                 for m in [re.search(rf"\b(planets?|links?|carrier) {re.escape(name)}\b", message)] if m]
+        if named:
+            return f"[links.{min(named)[1]}]"
+        return "meshes" if "mesh" in message or "gears" in message else ""
+
+
+def _show(value: Any) -> str:
+    text = repr(value)
+    return text if len(text) <= 40 else text[:37] + "..."

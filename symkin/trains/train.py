@@ -1,0 +1,208 @@
+"""A train: a mechanism with its gear states (brakes and clutches), and its shift table.
+
+A :class:`Train` is a :class:`~symkin.model.Mechanism` (everything that takes a
+mechanism takes a train) that also knows its :class:`State` s: in each, an input link,
+an output link, the links held by brakes and the pairs of links joined by clutches.
+:meth:`Train.shift` derives a state's ratio and every link's speed; :meth:`Train.shift_table`
+all of them.
+
+    >>> from symkin.trains import load_train
+    >>> train = load_train("ravigneaux")
+    >>> [(s.state.name, s.ratio.rhs) for s in train.shift_table()][:2]
+    [('first', 12/5), ('second', 22/15)]
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import sympy as sp
+
+from symkin import symbols as S
+from symkin._util.jsonout import exact_json, float_text
+from symkin.errors import DeterminacyError, ModelError
+from symkin.kinematics import Speeds, solve_speeds
+from symkin.laws import Law
+from symkin.model import FRAME, Mechanism
+
+__all__ = ["State", "Train", "Shift", "ShiftTable"]
+
+
+@dataclass(frozen=True)
+class State:
+    """A gear state: which link drives, which is driven, which are held and joined.
+
+    Parameters
+    ----------
+    name : str
+    input, output : str
+        Links (or gears, for the link holding them).
+    brakes : tuple of str
+        Links held to the frame.
+    clutches : tuple of (str, str)
+        Pairs of links made to turn together.
+    description : str
+    """
+
+    name: str
+    input: str
+    output: str
+    brakes: tuple[str, ...] = ()
+    clutches: tuple[tuple[str, str], ...] = ()
+    description: str = ""
+
+
+@dataclass(frozen=True)
+class Shift:
+    """A state solved: its ratio ``omega_input / omega_output`` and every link's speed."""
+
+    state: State
+    ratio: Law
+    speeds: Speeds
+
+    def to_json(self) -> dict[str, Any]:
+        return {
+            "state": self.state.name,
+            "input": self.state.input,
+            "output": self.state.output,
+            "brakes": list(self.state.brakes),
+            "clutches": [list(c) for c in self.state.clutches],
+            "ratio": exact_json(self.ratio.rhs),
+            "speeds_per_input": {n: exact_json(sp.cancel(v / S.omega(self.state.input))) for n, v in self.speeds.items()},
+        }
+
+
+@dataclass(frozen=True)
+class ShiftTable:
+    """Every state of a train solved, in the file's order (what ``symkin states`` prints)."""
+
+    train: Train
+    shifts: tuple[Shift, ...]
+
+    def __iter__(self) -> Any:
+        return iter(self.shifts)
+
+    def __len__(self) -> int:
+        return len(self.shifts)
+
+    def __getitem__(self, k: int) -> Shift:
+        return self.shifts[k]
+
+    def text(self) -> str:
+        rows = [("state", "input", "output", "brakes", "clutches", "ratio", "float")]
+        for s in self.shifts:
+            st = s.state
+            value = s.ratio.rhs
+            rows.append((st.name, st.input, st.output, ", ".join(st.brakes) or "-",
+                         ", ".join(f"{a}+{b}" for a, b in st.clutches) or "-", str(value),
+                         float_text(value)))
+        widths = [max(len(r[i]) for r in rows) for i in range(len(rows[0]))]
+        lines = ["  ".join(c.ljust(w) for c, w in zip(r, widths)).rstrip() for r in rows]
+        lines.insert(1, "  ".join("-" * w for w in widths).rstrip())
+        title = self.train.name or "train"
+        return f"{title}: {len(self.shifts)} state{'s' * (len(self.shifts) != 1)}, ratio = omega_input/omega_output\n" + \
+            "\n".join(lines)
+
+    def to_json(self) -> dict[str, Any]:
+        return {"train": self.train.name, "states": [s.to_json() for s in self.shifts]}
+
+
+@dataclass(frozen=True)
+class Train(Mechanism):
+    """A mechanism with named gear states (see the module docstring).
+
+    Parameters
+    ----------
+    links, meshes, name
+        As for :class:`~symkin.model.Mechanism`.
+    states : tuple of State
+    description : str
+    source : str
+        Where it was read from (a file, or a ready-made train's name).
+    base : SpaceFrame, optional
+        The base's motion in space the file gives ([base]): the drawing commands use it.
+    """
+
+    states: tuple[State, ...] = ()
+    description: str = ""
+    source: str = ""
+    base: Any = None
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        object.__setattr__(self, "states", tuple(self.states))
+        seen: set[str] = set()
+        for st in self.states:
+            if not isinstance(st, State):
+                raise ModelError(f"{st!r} is not a State")
+            if st.name in seen:
+                raise ModelError(f"two states are called {st.name!r}; give every state its own name")
+            seen.add(st.name)
+            self._check_state(st)
+
+    def _check_state(self, st: State) -> None:
+        where = f"state {st.name!r}"
+        names = [st.input, st.output, *st.brakes, *(x for pair in st.clutches for x in pair)]
+        for n in names:
+            try:
+                self.link(n)
+            except ModelError as err:
+                raise ModelError(f"{where}: {err}") from None
+        inp, out = self.link(st.input).name, self.link(st.output).name
+        held = {self.link(b).name for b in st.brakes}
+        if inp == out:
+            raise ModelError(f"{where}: the input and the output are the same link {inp}; name two links")
+        if FRAME in (inp, out):
+            raise ModelError(f"{where}: the frame cannot be the input or the output")
+        if held & {inp, out}:
+            raise ModelError(f"{where}: link {sorted(held & {inp, out})[0]} is both held by a brake and the "
+                             f"{'input' if inp in held else 'output'}")
+
+    @property
+    def state_names(self) -> tuple[str, ...]:
+        return tuple(s.name for s in self.states)
+
+    def state(self, name: str) -> State:
+        """The state called ``name``."""
+        for s in self.states:
+            if s.name == name:
+                return s
+        raise ModelError(f"no state {name!r} in this train; its states are {', '.join(self.state_names) or '(none)'}")
+
+    def shift(self, state: str | State) -> Shift:
+        """The ratio ``omega_input / omega_output`` of a state and every link's speed.
+
+        A brake holds its link (speed 0), a clutch makes two links turn together; with
+        the input turning, every link must then be determined exactly once: a state that
+        leaves a link free or locks the train is a
+        :class:`~symkin.errors.DeterminacyError` naming the state and the links.
+
+        >>> from symkin.trains import load_train
+        >>> print(load_train("wolfrom").shift("drive").ratio)
+        i_{SR2} = 76
+        """
+        st = self.state(state) if isinstance(state, str) else state
+        return self._memo(("shift", st), lambda: self._shift(st))
+
+    def _shift(self, st: State) -> Shift:
+        inp, out = self.link(st.input).name, self.link(st.output).name
+        known: dict[str, Any] = {self.link(b).name: 0 for b in st.brakes if self.link(b).name != FRAME}
+        known[inp] = S.omega(inp)
+        joined = [(self.link(a).name, self.link(b).name) for a, b in st.clutches]
+        try:
+            speeds = solve_speeds(self, known, joined=joined)
+        except DeterminacyError as err:
+            raise type(err)(f"state {st.name!r}: {err}", dof=err.dof, admissible=err.admissible) from None
+        per_input = sp.cancel(speeds[out] / S.omega(inp))
+        if per_input == 0:
+            raise ModelError(f"state {st.name!r}: the output {out} stands still while {inp} turns; the ratio is infinite")
+        held = tuple(self.link(b).name for b in st.brakes)
+        desc = f"state {st.name}: omega_{inp}/omega_{out}" + (f", {', '.join(held)} held" if held else "") + \
+            (f", {', '.join(f'{a}+{b}' for a, b in joined)} joined" if joined else "")
+        ratio = Law(S.ratio_symbol(inp, out, held), sp.cancel(1 / per_input), desc)
+        return Shift(st, ratio, speeds)
+
+    def shift_table(self) -> ShiftTable:
+        """Every state solved, in order (a :class:`ShiftTable`: iterate, print ``.text()``)."""
+        return ShiftTable(self, tuple(self.shift(s) for s in self.states))
