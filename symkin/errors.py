@@ -32,6 +32,7 @@ __all__ = [
     "CoaxialityWarning",
     "PoleError",
     "PoleWarning",
+    "FloatOverflowWarning",
     "PrecisionWarning",
     "SimplificationBudgetWarning",
 ]
@@ -126,6 +127,11 @@ class NonFiniteInputWarning(SymkinWarning):
 
 class PoleWarning(SymkinWarning):
     """A float evaluation met a pole: the points concerned hold inf or nan, never a finite wrong value."""
+
+
+class FloatOverflowWarning(SymkinWarning):
+    """A float evaluation overflowed: the law is finite there but beyond the float range; the
+    points concerned hold inf or nan (use smaller inputs, other units, or the mpmath backend)."""
 
 
 class PrecisionWarning(SymkinWarning):

@@ -24,7 +24,9 @@ from +z.
 
 from __future__ import annotations
 
+import decimal
 import enum
+import re
 from collections import OrderedDict
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
@@ -35,7 +37,7 @@ import sympy as sp
 
 from symkin import symbols as S
 from symkin._util.budget import simplify_within
-from symkin._util.parsing import as_expr
+from symkin._util.parsing import as_expr, as_rational, sign_of
 from symkin.errors import CoaxialityWarning, ModelError, warn_user
 
 __all__ = ["FRAME", "MAIN_AXIS", "LinkKind", "Gear", "Link", "Mesh", "Mechanism", "as_length", "as_teeth"]
@@ -71,7 +73,14 @@ def as_length(value: Any, what: str) -> sp.Expr:
             raise ModelError(f"{what} must be a finite number, got {value!r}")
         if expr.is_extended_real is False:
             raise ModelError(f"{what} must be real, got {value!r}")
-    if expr.is_positive is False:
+        # decided on intervals, not by SymPy's assumptions (which leave sin(1)**2 + cos(1)**2 - 1 open)
+        sign = sign_of(expr, what=what, error=ModelError)
+        if sign is None:
+            raise ModelError(f"{what} must be positive, got {value!r}, which is 0 to 1233 digits; give a positive "
+                             f"{what.split(' of ')[0]}")
+        if sign != 1:
+            raise ModelError(f"{what} must be positive, got {value!r}; give a positive {what.split(' of ')[0]}")
+    elif expr.is_positive is False:
         raise ModelError(f"{what} must be positive, got {value!r}; give a positive {what.split(' of ')[0]}")
     return expr
 
@@ -86,7 +95,10 @@ def as_teeth(value: Any, what: str) -> sp.Expr:
     ...
     symkin.errors.ModelError: teeth of gear 1 must be a whole number, got 20.5; tooth numbers are positive integers
     """
-    expr = as_expr(value, what=what, text=False, finite=False, error=ModelError)
+    exact = value
+    if isinstance(value, decimal.Decimal):  # an exact decimal, as a Fraction is: Decimal("20") is 20
+        exact = as_rational(value, what=what, text=False, error=ModelError)
+    expr = as_expr(exact, what=what, text=False, finite=False, error=ModelError)
     if expr.is_number:
         if not expr.is_Integer:
             if expr.is_finite and expr.is_integer:  # e.g. Float 20.0: still refuse, it is not exact
@@ -101,9 +113,32 @@ def as_teeth(value: Any, what: str) -> sp.Expr:
     return expr
 
 
+#: A link or gear name: ASCII letters and digits, joined by single ``_ - .``, maybe ending in
+#: primes.  Names go into symbol names (``omega_<link>``, ``r_<gear>``) and from there into
+#: LaTeX; these characters print as themselves in a subscript with base TeX Live, where a
+#: backslash, a brace, ``% & # $ ^ ~``, a blank or a non-ASCII letter would run a command,
+#: break the document, or need fonts it has not.
+_NAME = re.compile(r"[A-Za-z0-9]+(?:[_.\-][A-Za-z0-9]+)*'*", re.ASCII)
+
+
 def _name(value: Any, what: str) -> str:
-    if not isinstance(value, str) or not value or not value.isprintable() or value.strip() != value:
-        raise ModelError(f"{what} must be a non-empty printable name without surrounding blanks, got {value!r}")
+    r"""``value`` if it is a valid link or gear name (see :data:`_NAME`).
+
+    >>> _name("planet-2", "link name")
+    'planet-2'
+    >>> _name("\\input{/etc/hostname}", "link name")
+    Traceback (most recent call last):
+    ...
+    symkin.errors.ModelError: link name must be ASCII letters and digits, joined by single _ - . and perhaps ending in ', such as 1, H, sun or planet-2; got '\\input{/etc/hostname}' (names are printed in LaTeX)
+    """
+    if not isinstance(value, str) or not value:
+        raise ModelError(f"{what} must be a non-empty name such as 1, H, sun or planet-2, got {value!r}")
+    if not _NAME.fullmatch(value):
+        shown = value if len(value) <= 40 else value[:37] + "..."
+        raise ModelError(
+            f"{what} must be ASCII letters and digits, joined by single _ - . and perhaps ending in ', such as 1, H, "
+            f"sun or planet-2; got {shown!r} (names are printed in LaTeX)"
+        )
     return value
 
 

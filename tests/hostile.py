@@ -13,7 +13,8 @@ of :data:`HOSTILE` in its place.  :func:`run` runs one argument list in this pro
   a failure with ``--json`` prints ``{"error": ..., "exit": status}`` on stdout;
 - no injected code ran: the marker file the injection strings try to create is absent;
 - the run ends within :data:`LIMIT` seconds of CPU time (the process's own: a machine shared
-  with other jobs slows the wall clock, not the work a command does).
+  with other jobs slows the wall clock, not the work a command does), or within a hostile
+  shape's own bound (:data:`SHAPES`).
 
 ``python tests/hostile.py`` runs the whole table and prints the counts per command and
 every problem found (the test module runs the same table).
@@ -77,10 +78,53 @@ HOSTILE: tuple[str, ...] = (
     "2**-999",
 )
 
-#: Seconds one run may take before it counts as a hang.
+#: Hostile shapes of expressions (not only values), each with the seconds its run may take:
+#: nested functions whose value needs millions of digits, towers of powers, long flat sums,
+#: zero in disguise, Unicode look-alikes of names and operators, and numbers at the edge of
+#: the accepted sizes.  A refusal must come within the bound, as one line and exit 2.
+SHAPES: dict[str, float] = {
+    "sin(exp(exp(exp(3))))": 8.0,  # the sine of a number of 230 million digits
+    "cos(exp(exp(exp(2.9))))": 8.0,
+    "tan(exp(exp(9)))": 8.0,
+    "sin(" * 30 + "1" + ")" * 30: 8.0,  # nested 30 deep: accepted, and quick
+    "exp(" * 61 + "1" + ")" * 61: 8.0,  # nested past the limit
+    "((sqrt(2)**999)**999)**999": 8.0,  # a tower of an irrational base: 10^150000
+    "(pi**999)**999": 8.0,
+    "E**E**E**E": 8.0,
+    "2**2**2**2**2": 8.0,
+    "10**300*10": 8.0,
+    "exp(-800)": 8.0,  # below 1e-300
+    "+".join(["1"] * 999): 8.0,  # a flat sum of 999 terms (999): one level, not 999
+    "+".join(["sin(1)"] * 300): 8.0,
+    "sin(1)**2+cos(1)**2-1": 8.0,  # zero in disguise
+    "1/(sin(1)**2+cos(1)**2-1)": 8.0,
+    "sqrt(-1)": 8.0,
+    "acos(2)": 8.0,
+    "log(0)": 8.0,
+    "tan(pi/2)": 8.0,
+    "atan2(0,0)": 8.0,
+    "\u0455in(1)": 8.0,  # Cyrillic s
+    "2\u00b7pi": 8.0,  # middle dot
+    "\u03c0": 8.0,  # the letter pi
+    "\u22121": 8.0,  # the minus sign U+2212
+    "sin\uff081\uff09": 8.0,  # fullwidth parentheses
+    "1e300": 8.0,
+    "-1e300": 8.0,
+    "1e-300": 8.0,
+    "exp(690)": 8.0,
+    "exp(-690)": 8.0,
+}
+HOSTILE = HOSTILE + tuple(SHAPES)
+
+#: Seconds one run may take before it counts as a hang (a value of SHAPES: its own bound).
 LIMIT = 20.0
 #: A command that waits (sleeps, blocks) without using CPU is stopped after this many times LIMIT of wall clock.
 WALL_FACTOR = 5
+
+
+def seconds_for(value: str) -> float:
+    """The wall-clock bound of a run with ``value`` in it."""
+    return SHAPES.get(value, LIMIT)
 
 
 @dataclass(frozen=True)
@@ -198,6 +242,7 @@ class Outcome:
     err: str
     seconds: float
     hung: bool = False
+    limit: float = LIMIT
 
 
 @contextlib.contextmanager
@@ -206,7 +251,10 @@ def _alarm(seconds: float) -> Iterator[None]:
         raise Hang(f"longer than {seconds} s")
 
     # ITIMER_PROF counts this process's CPU time (all its threads), not the wall clock; a wall-clock
-    # alarm at WALL_FACTOR times the limit still stops a command that waits without working
+    # alarm at WALL_FACTOR times the limit still stops a command that waits without working.  An
+    # outer wall-clock timer (pytest-timeout's per-test limit) is put back with what is left of it.
+    outer_left, outer_interval = signal.getitimer(signal.ITIMER_REAL)
+    start = time.monotonic()
     previous = {sig: signal.signal(sig, handler) for sig in (signal.SIGPROF, signal.SIGALRM)}
     signal.setitimer(signal.ITIMER_PROF, seconds)
     signal.setitimer(signal.ITIMER_REAL, seconds * WALL_FACTOR)
@@ -217,10 +265,12 @@ def _alarm(seconds: float) -> Iterator[None]:
         signal.setitimer(signal.ITIMER_REAL, 0)
         for sig, old in previous.items():
             signal.signal(sig, old)
+        if outer_left > 0:
+            signal.setitimer(signal.ITIMER_REAL, max(outer_left - (time.monotonic() - start), 1e-6), outer_interval)
 
 
 def run(argv: tuple[str, ...], folder: Path, limit: float = LIMIT) -> Outcome:
-    """Run ``symkin *argv`` in this process, in ``folder``, with a time limit."""
+    """Run ``symkin *argv`` in this process, in ``folder``, with a time limit (seconds)."""
     from symkin.cli import main
 
     out, err = io.StringIO(), io.StringIO()
@@ -238,7 +288,7 @@ def run(argv: tuple[str, ...], folder: Path, limit: float = LIMIT) -> Outcome:
         hung = True
     finally:
         os.chdir(cwd)
-    return Outcome(argv, code, out.getvalue(), err.getvalue(), time.process_time() - start, hung)
+    return Outcome(argv, code, out.getvalue(), err.getvalue(), time.process_time() - start, hung, limit)
 
 
 def _no_nan(token: str) -> None:
@@ -247,8 +297,8 @@ def _no_nan(token: str) -> None:
 
 def verdict(outcome: Outcome, folder: Path, ok_codes: frozenset[int] = frozenset({0, 2})) -> str | None:
     """What is wrong with ``outcome``, or None."""
-    if outcome.hung:
-        return f"did not finish within {LIMIT} s of CPU time"
+    if outcome.hung or outcome.seconds > outcome.limit:
+        return f"did not finish within {outcome.limit:g} s of CPU time"
     if (folder / MARKER).exists():
         return "an injected command ran (the marker file exists)"
     if outcome.code not in ok_codes:
@@ -292,7 +342,7 @@ def sweep(names: list[str] | None = None, root: Path | None = None, *, echo: boo
             for n, (i, value, argv) in enumerate(cases(name)):
                 folder = Path(tmp) / f"{name}-{n}"
                 folder.mkdir()
-                outcome = run(argv, folder)
+                outcome = run(argv, folder, seconds_for(value))
                 counts[name] = counts.get(name, 0) + 1
                 problem = verdict(outcome, folder, cmd.ok_codes)
                 if echo and outcome.code == 0 and not problem:

@@ -4,6 +4,7 @@ no string reaches Python's evaluator."""
 
 import math
 import os
+from decimal import Decimal
 from fractions import Fraction
 
 import pytest
@@ -12,7 +13,18 @@ import sympy as sp
 import symkin
 from symkin import SymkinError, schemes
 from symkin import symbols as S
-from symkin._util.parsing import parse_expression, parse_integer, parse_number
+from symkin._util.parsing import (
+    as_expr,
+    as_float,
+    as_fraction,
+    as_integer,
+    as_rational,
+    as_real,
+    as_values,
+    parse_expression,
+    parse_integer,
+    parse_number,
+)
 from symkin.drives import AngleLaw, ConstantSpeed, EllipticalGears
 from symkin.mechanisms.cardan import CardanSlider
 from symkin.mechanisms.helical import (
@@ -31,7 +43,11 @@ MARKER = "PWNED_API"
 INJECTION = f"__import__('os').system('touch {MARKER}')"
 #: Values put in place of each argument of every entry point below.
 BAD = [None, True, "", INJECTION, "abc", [1, 2], {}, object(), float("nan"), float("inf"), -1, 0, 10**400,
-       Fraction(1, 3), sp.nan, sp.zoo, sp.I, sp.Symbol("q")]
+       Fraction(1, 3), sp.nan, sp.zoo, sp.I, sp.Symbol("q"),
+       # numbers that are not finite reals, or are beyond 1e300 or below 1e-300, written so that SymPy keeps them
+       sp.tan(sp.pi / 2, evaluate=False), sp.atan2(0, 0, evaluate=False), sp.log(0, evaluate=False), sp.acos(2),
+       sp.Pow(sp.sqrt(2), 10**6, evaluate=False), sp.exp(10**6), sp.Float("1e-320"), Decimal("1e-999"),
+       "tan(pi/2)", "((sqrt(2)**999)**999)**999", "sin(exp(exp(exp(3))))"]
 
 AA = schemes.two_row("AA", teeth=(100, 100, 101, 99))
 MOTION = schemes.single_row_AI(radii=(1, 1, 3)).motion({"4": 0, "H": 1})
@@ -90,7 +106,23 @@ ENTRY_POINTS = {
     "parse_expression": (lambda text: parse_expression(text), dict(text="2*pi")),
     "parse_number": (lambda text: parse_number(text), dict(text="0.5")),
     "parse_integer": (lambda text: parse_integer(text), dict(text="12")),
+    "as_expr": (lambda value: as_expr(value, what="x"), dict(value="2*pi")),
+    "as_float": (lambda value: as_float(value, what="x"), dict(value="pi/2")),
+    "as_real": (lambda value: as_real(value, what="x"), dict(value="pi/6")),
+    "as_rational": (lambda value: as_rational(value, what="x"), dict(value="0.8")),
+    "as_integer": (lambda value: as_integer(value, what="x"), dict(value="12")),
+    "as_fraction": (lambda value: as_fraction(value, what="x"), dict(value="1/4")),
+    "as_values": (lambda value: as_values({"r_1": value}), dict(value="3/2")),
 }
+
+
+def shown(value) -> str:
+    """repr of a value for a failure message, shortened (an int of 5000 digits has no repr)."""
+    try:
+        text = repr(value)
+    except ValueError:
+        text = f"<int of {len(str(value.bit_length()))} digit bit length>"
+    return text[:40]
 
 
 def test_every_entry_point_works_with_its_valid_arguments():
@@ -111,9 +143,13 @@ def test_bad_arguments_give_a_result_or_a_symkin_error(name, tmp_path, monkeypat
             except SymkinError as err:
                 message = str(err)
                 if "\n" in message or not message.strip() or len(message) > 2000:
-                    problems.append(f"{key}={value!r:.40}: message {message[:200]!r}")
+                    problems.append(f"{key}={shown(value)}: message {message[:200]!r}")
             except Exception as err:
-                problems.append(f"{key}={value!r:.40}: {type(err).__name__}: {str(err)[:150]}")
+                try:
+                    text = str(err)[:150]
+                except Exception:
+                    text = "(its message cannot be printed)"
+                problems.append(f"{key}={shown(value)}: {type(err).__name__}: {text}")
     assert not (tmp_path / MARKER).exists(), "an injected string was evaluated"
     assert tried == len(valid) * len(BAD)
     assert not problems, "\n".join(problems)

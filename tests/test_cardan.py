@@ -3,6 +3,7 @@
 import numpy as np
 import pytest
 import sympy as sp
+from zero import zero
 
 from symkin import InputError, ModelError
 from symkin import symbols as S
@@ -14,10 +15,6 @@ t = S.t
 w = S.omega("H")
 z1, z3 = S.teeth("1"), S.teeth("3")
 l1 = sp.Symbol("l_1", positive=True)
-
-
-def zero(expr):
-    return sp.simplify(sp.expand_trig(sp.expand(expr))) == 0
 
 
 def test_vector_loop_and_superposition_give_the_same_pin_for_any_ratio_pin_and_installation():

@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 import sympy as sp
-from hostile import COMMANDS, HOSTILE, MARKER, Outcome, cases, run, verdict
+from hostile import COMMANDS, HOSTILE, MARKER, Outcome, cases, run, seconds_for, verdict
 
 from symkin.cli import build_parser
 
@@ -30,7 +30,7 @@ def test_hostile_values_give_an_answer_or_one_line_and_exit_2(name, tmp_path):
     for n, (i, value, argv) in enumerate(cases(name)):
         folder = tmp_path / str(n)
         folder.mkdir()
-        outcome = run(argv, folder)
+        outcome = run(argv, folder, seconds_for(value))
         tried += 1
         problem = verdict(outcome, folder, COMMANDS[name].ok_codes)
         if problem:

@@ -99,3 +99,33 @@ def test_models_and_bad_input():
         lost_motion(0)
     with pytest.raises(InputError, match="module must be positive"):
         StageErrorModel.from_backlash_line(50, 1, module=0, ring=180)
+
+
+# ---- positivity is decided on intervals, not on samples
+TOUCH = "Abs(u - 5.123456789)"
+
+
+def test_a_model_that_touches_zero_between_samples_is_refused():
+    import numpy as np
+
+    model = StageErrorModel.from_expression(TOUCH)
+    # 401 samples of [2, 12], as the check used to take, all see a positive value: sampling misses the touch
+    grid = np.linspace(2.0, 12.0, 401)
+    assert (np.abs(grid - 5.123456789) > 1e-3).all()
+    with pytest.raises(InputError, match=r"not positive over \[2, 12\]: at u = 5.12346 it is not shown to be positive"):
+        model.check_positive(2, 12)
+    # a model that is positive everywhere, however closely it comes to 0, is shown so
+    StageErrorModel.from_expression("(u - 5.123456789)**2 + 1e-12").check_positive(2, 12)
+    # at a bound, the bound is named
+    with pytest.raises(InputError, match="at u = 12 it is not positive"):
+        StageErrorModel.from_expression("12 - u").check_positive(2, 12)
+    with pytest.raises(InputError, match="at u = 5 a divisor in it vanishes"):
+        StageErrorModel.from_expression("1/(u - 5)**2").check_positive(2, 12)
+
+
+def test_the_split_command_refuses_a_model_that_touches_zero(capsys):
+    from symkin.cli import main
+
+    code = main(["split", "--total", "500", "--stages", "3", "--umin", "2", "--umax", "12", "--model", TOUCH])
+    err = capsys.readouterr().err
+    assert code == 2 and "is not positive over [2, 12]" in err and len(err.strip().splitlines()) == 1

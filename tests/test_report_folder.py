@@ -16,6 +16,7 @@ import sympy as sp
 
 from symkin import ToolError, schemes
 from symkin import symbols as S
+from symkin._util.atomic import MANIFEST, write_manifest
 from symkin.cli import main
 from symkin.papers.checks import Check, alternative, compare_exact, compare_symbolic, judge
 from symkin.papers.document import equations_document
@@ -24,10 +25,11 @@ from symkin.papers.texbuild import compile_pdf
 
 
 def previous_report(folder: Path) -> Path:
-    """A folder that looks like an earlier report, with a marker file."""
+    """A folder symkin wrote earlier (its manifest lists its files), with a marker file among them."""
     folder.mkdir()
     (folder / "report.json").write_text(json.dumps({"symkin_version": "0.0"}))
     (folder / "marker.txt").write_text("previous")
+    write_manifest(folder, "0.0")
     return folder
 
 
@@ -201,3 +203,159 @@ def test_a_complete_run_replaces_the_previous_report(tmp_path, capsys):
     data = json.loads((out / "report.json").read_text())
     assert data["summary"]["differs"] == 0
     assert not [p for p in tmp_path.iterdir() if p.name != "report"]
+
+
+# ---- what a report folder is, and what a user added to it
+def test_a_folder_with_a_report_json_but_no_manifest_is_not_a_report(tmp_path, capsys):
+    # on c69a8be any folder whose report.json held symkin_version was replaced whole
+    folder = tmp_path / "thesis"
+    folder.mkdir()
+    (folder / "report.json").write_text(json.dumps({"symkin_version": "0.2.0"}))
+    (folder / "chapter1.tex").write_text("years of work")
+    code, _, err = cli(capsys, "reproduce", "alyushin2009", "--out", str(folder), "--no-pdf", "--quiet")
+    assert code == 2 and "not a symkin report" in err and MANIFEST in err and len(err.strip().splitlines()) == 1
+    assert (folder / "chapter1.tex").read_text() == "years of work"
+
+
+def test_files_a_user_added_to_a_report_are_kept(tmp_path, capsys):
+    # on c69a8be they were deleted without a word when the folder was replaced
+    out = tmp_path / "report"
+    assert cli(capsys, "reproduce", "alyushin2009", "--out", str(out), "--no-pdf", "--quiet")[0] == 0
+    (out / "notes.txt").write_text("my notes")
+    (out / "data").mkdir()
+    (out / "data" / "measured.csv").write_text("t,x\n0,1\n")
+    (out / "figures" / "sketch.png").write_bytes(b"mine")
+    (out / "empty").mkdir()
+    code, _, err = cli(capsys, "reproduce", "alyushin2009", "--out", str(out), "--no-pdf", "--quiet")
+    assert code == 0, err
+    assert (out / "notes.txt").read_text() == "my notes"
+    assert (out / "data" / "measured.csv").read_text() == "t,x\n0,1\n"
+    assert (out / "figures" / "sketch.png").read_bytes() == b"mine" and (out / "empty").is_dir()
+    manifest = json.loads((out / MANIFEST).read_text())["files"]
+    assert "notes.txt" not in manifest and "report.json" in manifest and "figures/alyushin2009_trajectories.png" in manifest
+    assert not [p for p in tmp_path.iterdir() if p.name != "report"]
+
+
+def test_a_file_symkin_wrote_and_the_user_changed_is_named_and_nothing_is_replaced(tmp_path, capsys):
+    out = tmp_path / "report"
+    assert cli(capsys, "reproduce", "alyushin2009", "--out", str(out), "--no-pdf", "--quiet")[0] == 0
+    (out / "report.txt").write_text("my edited table")
+    before = (out / "report.json").read_bytes()
+    code, _, err = cli(capsys, "reproduce", "alyushin2009", "--out", str(out), "--no-pdf", "--quiet")
+    assert code == 2 and "report.txt changed since symkin wrote them" in err and len(err.strip().splitlines()) == 1
+    assert (out / "report.txt").read_text() == "my edited table" and (out / "report.json").read_bytes() == before
+
+
+@pytest.mark.parametrize("umask, mode", [(0o022, 0o755), (0o027, 0o750), (0o077, 0o700)])
+def test_the_report_folder_has_the_permissions_the_umask_gives(tmp_path, umask, mode):
+    # on c69a8be it was always 0700 (mkdtemp's), whatever the umask: other users could not read it
+    previous = os.umask(umask)
+    try:
+        run(["alyushin2009"], tmp_path / "report", quiet=True, pdf=False)
+    finally:
+        os.umask(previous)
+    assert (tmp_path / "report").stat().st_mode & 0o777 == mode
+    assert (tmp_path / "report" / "figures").stat().st_mode & 0o777 == mode
+
+
+def test_a_full_disk_is_one_line_and_exit_2_and_the_previous_report_stays(tmp_path, capsys, monkeypatch):
+    # on c69a8be: exit 3, an internal error (OSError)
+    import errno
+
+    out = previous_report(tmp_path / "report")
+    real = Path.write_text
+
+    def full(self, *args, **kwargs):
+        if self.name == "report.txt":
+            raise OSError(errno.ENOSPC, "No space left on device")
+        return real(self, *args, **kwargs)
+
+    monkeypatch.setattr(Path, "write_text", full)
+    code, _, err = cli(capsys, "reproduce", "alyushin2009", "--out", str(out), "--no-pdf", "--quiet")
+    assert code == 2 and "No space left on device" in err and len(err.strip().splitlines()) == 1
+    assert_untouched(out)
+
+
+# ---- a run killed at any step: the next run finds the report whole
+KILL = """
+import os, signal, sys
+from symkin._util import atomic
+from symkin.cli import main
+step = sys.argv[1]
+real_rename, real_exchange = os.rename, getattr(atomic, "_exchange", None)
+def rename(src, dst):
+    real_rename(src, dst)
+    if step == "between-renames" and ".old-" in str(dst):
+        os.kill(os.getpid(), signal.SIGKILL)  # the old report is aside, the new one not yet in
+os.rename = rename
+if step == "between-renames" and real_exchange is not None:
+    atomic._exchange = lambda a, b: False  # as where the platform has no atomic exchange
+if step == "after-exchange":
+    def exchange(a, b):
+        done = real_exchange(a, b)
+        os.kill(os.getpid(), signal.SIGKILL)  # swapped, the old one not yet removed
+        return done
+    atomic._exchange = exchange
+if step == "while-building":
+    from symkin.derivations import alyushin2009
+    def figures(folder):
+        (folder / "half.png").write_bytes(b"half")
+        os.kill(os.getpid(), signal.SIGKILL)
+    alyushin2009.figures = figures
+sys.exit(main(["reproduce", "alyushin2009", "--out", sys.argv[2], "--no-pdf", "--quiet"]))
+"""
+
+
+def killed_run(step: str, out: Path) -> None:
+    proc = subprocess.run([sys.executable, "-c", KILL, step, str(out)], capture_output=True, text=True, timeout=300)
+    assert proc.returncode == -signal.SIGKILL, proc.stderr
+
+
+def test_a_kill_between_the_two_renames_is_recovered_by_the_next_run(tmp_path, capsys, monkeypatch):
+    # where there is no atomic exchange: the old report set aside, then killed before the new one is
+    # renamed in.  On c69a8be the next run neither restored the old one nor removed it.
+    out = previous_report(tmp_path / "report")
+    killed_run("between-renames", out)
+    assert not out.exists() and [p for p in tmp_path.iterdir() if ".report.old-" in p.name]
+    # the next run puts the old report back before anything else; interrupted, it leaves it so
+    from symkin.derivations import alyushin2009
+
+    def interrupted(folder):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(alyushin2009, "figures", interrupted)
+    code, _, err = cli(capsys, "reproduce", "alyushin2009", "--out", str(out), "--no-pdf", "--quiet")
+    assert code == 130, err
+    assert_untouched(out)
+
+
+def test_a_kill_after_the_atomic_exchange_leaves_the_new_report_whole(tmp_path, capsys):
+    from symkin._util.atomic import _exchange
+
+    probe_a, probe_b = tmp_path / "a", tmp_path / "b"
+    probe_a.mkdir()
+    probe_b.mkdir()
+    if not _exchange(probe_a, probe_b):
+        pytest.skip("no atomic exchange (renameat2) on this platform or file system")
+    out = previous_report(tmp_path / "report")
+    killed_run("after-exchange", out)
+    # in place at once, whole: the new report (its manifest lists what it wrote)
+    assert not (out / "marker.txt").exists() and (out / "equations.tex").exists()
+    assert json.loads((out / MANIFEST).read_text())["files"].keys() >= {"report.json", "report.txt", "equations.tex"}
+    litter = [p for p in tmp_path.iterdir() if ".partial-" in p.name]
+    assert litter and (litter[0] / "marker.txt").read_text() == "previous"  # the old one, under the temporary name
+    code, _, _ = cli(capsys, "reproduce", "alyushin2009", "--out", str(out), "--no-pdf", "--quiet")
+    assert code == 0 and sorted(p.name for p in tmp_path.iterdir()) == ["a", "b", "report"]
+
+
+def test_a_kill_while_building_leaves_the_previous_report_and_the_next_run_removes_the_litter(tmp_path, capsys):
+    out = previous_report(tmp_path / "report")
+    killed_run("while-building", out)
+    assert (out / "marker.txt").read_text() == "previous"
+    assert [p for p in tmp_path.iterdir() if ".report.partial-" in p.name]
+    # litter of the former naming too (.X.partial-<random>, .X.old-<pid>)
+    (tmp_path / ".report.partial-k2x9_q1z").mkdir()
+    (tmp_path / ".report.old-999999999").mkdir()
+    code, _, err = cli(capsys, "reproduce", "alyushin2009", "--out", str(out), "--no-pdf", "--quiet")
+    assert code == 0, err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["report"]

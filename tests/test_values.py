@@ -50,4 +50,4 @@ def test_exact_values_beyond_float64_are_refused_with_the_range(text):
 
     with pytest.raises(InputError, match="beyond the float64 range"):
         as_real(text, what="--carrier-angle")
-    assert as_real("E**700") == sp.E**700  # large, still a float64
+    assert as_real("E**690") == sp.E**690  # large, still within the 1e300 bound on every number (E**700 is 1e304)

@@ -11,20 +11,50 @@ previous output exactly as it was, and never a half-written file.
     ...         _ = tmp.write_text("done")
     ...     target.read_text(), sorted(p.name for p in Path(d).iterdir())
     ('done', ['note.txt'])
+
+A folder (the report of ``symkin reproduce``) is replaced in one atomic step where the
+platform has one (Linux's ``renameat2(RENAME_EXCHANGE)`` swaps the new folder and the old
+one); elsewhere in two renames, old aside and new in, and a run killed between them is
+recovered by the next one, which puts the old folder back.  Temporary names carry the
+process id (``.report.partial-<pid>-<random>``, ``.report.old-<pid>-<random>``), so the
+next run removes what a dead process left and never what a running one is building.
+
+A folder symkin wrote holds a manifest (:data:`MANIFEST`) of every file in it with its
+SHA-256.  Only a folder with a valid manifest is replaced; files a user added to it since
+(notes, data) are carried over into the new folder, and a file symkin wrote that was
+changed since is a reason to refuse (:func:`survey`), so nothing a user put there is lost.
 """
 
 from __future__ import annotations
 
+import ctypes
+import errno
+import hashlib
+import json
 import os
+import re
+import secrets
 import shutil
 import tempfile
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
+from dataclasses import dataclass, field
 from pathlib import Path
 
 from symkin.errors import InputError
 
-__all__ = ["replacing", "write_atomically"]
+__all__ = ["replacing", "write_atomically", "MANIFEST", "Survey", "survey", "check_replaceable", "recover", "write_manifest"]
+
+#: The manifest symkin writes into a folder it owns: every file's relative path and SHA-256.
+MANIFEST = ".symkin-manifest.json"
+_KIND = "symkin folder manifest"
+
+#: errno values that say the disk or the folder cannot take the output (not a bug).
+_UNWRITABLE = {errno.ENOSPC, errno.EDQUOT, errno.EROFS, errno.EACCES, errno.EPERM, errno.EFBIG, errno.EMLINK}
+
+
+def _unwritable(err: OSError, where: Path, option: str) -> InputError:
+    return InputError(f"cannot write {where}: {err.strerror or err}; free some space or choose another {option}")
 
 
 @contextmanager
@@ -38,7 +68,8 @@ def replacing(*targets: str | os.PathLike[str]) -> Iterator[list[Path]]:
     Raises
     ------
     InputError
-        A target's folder does not exist or cannot be written, or a target is a folder.
+        A target's folder does not exist or cannot be written, a target is a folder, or
+        the disk is full (the previous files are kept).
     """
     outs = [Path(t) for t in targets]
     for out in outs:
@@ -57,7 +88,12 @@ def replacing(*targets: str | os.PathLike[str]) -> Iterator[list[Path]]:
             os.close(fd)
             temps.append(Path(name))
             os.chmod(name, 0o666 & ~_umask())  # mkstemp makes the file private; the result is an ordinary file
-        yield list(temps)
+        try:
+            yield list(temps)
+        except OSError as err:
+            if err.errno in _UNWRITABLE:
+                raise _unwritable(err, outs[0], "--out") from None
+            raise
         for tmp, out in zip(temps, outs):
             os.replace(tmp, out)
     finally:
@@ -71,11 +107,233 @@ def _umask() -> int:
     return mask
 
 
-def write_atomically(out: Path, build: Callable[[Path], None]) -> None:
+# --------------------------------------------------------------------------- the manifest
+def _hash(path: Path) -> str:
+    if path.is_symlink():
+        return "symlink:" + os.readlink(path)
+    digest = hashlib.sha256()
+    with open(path, "rb") as f:
+        for block in iter(lambda: f.read(1 << 20), b""):
+            digest.update(block)
+    return "sha256:" + digest.hexdigest()
+
+
+def _entries(folder: Path) -> tuple[list[str], list[str]]:
+    """(files and symbolic links, folders) under ``folder``, as relative POSIX paths; links not followed."""
+    files: list[str] = []
+    folders: list[str] = []
+    for root, dirs, names in os.walk(folder, followlinks=False):
+        here = Path(root).relative_to(folder)
+        for d in list(dirs):
+            if (Path(root) / d).is_symlink():  # a link to a folder is an entry, not a folder to walk
+                dirs.remove(d)
+                names.append(d)
+            else:
+                folders.append((here / d).as_posix())
+        files += [(here / n).as_posix() for n in names]
+    return sorted(f for f in files if f != MANIFEST), sorted(folders)
+
+
+def write_manifest(folder: Path, version: str) -> None:
+    """Write :data:`MANIFEST` into ``folder``: every file in it, with its SHA-256."""
+    files, _ = _entries(folder)
+    data = {"kind": _KIND, "written_by": f"symkin {version}", "files": {f: _hash(folder / f) for f in files}}
+    (folder / MANIFEST).write_text(json.dumps(data, indent=1, sort_keys=True) + "\n")
+
+
+def _read_manifest(folder: Path) -> dict[str, str] | None:
+    try:
+        data = json.loads((folder / MANIFEST).read_text())
+    except (OSError, ValueError, UnicodeDecodeError):
+        return None
+    if not isinstance(data, dict) or data.get("kind") != _KIND or not isinstance(data.get("files"), dict):
+        return None
+    files = data["files"]
+    for name, digest in files.items():
+        parts = Path(name).parts
+        if not isinstance(digest, str) or not parts or Path(name).is_absolute() or ".." in parts:
+            return None
+    return files
+
+
+@dataclass(frozen=True)
+class Survey:
+    """What a folder holds, measured against the manifest symkin wrote into it.
+
+    Attributes
+    ----------
+    owned : bool
+        The folder holds a valid manifest (symkin wrote it), or is empty.
+    added : list of str
+        Files, links and empty folders not in the manifest (a user's), relative paths.
+    changed : list of str
+        Files symkin wrote that differ from what it wrote.
+    """
+
+    owned: bool
+    added: list[str] = field(default_factory=list)
+    changed: list[str] = field(default_factory=list)
+
+
+def survey(folder: Path) -> Survey:
+    """Compare ``folder`` with its manifest.
+
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     _ = (Path(d) / "report.txt").write_text("symkin's")
+    ...     write_manifest(Path(d), "0.2")
+    ...     _ = (Path(d) / "notes.txt").write_text("mine")
+    ...     survey(Path(d))
+    Survey(owned=True, added=['notes.txt'], changed=[])
+    """
+    folder = Path(folder)
+    files, folders = _entries(folder)
+    manifest = _read_manifest(folder)
+    if manifest is None:
+        return Survey(owned=not files and not folders and not (folder / MANIFEST).exists(), added=files + folders)
+    added = [f for f in files if f not in manifest]
+    changed = [f for f in files if f in manifest and _hash(folder / f) != manifest[f]]
+    needed = {p.as_posix() for f in [*manifest, *added] for p in Path(f).parents}
+    added += [d for d in folders if d not in needed]
+    return Survey(owned=True, added=sorted(added), changed=changed)
+
+
+def _carry(old: Path, new: Path, added: list[str], out: Path) -> None:
+    """Put the user's files of the old folder into the new one: hard links (no copy, and the old
+    folder keeps its own until it is removed), or copies where links cannot be made."""
+    clashes = [a for a in added if os.path.lexists(new / a)]
+    if clashes:
+        raise InputError(
+            f"--out {out} holds {_names(clashes)}, which you added and where the new report writes its own; "
+            "move them out of the folder, or choose another --out"
+        )
+    for name in added:
+        src, dst = old / name, new / name
+        dst.parent.mkdir(parents=True, exist_ok=True)
+        if src.is_dir() and not src.is_symlink():
+            dst.mkdir(exist_ok=True)
+            continue
+        try:
+            os.link(src, dst, follow_symlinks=False)
+        except OSError:
+            if src.is_symlink():
+                os.symlink(os.readlink(src), dst)
+            else:
+                shutil.copy2(src, dst)
+
+
+def _names(paths: list[str], most: int = 5) -> str:
+    shown = ", ".join(paths[:most])
+    return shown + (f" and {len(paths) - most} more" if len(paths) > most else "")
+
+
+# --------------------------------------------------------------------------- litter and recovery
+_LITTER = re.compile(r"^\.(?P<name>.+)\.(?P<kind>partial|old)-(?P<pid>\d+)(?:-.*)?$|^\.(?P<name2>.+)\.partial-[^-]*$")
+
+
+def _alive(pid: int) -> bool:
+    if pid == os.getpid():
+        return True
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:  # another user's process
+        return True
+    return True
+
+
+def recover(out: Path) -> None:
+    """Tidy what a killed run left beside folder ``out``: put an old folder set aside back in
+    place if the new one never arrived, and remove temporary folders of dead processes.
+
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     old = Path(d) / ".report.old-999999999-x"; old.mkdir(); _ = (old / "a.txt").write_text("kept")
+    ...     partial = Path(d) / ".report.partial-999999999-y"; partial.mkdir()
+    ...     recover(Path(d) / "report")
+    ...     sorted(p.name for p in Path(d).iterdir()), (Path(d) / "report" / "a.txt").read_text()
+    (['report'], 'kept')
+    """
+    target = Path(out).resolve()
+    parent = target.parent
+    if not parent.is_dir():
+        return
+    olds: list[Path] = []
+    partials: list[Path] = []
+    for entry in parent.iterdir():
+        m = _LITTER.match(entry.name)
+        if m is None or (m.group("name") or m.group("name2")) != target.name:
+            continue
+        pid = m.group("pid")
+        if pid is not None and _alive(int(pid)):
+            continue  # a running symkin is using it
+        if pid is None and not (entry.is_dir() and not entry.is_symlink()):
+            continue  # only folders of the former naming (a file of that name is another command's)
+        (olds if m.group("kind") == "old" else partials).append(entry)
+    if olds and not os.path.lexists(target):
+        newest = max(olds, key=lambda p: p.lstat().st_mtime)
+        os.rename(newest, target)
+        olds.remove(newest)
+    for entry in olds + partials:
+        if entry.is_dir() and not entry.is_symlink():
+            shutil.rmtree(entry, ignore_errors=True)
+        else:
+            entry.unlink(missing_ok=True)
+
+
+# --------------------------------------------------------------------------- the swap
+_RENAME_EXCHANGE = 2
+_AT_FDCWD = -100
+
+
+def _exchange(a: Path, b: Path) -> bool:
+    """Swap two paths in one atomic step (Linux renameat2 RENAME_EXCHANGE); False where the
+    platform or the file system has no such step."""
+    try:
+        renameat2 = ctypes.CDLL(None, use_errno=True).renameat2
+    except (AttributeError, OSError):
+        return False
+    renameat2.argtypes = [ctypes.c_int, ctypes.c_char_p, ctypes.c_int, ctypes.c_char_p, ctypes.c_uint]
+    if renameat2(_AT_FDCWD, os.fsencode(a), _AT_FDCWD, os.fsencode(b), _RENAME_EXCHANGE) == 0:
+        return True
+    code = ctypes.get_errno()
+    if code in (errno.ENOSYS, errno.EINVAL, errno.ENOTSUP, errno.EOPNOTSUPP):
+        return False
+    raise OSError(code, os.strerror(code), str(b))
+
+
+def _swap(tmp: Path, target: Path) -> Path | None:
+    """Put ``tmp`` at ``target``; returns where the old ``target`` now is (to be removed), or None."""
+    if not os.path.lexists(target):
+        os.rename(tmp, target)
+        return None
+    if _exchange(tmp, target):
+        return tmp  # the old folder now has the temporary name
+    backup = target.parent / f".{target.name}.old-{os.getpid()}-{secrets.token_hex(4)}"
+    os.rename(target, backup)
+    try:
+        os.rename(tmp, target)
+    except BaseException:
+        os.rename(backup, target)
+        raise
+    return backup
+
+
+def write_atomically(out: Path, build: Callable[[Path], None], *, version: str | None = None) -> None:
     """Call ``build(tmp)`` on a fresh folder, then put it at ``out`` in one step.
 
-    If ``build`` raises (or the run is interrupted), the temporary folder is removed
-    and ``out`` is left exactly as it was.
+    If ``build`` raises (or the run is interrupted, or killed), ``out`` is left exactly as
+    it was.  The new folder gets the permissions of a folder made with ``mkdir`` (the umask
+    applies).  With ``version``, a manifest (:data:`MANIFEST`) of every file written is added,
+    and an existing ``out`` is replaced only if it holds such a manifest and no file symkin
+    wrote was changed since; files added to it are carried into the new folder.
+
+    Raises
+    ------
+    InputError
+        ``out`` is a file or a folder symkin did not write, holds changed files, or cannot
+        be written (no such parent, no permission, a full disk).
     """
     out = Path(out)
     target = out.resolve()
@@ -85,24 +343,52 @@ def write_atomically(out: Path, build: Callable[[Path], None]) -> None:
     if not parent.is_dir():
         raise InputError(f"cannot write {out}: its parent folder {parent} does not exist")
     try:
-        tmp = Path(tempfile.mkdtemp(prefix=f".{target.name}.partial-", dir=parent))
+        recover(out)
+        tmp = Path(tempfile.mkdtemp(prefix=f".{target.name}.partial-{os.getpid()}-", dir=parent))
+        os.chmod(tmp, 0o777 & ~_umask())  # mkdtemp makes the folder private; a report is an ordinary folder
     except OSError as err:
         raise InputError(f"cannot write to {parent}: {err.strerror}; choose a writable --out") from None
-    backup = None
+    old: Path | None = None
     try:
         build(tmp)
-        if target.exists():
-            backup = parent / f".{target.name}.old-{os.getpid()}"
-            os.rename(target, backup)
-        try:
-            os.rename(tmp, target)
-        except OSError:
-            if backup is not None:
-                os.rename(backup, target)
-                backup = None
-            raise
-    except BaseException:
-        shutil.rmtree(tmp, ignore_errors=True)
+        if version is not None:
+            write_manifest(tmp, version)
+            if target.is_dir():
+                found = check_replaceable(out)
+                _carry(target, tmp, found.added, out)
+        old = _swap(tmp, target)
+    except OSError as err:
+        if err.errno in _UNWRITABLE:
+            raise _unwritable(err, out, "--out") from None
         raise
-    if backup is not None:
-        shutil.rmtree(backup, ignore_errors=True)
+    finally:
+        if old is None:
+            shutil.rmtree(tmp, ignore_errors=True)
+    if old is not None:
+        shutil.rmtree(old, ignore_errors=True)
+
+
+def check_replaceable(out: Path, what: str = "a folder symkin wrote") -> Survey:
+    """The :func:`survey` of folder ``out``, or InputError if symkin must not replace it: it is
+    not empty and has no valid manifest, or a file symkin wrote there was changed since.
+
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     _ = (Path(d) / "thesis.tex").write_text("years of work")
+    ...     check_replaceable(Path(d), "a symkin report")
+    Traceback (most recent call last):
+    ...
+    symkin.errors.InputError: --out ... is not a symkin report (it has no .symkin-manifest.json, the list of the files symkin wrote there) and symkin replaces the whole folder; choose a new or empty folder
+    """
+    found = survey(Path(out))
+    if not found.owned:
+        raise InputError(
+            f"--out {out} is not {what} (it has no {MANIFEST}, the list of the files symkin wrote there) and symkin "
+            "replaces the whole folder; choose a new or empty folder"
+        )
+    if found.changed:
+        raise InputError(
+            f"--out {out}: {_names(found.changed)} changed since symkin wrote them and would be replaced; "
+            "move them out of the folder (or delete them), or choose another --out"
+        )
+    return found

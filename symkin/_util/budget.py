@@ -47,9 +47,9 @@ from typing import Any
 
 import sympy as sp
 
-from symkin.errors import SimplificationBudgetWarning
+from symkin.errors import InputError, SimplificationBudgetWarning
 
-__all__ = ["simplify_within", "SECONDS", "MAX_OPS"]
+__all__ = ["simplify_within", "time_limit", "SECONDS", "MAX_OPS"]
 
 #: Default time budget of one simplification, seconds.
 SECONDS = 2.0
@@ -116,6 +116,29 @@ def simplify_within(
             stacklevel=2,
         )
         return expr
+
+
+@contextmanager
+def time_limit(seconds: float, message: str, error: type[Exception] = InputError) -> Iterator[None]:
+    """Run the block for at most ``seconds``; past them, raise ``error(message)``.
+
+    For work whose time follows what a user typed (evaluating an expression, deciding a
+    sign) and that has no useful partial result: the user gets a one-line error instead of a
+    hang.  The block is interrupted as :func:`simplify_within` is (a timer signal in the main
+    thread, a watchdog elsewhere).
+
+    >>> import time
+    >>> with time_limit(0.05, "the angle took too long to evaluate; simplify it"):
+    ...     time.sleep(1)
+    Traceback (most recent call last):
+    ...
+    symkin.errors.InputError: the angle took too long to evaluate; simplify it
+    """
+    try:
+        with _time_limit(seconds):
+            yield
+    except _OutOfTime:
+        raise error(message) from None
 
 
 #: Seconds between repeated interrupts once the time is up (until the block has stopped).

@@ -24,6 +24,8 @@ from typing import Any
 
 import sympy as sp
 
+from symkin._util import bounds
+
 __all__ = ["exact_json", "exact_json_list", "float_text"]
 
 
@@ -49,7 +51,7 @@ def exact_json(value: Any) -> dict[str, Any] | None:
         text = str(expr)
         if getattr(expr, "is_number", False):
             try:
-                number = float(sp.N(expr, 17))
+                number = _float_of(expr)
             except (TypeError, ValueError, OverflowError):
                 number = None
     return {"exact": text, "float": number if number is not None and math.isfinite(number) else None}
@@ -75,6 +77,21 @@ def float_text(value: Any) -> str:
     if not expr.is_number:
         return ""
     try:
-        return f"{float(sp.N(expr, 17)):.10g}"
+        return f"{_float_of(expr):.10g}"
     except (TypeError, ValueError, OverflowError):
         return str(sp.N(expr, 10))
+
+
+_NOT_ENCLOSED = (bounds.NotReal, bounds.Unbounded, bounds.Undecided, bounds.OutOfRange, bounds.NotConstant)
+
+
+def _float_of(expr: sp.Expr) -> float:
+    """The float nearest a constant, decided on intervals (:func:`bounds.to_float`): SymPy's
+    evalf gave 8.4e-140 for sin(1)**2 + cos(1)**2 - 1, which is 0; evalf where the
+    intervals cannot say (a number beyond 1e300, a constant they do not know)."""
+    if expr.is_Rational:
+        return float(Fraction(int(expr.p), int(expr.q)))
+    try:
+        return bounds.to_float(expr)
+    except _NOT_ENCLOSED:
+        return float(sp.N(expr, 17))

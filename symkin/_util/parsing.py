@@ -21,7 +21,6 @@ import decimal
 import math
 import numbers
 import re
-import sys
 from collections.abc import Callable, Iterable, Mapping
 from fractions import Fraction
 from typing import Any
@@ -29,6 +28,8 @@ from typing import Any
 import sympy as sp
 
 from symkin import symbols as S
+from symkin._util import bounds
+from symkin._util.budget import time_limit
 from symkin.errors import InputError
 
 __all__ = [
@@ -40,6 +41,8 @@ __all__ = [
     "as_integer",
     "as_fraction",
     "as_real",
+    "check_numbers",
+    "sign_of",
     "parse_number",
     "parse_integer",
     "parse_expression",
@@ -68,17 +71,20 @@ FUNCTIONS: Mapping[str, Callable[..., sp.Expr]] = {
 CONSTANTS: Mapping[str, sp.Expr] = {"pi": sp.pi, "E": sp.E}
 
 MAX_LENGTH = 2000
+#: Nesting allowed in an expression (a flat sum or product of many terms counts as one level).
 MAX_DEPTH = 60
 MAX_EXPONENT = 1000
-#: Exact numbers are accepted between 10^-MAX_DIGITS and 10^MAX_DIGITS in size (or 0), so
-#: every number a user gives also has a finite, non-zero float (floats end near 1.8e308).
-MAX_DIGITS = 300
+#: Numbers are accepted between 10^-MAX_DIGITS and 10^MAX_DIGITS in size (or 0), so every
+#: number a user gives also has a finite, non-zero float (floats end near 1.8e308).  This
+#: holds for every number in an expression, irrational ones and the results of powers and
+#: functions included, each checked as it is built (:mod:`symkin._util.bounds`).
+MAX_DIGITS = bounds.MAX_DIGITS
 _HUGE = sp.Integer(10) ** MAX_DIGITS
+_SAFE_BITS = int(MAX_DIGITS * math.log2(10))  # 2^996 < 10^300
+#: Seconds the parsing and bounding of one expression may take.
+SECONDS = 3.0
 
 _NUMBER = re.compile(r"^[+-]?(\d+(_?\d+)*)?(\.\d*)?([eE][+-]?\d+)?$|^[+-]?\d+\s*/\s*\d+$", re.ASCII)
-
-#: The largest finite float64; an exact input beyond it has no numeric law to go to.
-_FLOAT64_MAX = sys.float_info.max
 
 
 def _check_text(text: object, what: str) -> str:
@@ -119,16 +125,27 @@ def parse_number(text: str, *, what: str = "value") -> sp.Rational:
     return _bounded(sp.Rational(value.numerator, value.denominator), what)
 
 
-def _bounded(value: sp.Expr, what: str) -> sp.Expr:
+def _bounded(value: sp.Expr, what: str, error: type[Exception] = InputError) -> sp.Expr:
     """``value`` unless it is an exact number too large or too small (but not 0) to use."""
+    if value.is_Rational and int(value.p).bit_length() <= _SAFE_BITS and int(value.q).bit_length() <= _SAFE_BITS:
+        return value  # |p| and q below 2^996 < 10^300: within the bounds, no comparison needed (the common case)
     if value.is_Rational and value != 0:
         size = abs(value)
         if size > _HUGE or size * _HUGE < 1:
-            raise InputError(
+            raise error(
                 f"{what} holds a number of about 10^{_exponent(size)}; numbers from 1e-{MAX_DIGITS} to "
                 f"1e{MAX_DIGITS} in size are accepted"
             )
     return value
+
+
+def _repr(value: Any) -> str:
+    """``repr(value)`` for a message, shortened; never fails (an int of 10^5000 has no repr)."""
+    try:
+        text = repr(value)
+    except ValueError:
+        return bounds.show(value)
+    return text if len(text) <= 80 else text[:77] + "..."
 
 
 def _exponent(size: sp.Rational) -> int:
@@ -195,10 +212,10 @@ def _rational(value: Any, what: str, text: bool) -> sp.Rational:
         return sp.Integer(value)
     if isinstance(value, str):
         if not text:
-            raise InputError(f"{what} must be a number, not the string {value!r}")
+            raise InputError(f"{what} must be a number, not the string {_repr(value)}")
         return parse_number(value, what=what)
     if isinstance(value, bool) or value is None:
-        raise InputError(f"{what} must be a number, got {value!r}")
+        raise InputError(f"{what} must be a number, got {_repr(value)}")
     if isinstance(value, sp.Basic):
         if isinstance(value, sp.Rational):
             return _bounded(value, what)
@@ -220,9 +237,9 @@ def _rational(value: Any, what: str, text: bool) -> sp.Rational:
     if isinstance(value, numbers.Real):  # float, NumPy floats: the decimal they print as
         f = float(value)
         if not math.isfinite(f):
-            raise InputError(f"{what} must be a finite number, got {value!r}")
+            raise InputError(f"{what} must be a finite number, got {_repr(value)}")
         return parse_number(repr(f) if isinstance(value, float) else str(value), what=what)
-    raise InputError(f"{what} must be a number, got {value!r}")
+    raise InputError(f"{what} must be a number, got {_repr(value)}")
 
 
 def as_integer(
@@ -254,10 +271,10 @@ def as_integer(
         else:
             return sp.Integer(value)
     if isinstance(value, (float, sp.Float)) or (isinstance(value, numbers.Real) and not isinstance(value, numbers.Rational)):
-        raise error(f"{what} must be a whole number, got {value!r}")
+        raise error(f"{what} must be a whole number, got {_repr(value)}")
     number = as_rational(value, what=what, text=text, error=error)
     if not number.is_Integer:
-        raise error(f"{what} must be a whole number, got {value!r}")
+        raise error(f"{what} must be a whole number, got {_repr(value)}")
     if minimum is not None and maximum is not None and not minimum <= number <= maximum:
         raise error(f"{what} must be between {minimum} and {maximum}, got {number}")
     if minimum is not None and number < minimum:
@@ -295,13 +312,32 @@ def as_real(value: Any, *, what: str = "value", error: type[Exception] = InputEr
         expr = value
     else:
         expr = as_rational(value, what=what, error=error)
-    if not expr.is_number or expr.has(sp.nan, sp.zoo, sp.oo, -sp.oo) or expr.is_extended_real is False or not expr.is_finite:
-        raise error(f"{what} must be a finite real number, got {value!r}")
-    if positive and not expr.is_positive:
-        raise error(f"{what} must be positive, got {value!r}")
-    if abs(expr.evalf(15)) > _FLOAT64_MAX:  # exact, but no numeric law can take it
-        raise error(f"{what} is {value!r}, beyond the float64 range (about 1.8e308); give a smaller value")
+    if not expr.is_number or expr.has(sp.nan, sp.zoo, sp.oo, -sp.oo):
+        raise error(f"{what} must be a finite real number, got {_repr(value)}")
+    if not expr.is_Rational:
+        check_numbers(expr, what, error)  # real, finite, and bounded
+    if positive and sign_of(expr, what=what, error=error) != 1:
+        raise error(f"{what} must be positive, got {_repr(value)}")
     return expr
+
+
+def sign_of(expr: sp.Expr, *, what: str = "value", error: type[Exception] = InputError) -> int | None:
+    """The sign of a constant expression, decided on intervals (:mod:`symkin._util.bounds`),
+    not by SymPy's assumptions: -1, 0, 1, or None for a number that is 0 to 1233 digits
+    without being written as 0.
+
+    >>> sign_of(sp.pi - 3), sign_of(sp.Integer(0)), sign_of(sp.sin(1)**2 + sp.cos(1)**2 - 1) is None
+    (1, 0, True)
+    """
+    if expr.is_Rational:
+        return (expr.p > 0) - (expr.p < 0)
+    try:
+        with time_limit(SECONDS, f"{what} took longer than {SECONDS:g} s to evaluate; give a simpler value", error):
+            return bounds.sign(expr)
+    except bounds.NotReal as err:
+        raise error(f"{what}: {bounds.show(err.node)} is not a real number: {err.reason}") from None
+    except bounds.NotConstant:
+        raise error(f"{what} must be a number, got {bounds.show(expr)}") from None
 
 
 def parse_expression(
@@ -334,21 +370,52 @@ def parse_expression(
     try:
         tree = ast.parse(source, mode="eval")
     except (SyntaxError, ValueError):
+        odd = next((c for c in source if not c.isascii() or not c.isprintable()), None)
+        if odd is not None:  # a look-alike of an operator or a bracket: name it
+            raise InputError(
+                f"{what} {text!r} is not a valid expression: the character {odd!r} (U+{ord(odd):04X}) is "
+                "not allowed; write it in ASCII (* for a product, - for minus, ( ) for brackets)"
+            ) from None
         raise InputError(f"{what} {text!r} is not a valid expression") from None
-    return _Builder(allowed, what, source).build(tree.body, 0)
+    except (RecursionError, MemoryError):
+        raise InputError(f"{what} is nested too deeply to read; at most {MAX_DEPTH} levels are accepted") from None
+    with time_limit(SECONDS, f"{what} took longer than {SECONDS:g} s to build and bound; write a simpler expression"):
+        return _Builder(allowed, what, source).build(tree.body, 0)
+
+
+#: Operators of one precedence level: a chain of them (a + b - c + ...) is one level of nesting.
+_SUMS = (ast.Add, ast.Sub)
+_PRODUCTS = (ast.Mult, ast.Div)
 
 
 class _Builder:
+    """Builds the SymPy expression node by node; every constant node is bounded before SymPy
+    evaluates it (so neither its size nor the work to evaluate it can grow without limit)."""
+
     def __init__(self, allowed: Mapping[str, sp.Expr], what: str, source: str):
         self.allowed = allowed
         self.what = what
         self.source = source
+        self.memo: dict[int, bounds.Encloser] = {}
 
     def fail(self, message: str) -> InputError:
         names = ", ".join(sorted(self.allowed, key=str.lower))
         return InputError(
             f"{self.what}: {message}; allowed names: {names}; functions: {', '.join(sorted(FUNCTIONS, key=str.lower))}"
         )
+
+    def bounded(self, unevaluated: sp.Expr) -> None:
+        """Refuse a constant that is not real, or is beyond 1e300 or below 1e-300 in size (not 0)."""
+        if unevaluated.is_Rational:
+            _bounded(unevaluated, self.what)
+        elif not unevaluated.free_symbols:
+            bounds.check(unevaluated, self.what, memo=self.memo)
+
+    def sign(self, value: sp.Expr) -> int | None:
+        """The sign of a constant (None for a symbolic value or one that is 0 to 1233 digits)."""
+        if value.free_symbols:
+            return None
+        return bounds.sign(value, memo=self.memo)
 
     def build(self, node: ast.AST, depth: int) -> sp.Expr:
         if depth > MAX_DEPTH:
@@ -370,38 +437,65 @@ class _Builder:
             operand = self.build(node.operand, depth + 1)
             return operand if isinstance(node.op, ast.UAdd) else -operand
         if isinstance(node, ast.BinOp):
-            return _bounded(self.binop(node, depth), self.what)
+            if isinstance(node.op, _SUMS + _PRODUCTS):
+                return self.chain(node, depth)
+            return self.binop(node, depth)
         if isinstance(node, ast.Call):
             if not isinstance(node.func, ast.Name) or node.func.id not in FUNCTIONS:
                 raise self.fail(f"calling {_show(node.func)} is not allowed")
             if node.keywords:
                 raise self.fail("functions take no keyword arguments")
             args = [self.build(a, depth + 1) for a in node.args]
+            function = FUNCTIONS[node.func.id]
             try:
-                return FUNCTIONS[node.func.id](*args)
+                unevaluated = function(*args, evaluate=False)
             except TypeError:
                 raise InputError(f"{self.what}: wrong number of arguments to {node.func.id}") from None
+            self.bounded(unevaluated)
+            return function(*args)
         raise self.fail(f"{_show(node)} ({type(node).__name__.lower()}) is not allowed")
+
+    def chain(self, node: ast.BinOp, depth: int) -> sp.Expr:
+        """A flat chain of + and - (or of * and /): one level of nesting however long, each
+        partial result bounded."""
+        kinds = _SUMS if isinstance(node.op, _SUMS) else _PRODUCTS
+        steps: list[tuple[type, ast.AST]] = []
+        first: ast.AST = node
+        while isinstance(first, ast.BinOp) and isinstance(first.op, kinds):
+            steps.append((type(first.op), first.right))
+            first = first.left
+        value = self.build(first, depth + 1)
+        if kinds is _SUMS:
+            terms = [value]
+            for op, right in reversed(steps):
+                term = self.build(right, depth + 1)
+                terms.append(term if op is ast.Add else -term)
+            total = sp.Add(*terms)  # at most MAX_LENGTH / 2 terms each below 1e300: only the total needs a bound
+            self.bounded(total)
+            return total
+        for op, right in reversed(steps):
+            factor = self.build(right, depth + 1)
+            if op is ast.Div:
+                if factor == 0 or self.sign(factor) == 0:
+                    raise InputError(f"{self.what} divides by zero")
+                inverse = sp.Pow(factor, -1, evaluate=False)
+                self.bounded(inverse)
+                self.bounded(sp.Mul(value, inverse, evaluate=False))
+                value = value / factor
+            else:
+                self.bounded(sp.Mul(value, factor, evaluate=False))
+                value = value * factor
+        return value
 
     def binop(self, node: ast.BinOp, depth: int) -> sp.Expr:
         left = self.build(node.left, depth + 1)
         right = self.build(node.right, depth + 1)
-        op = type(node.op)
-        if op is ast.Add:
-            return left + right
-        if op is ast.Sub:
-            return left - right
-        if op is ast.Mult:
-            return left * right
-        if op is ast.Div:
-            if right == 0:
-                raise InputError(f"{self.what} divides by zero")
-            return left / right
-        if op is ast.Pow:
-            if right.is_number and (not right.is_finite or abs(right) > MAX_EXPONENT):
+        if isinstance(node.op, ast.Pow):
+            if not right.free_symbols and self.sign(sp.Add(sp.Abs(right, evaluate=False), -MAX_EXPONENT, evaluate=False)) == 1:
                 raise InputError(f"{self.what} has an exponent larger than {MAX_EXPONENT}")
-            if left == 0 and right.is_number and right.is_negative:
+            if (left == 0 or self.sign(left) == 0) and self.sign(right) == -1:
                 raise InputError(f"{self.what} divides by zero")
+            self.bounded(sp.Pow(left, right, evaluate=False))
             return left**right
         raise self.fail(f"the operator {type(node.op).__name__} is not allowed")
 
@@ -449,21 +543,75 @@ def as_expr(
     if isinstance(value, str):
         if not text:
             raise error(
-                f"{what} must be a number or a SymPy expression, not the string {value!r}; "
+                f"{what} must be a number or a SymPy expression, not the string {_repr(value)}; "
                 "parse text with symkin._util.parsing.parse_expression"
             )
         return parse_expression(value, names=names, what=what)
     if isinstance(value, bool) or value is None:
-        raise error(f"{what} must be a number or an expression, got {value!r}")
+        raise error(f"{what} must be a number or an expression, got {_repr(value)}")
     try:
         expr = sp.sympify(value, strict=True)
     except (sp.SympifyError, TypeError, ValueError):
-        raise error(f"{what} must be a number or an expression, got {value!r}") from None
+        raise error(f"{what} must be a number or an expression, got {_repr(value)}") from None
     if not isinstance(expr, sp.Expr):
-        raise error(f"{what} must be a scalar expression, got {value!r}")
-    if finite and expr.is_number and (expr.has(sp.nan, sp.zoo, sp.oo, -sp.oo) or expr.is_extended_real is False):
-        raise error(f"{what} must be a finite real number, got {value!r}")
+        raise error(f"{what} must be a scalar expression, got {_repr(value)}")
+    if expr.has(sp.nan, sp.zoo, sp.oo, -sp.oo):
+        if finite and expr.is_number:
+            raise error(f"{what} must be a finite real number, got {_repr(value)}")
+        return expr  # the caller words its own message (finite=False)
+    check_numbers(expr, what, error)
+    if finite and expr.is_number and expr.is_extended_real is False:
+        raise error(f"{what} must be a finite real number, got {_repr(value)}")
     return expr
+
+
+def check_numbers(expr: sp.Expr, what: str, error: type[Exception] = InputError, *, rationals: bool = True) -> None:
+    """Refuse a number in ``expr`` (every constant part of it) that is not real or is beyond
+    1e300 or below 1e-300 in size (and not 0), as :func:`parse_expression` does for text.
+
+    With ``rationals=False`` an exact rational on its own is taken at any size (it is finite
+    and exact; whether a float can hold it is the caller's question, as in ``compile``).
+
+    >>> t = sp.Symbol("t")
+    >>> check_numbers(t * sp.exp(2), "the law")
+    >>> check_numbers(t + sp.tan(sp.pi / 2, evaluate=False), "the law")
+    Traceback (most recent call last):
+    ...
+    symkin.errors.InputError: the law: tan(pi/2) is infinite or cannot be bounded (a pole or an overflow); numbers from 1e-300 to 1e300 in size are accepted
+    """
+    if expr.is_Atom:
+        if expr.is_Rational:
+            if rationals:
+                _bounded(expr, what, error)
+        elif expr.is_Float:
+            bounds.check(expr, what, error=error)
+        elif expr.is_number and expr.is_extended_real is False:
+            raise error(f"{what} must be a finite real number, got {expr}")
+        return
+    memo: dict[int, bounds.Encloser] = {}
+    try:
+        with time_limit(SECONDS, f"{what} took longer than {SECONDS:g} s to bound; give a simpler value", error):
+            _constant_parts(expr, what, error, memo, rationals)
+    except RecursionError:
+        raise error(f"{what} is nested too deeply to check") from None
+
+
+def _constant_parts(
+    e: Any, what: str, error: type[Exception], memo: dict[int, bounds.Encloser], rationals: bool = True
+) -> bool:
+    """Whether ``e`` is a constant; every constant part of it is bounded on the way."""
+    if e.is_Atom:
+        if e.is_Rational:
+            if rationals:
+                _bounded(e, what, error)
+        elif e.is_Float:
+            bounds.check(e, what, memo=memo, error=error)
+        return isinstance(e, sp.Expr) and bool(e.is_number)
+    parts = [_constant_parts(a, what, error, memo, rationals) for a in e.args]
+    if isinstance(e, sp.Expr) and all(parts) and e.is_number:
+        bounds.check(e, what, memo=memo, error=error)
+        return True
+    return False
 
 
 def as_values(values: Any, *, what: str = "values") -> dict[str, sp.Expr]:
@@ -518,22 +666,25 @@ def as_float(value: Any, *, what: str, positive: bool = False, error: type[Excep
     """
     if type(value) is float or (type(value) is int and -_SMALL_INT <= value <= _SMALL_INT):  # no parsing needed
         if not math.isfinite(value):
-            raise error(f"{what} must be a finite number, got {value!r}")
+            raise error(f"{what} must be a finite number, got {_repr(value)}")
         if positive and not value > 0:
-            raise error(f"{what} must be positive, got {value!r}")
+            raise error(f"{what} must be positive, got {_repr(value)}")
         return float(value)
     try:
         expr = as_expr(value, what=what)
     except InputError as err:
         raise (err if error is InputError else error(str(err))) from None
     if not expr.is_number:
-        raise error(f"{what} must be a number, got {value!r}")
+        raise error(f"{what} must be a number, got {_repr(value)}")
     try:
-        number = float(expr)
-    except (TypeError, ValueError, OverflowError):
-        raise error(f"{what} must be a real number, got {value!r}") from None
+        with time_limit(SECONDS, f"{what} took longer than {SECONDS:g} s to evaluate; give a simpler value", error):
+            number = bounds.to_float(expr)
+    except (bounds.NotReal, bounds.Undecided):
+        raise error(f"{what} must be a real number, got {_repr(value)}") from None
+    except (bounds.Unbounded, bounds.OutOfRange, bounds.NotConstant):
+        raise error(f"{what} must be a finite number, got {_repr(value)}") from None
     if not math.isfinite(number):
-        raise error(f"{what} must be a finite number, got {value!r}")
+        raise error(f"{what} must be a finite number, got {_repr(value)}")
     if positive and not number > 0:
-        raise error(f"{what} must be positive, got {value!r}")
+        raise error(f"{what} must be positive, got {_repr(value)}")
     return number

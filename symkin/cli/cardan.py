@@ -13,6 +13,7 @@ from symkin.cli.common import (
     emit,
     parse_expression,
     parse_integer,
+    sign_of,
     teeth_list,
 )
 from symkin.errors import InputError, SymkinWarning
@@ -85,7 +86,10 @@ def _drive(args: Any) -> Drive:
     if args.eccentricity is None:
         raise InputError("the elliptical drive needs -e/--eccentricity E with 0 <= E < 1")
     e = as_real(args.eccentricity, what="--eccentricity")
-    if not (e >= 0 and e < 1):
+    if sign_of(e, what="--eccentricity") is None:
+        raise InputError(f"--eccentricity {args.eccentricity!r} is 0 to 1233 digits without being 0; write 0 for "
+                         "circular gears")
+    if sign_of(e, what="--eccentricity") == -1 or sign_of(1 - e, what="--eccentricity") != 1:
         raise InputError(f"--eccentricity must lie in [0, 1), got {args.eccentricity!r}; 0 gives circular gears")
     m = as_real(args.order, what="--order", positive=True) if args.order is not None else 1
     return EllipticalGears(omega, e, m)

@@ -50,6 +50,7 @@ parse_integer = _on_first_call("symkin._util.parsing", "parse_integer")
 parse_number = _on_first_call("symkin._util.parsing", "parse_number")
 as_integer = _on_first_call("symkin._util.parsing", "as_integer")
 as_real = _on_first_call("symkin._util.parsing", "as_real")
+sign_of = _on_first_call("symkin._util.parsing", "sign_of")
 
 __all__ = [
     "teeth_list",

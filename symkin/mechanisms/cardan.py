@@ -43,7 +43,7 @@ from symkin import schemes
 from symkin import symbols as S
 from symkin._util.budget import simplify_within
 from symkin._util.jsonout import exact_json
-from symkin._util.parsing import as_expr, as_rational, as_real, as_values, substitute
+from symkin._util.parsing import as_expr, as_rational, as_real, as_values, sign_of, substitute
 from symkin.drives import AngleLaw, ConstantSpeed, Drive, EllipticalGears, as_drive
 from symkin.errors import InputError, ModelError, UnsupportedError
 from symkin.laws import Law
@@ -531,7 +531,10 @@ class CardanSlider:
             end = start + period
         if isinstance(samples, int) and samples == 1:
             return np.array([float(start)])
-        if not end > start:
+        later = sign_of(end - start, what="the end time")
+        if later is None:
+            raise InputError(f"the end time ({end}) is the start ({start}) to 1233 digits: the time grid must increase")
+        if later != 1:
             raise InputError(f"the end time ({end}) must be larger than the start ({start}): the time grid must increase")
         return time_grid(end, t_start=start, samples=samples)
 

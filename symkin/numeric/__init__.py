@@ -30,6 +30,8 @@ from typing import Any
 
 import sympy as sp
 
+from symkin._util.bounds import show
+from symkin._util.parsing import check_numbers
 from symkin.errors import InputError
 from symkin.laws import Law
 from symkin.numeric.backends import BACKENDS, Plan, numba_available, warn_no_numba
@@ -58,13 +60,16 @@ def _exprs(laws: Any) -> tuple[list[sp.Expr], list[str]]:
                 names.append(f"[{k}]")
         elif isinstance(item, sp.Basic) and isinstance(item, sp.Expr):
             exprs.append(item)
-            text = str(item)
+            text = show(item, 41)
             names.append(text if len(text) <= 40 else f"law {len(names)}")
         else:
             raise InputError(f"can only compile laws or SymPy expressions, got {item!r}")
     for e, n in zip(exprs, names):
         if e.has(sp.zoo, sp.nan, sp.oo, -sp.oo):
-            raise InputError(f"{n} is infinite or undefined ({e}); there is nothing finite to compile")
+            raise InputError(f"{n} is infinite or undefined ({show(e)}); there is nothing finite to compile")
+        # every constant part real and bounded (an unevaluated tan(pi/2), 2**(10**6)...); an exact
+        # rational may be of any size here: whether a float holds it is decided after the rewriting
+        check_numbers(e, n, rationals=False)
     return exprs, names
 
 
@@ -195,6 +200,8 @@ def compile(
         rewritten = [stable_form(e, ranges=ranges, reduce_phase=reduce_phase, applied=applied) for e in exprs]
     else:
         rewritten = list(exprs)
+    if float_backend:
+        _refuse_constants_beyond_floats(rewritten, names, precision)
     plan = Plan(
         tuple(exprs), tuple(rewritten), args, tuple(names),
         precision if float_backend else cls.precisions[0],
@@ -203,6 +210,22 @@ def compile(
     evaluator = cls(plan)
     notes = [note for name, note in RULE_NOTES.items() if name in applied]
     return NumericFunction(evaluator, plan, cls.key, notes, spec, on_pole=on_pole)
+
+
+def _refuse_constants_beyond_floats(exprs: Sequence[sp.Expr], names: Sequence[str], precision: str) -> None:
+    """InputError for a law holding a number no float of ``precision`` can hold (10^600 from
+    a speed of 10^300 squared): float code could not even start, so say so, and how to avoid it."""
+    import numpy as np
+
+    largest = float(np.finfo(np.float32 if precision == "float32" else np.float64).max)
+    for expr, name in zip(exprs, names):
+        for number in expr.atoms(sp.Rational, sp.Float):
+            if abs(number) > largest:
+                exponent = int(abs(int(number)).bit_length() * 0.30103)
+                raise InputError(
+                    f"{name} holds a number of about 10^{exponent}, beyond the {precision} range (at most "
+                    f"{largest:.3g}); give inputs of smaller size (other units), or compile with backend='mpmath'"
+                )
 
 
 def _constants(e: sp.Expr) -> sp.Expr:

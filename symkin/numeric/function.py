@@ -17,7 +17,7 @@ from typing import Any
 
 import numpy as np
 
-from symkin.errors import InputError, NonFiniteInputWarning, PoleError, PoleWarning
+from symkin.errors import FloatOverflowWarning, InputError, NonFiniteInputWarning, PoleError, PoleWarning
 
 __all__ = ["NumericFunction", "NonFiniteInputWarning"]  # the warning lives in symkin.errors
 
@@ -167,6 +167,18 @@ class NumericFunction:
             b = b[finite_in[b]]
             if not b.size:
                 continue
+            size = self._overflow(name, arrays, int(b[0]))
+            if size is not None:
+                value = "0" if size == -math.inf else f"about 10^{size:.0f}"
+                msg = (
+                    f"{name} overflows {self.precision} at {b.size} of {total} points (first at "
+                    f"{_point(self.args, arrays, int(b[0]))}, where the law is finite, {value}): it, or a value on "
+                    "the way to it, is too large for the float type, not a pole"
+                )
+                if self.on_pole == "raise":
+                    raise InputError(msg + "; choose inputs of smaller size (other units), or the mpmath backend")
+                warnings.warn(msg + "; those points hold inf or nan", FloatOverflowWarning, stacklevel=3)
+                continue
             msg = (
                 f"{name} is infinite or undefined at {b.size} of {total} points (first at {_point(self.args, arrays, int(b[0]))}): "
                 f"a denominator vanishes there in {self.precision} (a pole of the law, or inputs closer to one "
@@ -175,6 +187,29 @@ class NumericFunction:
             if self.on_pole == "raise":
                 raise PoleError(msg + "; choose inputs away from it")
             warnings.warn(msg + "; those points hold inf or nan", PoleWarning, stacklevel=3)
+
+
+    def _overflow(self, name: str, arrays: Sequence[np.ndarray], i: int) -> float | None:
+        """log10 of the size of output ``name`` at point ``i`` if the law is finite there and it,
+        or a value on the way to it, is beyond the float range (an overflow, not a pole); else
+        None.  Decided on intervals (:mod:`symkin._util.bounds`), so an exact pole (a
+        denominator exactly 0) is never taken for an overflow."""
+        import sympy as sp
+
+        from symkin._util.bounds import Encloser, NotConstant, NotReal, Unbounded, Undecided, magnitude
+        from symkin._util.budget import time_limit
+
+        expr = self._plan.exprs[self.outputs.index(name)]
+        env = {s: (sp.Rational(float(a[i])), sp.Rational(float(a[i]))) for s, a in zip(self._plan.args, arrays)}
+        encloser = Encloser(64, env, limits=False)
+        try:
+            with time_limit(1.0, "too slow"):
+                x = encloser.enclose(sp.sympify(expr))
+        except (InputError, NotConstant, NotReal, Unbounded, Undecided, TypeError, ValueError, ZeroDivisionError):
+            return None
+        limit = math.log10(float(np.finfo(self._plan.dtype).max))
+        largest = max(magnitude(v) for v in encloser.memo.values())
+        return magnitude(x) if largest > limit else None
 
 
 def _reported(v: Any, shape: tuple[int, ...]) -> np.ndarray:

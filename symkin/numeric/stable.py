@@ -48,6 +48,8 @@ from typing import Any
 import sympy as sp
 from sympy import atan, atan2, cos, sin, tan
 
+from symkin._util.budget import simplify_within
+
 __all__ = [
     "Group",
     "ExactRatio",
@@ -64,6 +66,9 @@ __all__ = [
     "RULE_NOTES",
     "plain_form",
 ]
+
+#: Seconds each rewriting rule may take on one law (:func:`stable_form`).
+RULE_SECONDS = 2.0
 
 _MAX_OPS = 600  # rules that expand or factor skip larger expressions (cost grows fast)
 _MAX_NODE_OPS = 60  # the cosine-sum rule looks at sums up to this size
@@ -611,6 +616,11 @@ def stable_form(
     ['relative_form', 'exact_integer_parts']
     """
     expr = sp.sympify(expr)
+    # exp(-690) (a user's number) is E**-690 to SymPy's polynomials, a polynomial of degree 690 in E:
+    # factoring it takes minutes.  The rules see such constants as positive symbols, put back after.
+    opaque = {node: sp.Dummy(f"c{i}", positive=True)
+              for i, node in enumerate(sorted((n for n in expr.atoms(sp.exp) if n.is_number), key=sp.default_sort_key))}
+    expr = expr.xreplace(opaque)
     times = tuple(reduce_phase)
     rules = [
         ("relative_form", relative_form),
@@ -623,8 +633,11 @@ def stable_form(
     if times:
         rules.append(("reduce_phases", lambda e: reduce_phases(e, times)))
     for name, rule in rules:
-        new = rule(expr)
+        # a rule factors and expands: its time follows the law's size and its numbers, so each has a
+        # budget; past it the law keeps that rule's form unrewritten (exact, only less stable in floats)
+        # with a note
+        new = simplify_within(expr, RULE_SECONDS, None, simplifier=rule, what=f"the stable form ({name}) of a law")
         if new != expr and applied is not None:
             applied.append(name)
         expr = new
-    return expr
+    return expr.xreplace({d: c for c, d in opaque.items()}) if opaque else expr

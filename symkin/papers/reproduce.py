@@ -19,7 +19,7 @@ from importlib import resources
 from pathlib import Path
 from typing import Any, TextIO
 
-from symkin._util.atomic import write_atomically
+from symkin._util.atomic import check_replaceable, recover, write_atomically
 from symkin._util.progress import Progress
 from symkin._version import __version__
 from symkin.errors import InputError
@@ -158,7 +158,7 @@ def run(
             hook(tmp, results)
         bar.close()
 
-    write_atomically(out, build)
+    write_atomically(out, build, version=__version__)
     return results
 
 
@@ -200,7 +200,11 @@ def report_json(results: list[PaperResult], root: Path) -> dict[str, Any]:
 
 def check_target(out: Path) -> None:
     """Refuse a report folder symkin must not replace: a file, the current folder or one
-    holding it, or a non-empty folder that is not a previous symkin report.
+    holding it, a non-empty folder that is not a report symkin wrote (one with symkin's
+    manifest of the files it wrote, :data:`symkin._util.atomic.MANIFEST`), or a report
+    whose files were changed since.  Files a user added to a report are kept (carried into
+    the new one).  What a killed run left beside ``out`` is tidied first
+    (:func:`symkin._util.atomic.recover`).
 
     >>> check_target(Path("/"))
     Traceback (most recent call last):
@@ -218,19 +222,12 @@ def check_target(out: Path) -> None:
         raise InputError(f"cannot write {out}: its parent folder {parent} does not exist; create it or choose another --out")
     if not parent.is_dir():
         raise InputError(f"cannot write {out}: {parent} is a file, not a folder; choose another --out")
-    if target.is_dir() and any(target.iterdir()) and not _is_report(target):
-        raise InputError(
-            f"--out {out} is a folder that is not a symkin report and symkin replaces the whole folder; "
-            "choose a new or empty folder"
-        )
-
-
-def _is_report(folder: Path) -> bool:
     try:
-        data = json.loads((folder / "report.json").read_text())
-    except (OSError, ValueError):
-        return False
-    return isinstance(data, dict) and "symkin_version" in data
+        recover(target)
+    except OSError as err:
+        raise InputError(f"cannot tidy the folder {parent}: {err.strerror}; choose a writable --out") from None
+    if target.is_dir():
+        check_replaceable(out, "a symkin report")
 
 
 def _short(text: str, width: int) -> str:

@@ -32,7 +32,9 @@ from typing import Any
 import sympy as sp
 
 from symkin import symbols as S
-from symkin._util.parsing import as_real, parse_expression
+from symkin._util.bounds import positive_on
+from symkin._util.budget import time_limit
+from symkin._util.parsing import SECONDS, as_rational, as_real, parse_expression, sign_of
 from symkin.errors import InputError
 from symkin.mechanisms.multistage.stages import stage_laws
 from symkin.numeric import compile
@@ -277,9 +279,7 @@ class StageErrorModel:
         21*u/20 - 4/5
         """
         c0, c1 = as_real(intercept, what="the intercept"), as_real(slope, what="the slope")
-        m = as_real(module, what="the module")
-        if m <= 0:
-            raise InputError(f"the module must be positive, got {m}")
+        m = as_real(module, what="the module", positive=True)
         if isinstance(ring, bool) or not isinstance(ring, (int, sp.Integer)) or ring < 3:
             raise InputError(f"the ring's tooth number must be a whole number of at least 3, got {ring!r}")
         z1, z2, z4 = S.teeth("1"), S.teeth("2"), S.teeth("4")
@@ -314,22 +314,25 @@ class StageErrorModel:
     def check_positive(self, lower: Any, upper: Any) -> None:
         """Raise unless Phi/d > 0 over [lower, upper] (a lost motion is positive).
 
+        Decided on intervals (:func:`symkin._util.bounds.positive_on`), not on samples: a
+        model that touches 0 between samples, such as ``Abs(u - 5.123456789)``, is refused.
+
         >>> StageErrorModel.linear(-3, 1).check_positive(2, 10)
         Traceback (most recent call last):
         ...
-        symkin.errors.InputError: the stage error model u - 3 is not positive at u = 2; a lost motion must be positive over the whole ratio range, so change the model or the bounds
+        symkin.errors.InputError: the stage error model u - 3 is not positive over [2, 10]: at u = 2 it is not positive; a lost motion must be positive over the whole ratio range, so change the model or the bounds
         """
-        import numpy as np
-
-        f = compile(self.expr, [U], on_pole="return")  # a pole is reported below, as not positive
-        grid = np.linspace(float(lower), float(upper), 401)
-        values = np.broadcast_to(np.asarray(f(grid), dtype=float), grid.shape)
-        bad = ~(np.isfinite(values) & (values > 0))
-        if bad.any():
-            at = grid[np.argmax(bad)]
+        lo = as_rational(lower, what="the lower ratio bound")
+        hi = as_rational(upper, what="the upper ratio bound")
+        with time_limit(SECONDS, f"deciding whether the stage error model {self.expr} is positive took longer than "
+                        f"{SECONDS:g} s; write a simpler model"):
+            found = positive_on(self.expr, U, lo, hi)
+        if found is not None:
+            at, problem = found
             raise InputError(
-                f"the stage error model {self.expr} is not positive at u = {at:.6g}; a lost motion must be "
-                "positive over the whole ratio range, so change the model or the bounds"
+                f"the stage error model {self.expr} is not positive over [{float(lo):.6g}, {float(hi):.6g}]: at u = "
+                f"{at:.6g} {problem}; a lost motion must be positive over the whole ratio range, so change the model "
+                "or the bounds"
             )
 
 
@@ -381,6 +384,6 @@ def _tolerance(value: Any, signed: bool = False) -> sp.Expr:
     if isinstance(value, sp.Symbol):
         return value
     v = as_real(value, what="a tolerance")
-    if not signed and v < 0:
+    if not signed and sign_of(v, what="a tolerance") == -1:
         raise InputError(f"a tolerance must not be negative, got {v}")
     return v
