@@ -145,7 +145,7 @@ class ReducedPhase(sp.Function):
 
     Arguments: the integers ``p``, ``q`` and up to three factors.  Equal to the product
     modulo 2 pi; its error is about 2^-52 pi whatever the number of turns, where the
-    plain product loses |x1 x2 x3| 2^-53 radians.
+    plain product loses ``|x1 x2 x3| 2^-53`` radians.
     """
 
     is_real = True

@@ -30,7 +30,7 @@ class SynthesisRequest:
     ratio : number
         Target i_1H^(4) = omega_1 / omega_H with gear 4 fixed (exact: "1/50" is 1/50).
     tolerance : number
-        Admissible relative ratio error |i - target| / |target| (0.02 = 2 %).
+        Admissible relative ratio error ``|i - target| / |target|`` (0.02 = 2 %).
     satellites : int
         Number k of equally spaced planets.
     normal_modules : (number, number)
@@ -128,7 +128,7 @@ class SynthesisRequest:
 
     @property
     def ratio_window(self) -> tuple[Fraction, Fraction]:
-        """The admissible ratios, exact: target -+ tolerance |target|."""
+        """The admissible ratios, exact: ``target -+ tolerance |target|``."""
         half = self.tolerance * abs(self.ratio)
         return self.ratio - half, self.ratio + half
 
@@ -160,7 +160,7 @@ class HelicalDesign:
     ratio : Fraction
         i_1H^(4), exact.
     relative_error : Fraction
-        |ratio - target| / |target|, exact.
+        ``|ratio - target| / |target|``, exact.
     assembly : (int, int)
         The integers (P, Q) of the assembly condition.
     helix_free : bool

@@ -76,7 +76,7 @@ class DiscreteSplit:
     tolerance : sympy.Rational
         The relative tolerance on the total ratio.
     designs : tuple of Design
-        Ranked by objective (within tolerance) or by |deviation| then objective (nearest).
+        Ranked by objective (within tolerance) or by ``|deviation|`` then objective (nearest).
     meets_tolerance : bool
     nodes : int
         Search nodes visited (a measure of the work done).
@@ -397,7 +397,7 @@ def best_designs(total: Any, stage_set: Any, stages: int, *, model: Any, toleran
         Number of stages n.
     model : StageErrorModel or sequence
     tolerance : number
-        Relative tolerance on the total: |total - U| <= tolerance * U.
+        Relative tolerance on the total: ``|total - U| <= tolerance * U``.
     top : int
         How many designs to return.
     lower, upper : number, optional
