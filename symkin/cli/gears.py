@@ -40,7 +40,8 @@ def register(sub: Any) -> None:
         sub, "speeds",
         help="angular velocity of every link of a scheme from known speeds",
         description="Every link's angular velocity from the known ones (give as many as the scheme's "
-        "degrees of freedom; a fixed link has speed 0). Values are exact: 100, 0.5, 3/4, 2*pi.",
+        "degrees of freedom; a fixed link has speed 0). Values are exact, in rad/s: 100, 0.5, 3/4, 2*pi; "
+        "or with a unit: 300rpm, 90deg/s.",
         run=run_speeds,
     )
     add_scheme_argument(q, train=True)
@@ -90,6 +91,7 @@ def run_speeds(args: Any) -> int:
         **about,
         "speeds": data_links,
         "coaxial": not mech.coaxiality_defects(),
+        "units": {"speeds": "rad/s"},
     }
     emit(args, f"{title}\n" + "\n".join(rows), data)
     return 0

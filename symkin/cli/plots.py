@@ -11,7 +11,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-from symkin._util.parsing import as_integer, parse_expression, parse_number
+from symkin._util.parsing import as_integer, as_real, parse_expression, parse_number
 from symkin.cli.common import (
     add_command,
     add_omega_argument,
@@ -47,7 +47,7 @@ def _common(p: Any, out_help: str) -> None:
     p.add_argument("--module", default=None, help="gear module of a scheme: pitch radius = module * teeth / 2 (default 1)")
     span = p.add_mutually_exclusive_group()
     span.add_argument("--turns", default=None, help="time span: turns of the carrier H (or of the fastest link), default 1")
-    span.add_argument("--t-end", default=None, help="time span in seconds")
+    span.add_argument("--t-end", default=None, help="time span in seconds, or with a unit (500ms, 2min)")
     add_out_argument(p, out_help)
 
 
@@ -120,7 +120,7 @@ def _setup(args: Any) -> tuple[Any, Any, list, float, list[str], dict[str, Any],
 
     points = [_point(p, mech) for p in args.point] or default_particles(mech)
     if args.t_end is not None:
-        t_end = parse_number(args.t_end, what="--t-end")
+        t_end = as_real(args.t_end, what="--t-end", unit="s")
         if t_end <= 0:
             raise InputError(f"--t-end must be positive, got {args.t_end}")
         t_end = float(t_end)
@@ -170,6 +170,7 @@ def _report(args: Any, kind: str, out: Path, mech: Any, points: list, t_end: flo
         **about,
         "file": str(out),
         "t_end": t_end,
+        "units": {"t_end": "s"},
         "particles": [{"link": mech.link(name).name, **{k: float(c) for k, c in zip("abc", xy)}} for name, xy in points],
         **(extra or {}),
     }
