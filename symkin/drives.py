@@ -68,6 +68,12 @@ class ConstantSpeed(Drive):
             raise InputError("a constant speed cannot depend on t; use SpeedLaw for a speed that varies")
 
     def angle(self, t: sp.Symbol) -> sp.Expr:
+        """The turned angle ``omega t`` at time ``t``.
+
+        >>> from symkin import symbols as S
+        >>> ConstantSpeed(2).angle(S.t)
+        2*t
+        """
         return self.omega * t
 
     def time_of_angle(self, angle: Any) -> sp.Expr:
@@ -94,6 +100,7 @@ class AngleLaw(Drive):
         object.__setattr__(self, "law", _as_expr(self.law, "angle law", "rad"))
 
     def angle(self, t: sp.Symbol) -> sp.Expr:
+        """The angle law at time ``t``, shifted so that the angle is 0 at t = 0."""
         law = self.law.subs(S.t, t)
         return law - law.subs(t, 0)
 
@@ -108,11 +115,18 @@ class SpeedLaw(Drive):
         object.__setattr__(self, "law", _as_expr(self.law, "speed law", "rad/s"))
 
     def angle(self, t: sp.Symbol) -> sp.Expr:
+        """The integral of the speed law from 0 to ``t``.
+
+        >>> from symkin import symbols as S
+        >>> SpeedLaw(2 * S.t).angle(S.t)
+        t**2
+        """
         tau = sp.Dummy("tau", real=True)
         integral = sp.integrate(self.law.subs(S.t, tau), (tau, 0, t))
         return integral
 
     def speed(self, t: sp.Symbol) -> sp.Expr:
+        """The speed law at time ``t``."""
         return self.law.subs(S.t, t)
 
 
@@ -201,13 +215,16 @@ class EllipticalGears(Drive):
         return numerator, sp.expand(2 * denominator - numerator)
 
     def speed(self, t: sp.Symbol) -> sp.Expr:
+        """The driven gear's angular velocity at time ``t``: the input speed times the ratio of the gears' instantaneous radii."""
         driver, driven = self._radii(self.omega * t)
         return self.omega * driver / driven
 
     def acceleration(self, t: sp.Symbol) -> sp.Expr:
+        """The driven gear's angular acceleration at time ``t`` (the derivative of :meth:`speed`)."""
         return sp.diff(self.speed(t), t)
 
     def angle(self, t: sp.Symbol) -> sp.Expr:
+        """The driven gear's angle at time ``t``, in closed form without a branch jump (continuous in ``t``)."""
         e, m, u = self.eccentricity, self.order, self.order * self.omega * t
         return self.omega * t + 2 / m * sp.atan(sp.together(e * sp.sin(u) / (1 - e * sp.cos(u))))
 

@@ -141,6 +141,7 @@ class KinematicSystem:
     dof: int
 
     def rows(self, names: Sequence[str]) -> sp.Matrix:
+        """The rows of the motion matrix for the links ``names``: each link's speed in terms of the independent motions."""
         return sp.Matrix([list(self.motions.row(self.links.index(n))) for n in names]) if names else sp.zeros(0, self.dof)
 
     def rank_of(self, names: Sequence[str]) -> int:

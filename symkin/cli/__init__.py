@@ -43,12 +43,18 @@ class ArgumentParser(argparse.ArgumentParser):
     """argparse with a one-line error message."""
 
     def error(self, message: str) -> NoReturn:
+        """Print ``message`` as one line on stderr, pointing at ``--help``, and exit with status 2 (:class:`UsageExit`)."""
         message = f"{message} (see {self.prog} --help)"
         sys.stderr.write(f"{self.prog}: error: {message}\n")
         raise UsageExit(message)
 
 
 def build_parser() -> ArgumentParser:
+    """The ``symkin`` argument parser with every command of :data:`COMMANDS` registered.
+
+    >>> build_parser().parse_args(["ratio", "AA", "--teeth", "1,2,3,4", "--driver", "H", "--driven", "1", "--fixed", "4"]).scheme
+    'AA'
+    """
     from symkin._version import __version__
 
     parser = ArgumentParser(

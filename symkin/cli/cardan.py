@@ -28,6 +28,7 @@ DESCRIPTION = (
 
 
 def register(sub: Any) -> None:
+    """Add the ``cardan`` command to the ``symkin`` subparsers ``sub`` (called by :func:`symkin.cli.build_parser`)."""
     p = add_command(sub, "cardan", help="slider displacement, velocity, acceleration of the Cardan-circle mechanism",
                     description=DESCRIPTION, run=run_cardan)
     p.add_argument("--length", required=True, metavar="L", help="carrier length l_H (= planet pitch radius for 1:2), in m or with a unit (20mm)")
@@ -104,6 +105,7 @@ def _times(args: Any, slider: CardanSlider) -> Any:
 
 
 def run_cardan(args: Any) -> int:
+    """Run ``symkin cardan`` with the parsed ``args``: the Cardan slider's table s, v, a on a time grid; hands text and JSON to :func:`symkin.cli.common.emit` and returns 0 (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
     from symkin.mechanisms.cardan import CardanSlider
 
     if args.omega_deprecated is not None:

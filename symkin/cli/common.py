@@ -69,11 +69,13 @@ def add_command(sub: Any, name: str, *, help: str, description: str, run: Callab
 
 
 def add_json_flag(parser: Any) -> None:
+    """Add ``--json`` (print one JSON object instead of text) to ``parser``."""
     parser.add_argument("--json", action="store_true",
                         help="print machine-readable JSON instead of text (errors too, as {\"error\": ..., \"exit\": 2})")
 
 
 def add_quiet_flag(parser: Any) -> None:
+    """Add ``--quiet`` (no progress display) to ``parser``."""
     parser.add_argument("--quiet", action="store_true", help="no progress display")
 
 
@@ -87,18 +89,21 @@ def add_scheme_argument(parser: Any, *, train: bool = False) -> None:
 
 
 def add_train_argument(parser: Any, *, required: bool = False) -> None:
+    """Add ``--train FILE`` (a train file, or a ready-made train by name) to ``parser``."""
     parser.add_argument("--train", required=required, metavar="FILE",
                         help="a train file (TOML), or a ready-made train by name (symkin trains lists them)")
 
 
 def add_teeth_argument(parser: Any, example: str, *, required: bool = True, default: str | None = None,
                        metavar: str | None = None, help: str | None = None) -> None:
+    """Add ``--teeth Z1,Z2,...`` to ``parser``; ``example`` shows a valid value in the help."""
     parser.add_argument("--teeth", required=required, default=default, metavar=metavar,
                         help=help or f"comma-separated tooth numbers, e.g. {example}")
 
 
 def add_omega_argument(parser: Any, help: str = "a known angular velocity LINK=VALUE, in rad/s or with a unit "
                        "(1=300rpm, H=90deg/s; repeat)") -> None:
+    """Add the repeatable ``--omega LINK=VALUE`` (a known angular velocity, rad/s or with a unit) to ``parser``."""
     parser.add_argument("--omega", action="append", default=[], metavar="LINK=VALUE", help=help)
 
 

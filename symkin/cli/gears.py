@@ -22,6 +22,7 @@ __all__ = ["register", "SCHEME_HELP"]
 
 
 def register(sub: Any) -> None:
+    """Add the ``ratio`` and ``speeds`` commands to the ``symkin`` subparsers ``sub`` (called by :func:`symkin.cli.build_parser`)."""
     p = add_command(
         sub, "ratio",
         help="ratio i_ab^(c) = omega_a/omega_b of a scheme with link c fixed",
@@ -50,6 +51,7 @@ def register(sub: Any) -> None:
 
 
 def run_ratio(args: Any) -> int:
+    """Run ``symkin ratio`` with the parsed ``args``: the exact ratio i_ab^(c) of a scheme or a train; hands text and JSON to :func:`symkin.cli.common.emit` and returns 0 (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
     mech, about, title = mechanism_of(args)
     law = mech.ratio(args.driver, args.driven, fixed=args.fixed)
     a, b, c = (mech.link(x).name for x in (args.driver, args.driven, args.fixed))
@@ -72,6 +74,7 @@ def run_ratio(args: Any) -> int:
 
 
 def run_speeds(args: Any) -> int:
+    """Run ``symkin speeds`` with the parsed ``args``: every link's angular velocity from the known ones; hands text and JSON to :func:`symkin.cli.common.emit` and returns 0 (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
     known: dict[str, Any] = {}
     for item in args.omega:
         link, value = link_value(item)

@@ -52,6 +52,7 @@ def _common(p: Any, out_help: str) -> None:
 
 
 def register(sub: Any) -> None:
+    """Add the ``trajectory``, ``curves`` and ``animate`` commands to the ``symkin`` subparsers ``sub`` (called by :func:`symkin.cli.build_parser`)."""
     p = add_command(
         sub, "trajectory",
         help="plot the paths of chosen particles of a scheme (PNG or PDF)",
@@ -179,6 +180,7 @@ def _report(args: Any, kind: str, out: Path, mech: Any, points: list, t_end: flo
 
 # --------------------------------------------------------------------------- commands
 def run_trajectory(args: Any) -> int:
+    """Run ``symkin trajectory`` with the parsed ``args``: writes the particles' paths to ``--out``; hands text and JSON to :func:`symkin.cli.common.emit` and returns 0 (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
     from matplotlib.figure import Figure
 
     from symkin.viz.figures import draw_pitch_circles, draw_trajectories
@@ -206,6 +208,7 @@ def run_trajectory(args: Any) -> int:
 
 
 def run_curves(args: Any) -> int:
+    """Run ``symkin curves`` with the parsed ``args``: writes the particles' speed and acceleration against time to ``--out``; hands text and JSON to :func:`symkin.cli.common.emit` and returns 0 (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
     from symkin.viz.figures import kinematics_figure
 
     out = figure_file(args.out)
@@ -218,6 +221,7 @@ def run_curves(args: Any) -> int:
 
 
 def run_animate(args: Any) -> int:
+    """Run ``symkin animate`` with the parsed ``args``: writes the mechanism's animation (GIF, or MP4 with ffmpeg) to ``--out``; hands text and JSON to :func:`symkin.cli.common.emit` and returns 0 (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
     from symkin.viz.animation import MAX_DPI, MAX_FPS, WRITERS, Frames, animate
 
     out = Path(args.out)

@@ -17,6 +17,7 @@ from symkin.papers.texbuild import MISSING, find_pdflatex
 
 
 def register(sub: Any) -> None:
+    """Add the ``reproduce`` command to the ``symkin`` subparsers ``sub`` (called by :func:`symkin.cli.build_parser`)."""
     p = add_command(
         sub, "reproduce",
         help="derive every result of the papers and compare with the published ones",
@@ -55,6 +56,7 @@ def _terminate_as_interrupt() -> Iterator[None]:
 
 
 def run_reproduce(args: Any) -> int:
+    """Run ``symkin reproduce`` with the parsed ``args``: derive and check the papers named, print the table and write the report folder; returns 0, or 1 when some check differs."""
     names = list(dict.fromkeys(args.papers))
     if "all" in names:
         if len(names) > 1:

@@ -361,6 +361,7 @@ class CardanSlider:
     # ---- angles in time
     @cached_property
     def motion(self) -> Any:
+        """The mechanism's motion with the carrier H turned by the slider's drive (for particle laws beside the slider's)."""
         return self.mechanism.motion({"H": self.drive})
 
     @cached_property
@@ -665,6 +666,7 @@ class SliderTable:
         return ["t", "s", "v", "a"] + ([] if self.path.on_guide else ["x", "y", "deviation"])
 
     def to_json(self) -> dict[str, Any]:
+        """The table as JSON: the mechanism, the drive, the path, period, stroke times, the laws s, v, a and the sampled columns."""
         sl = self.slider
         return {
             "mechanism": {
@@ -687,6 +689,7 @@ class SliderTable:
         }
 
     def text(self) -> str:
+        """The table as ``symkin cardan`` prints it: the mechanism, drive, path, period, stroke times, s(t) and the columns."""
         sl = self.slider
         z1, z3 = sl.teeth
         drive = drive_description(sl.drive)

@@ -79,6 +79,7 @@ class Summary:
         )
 
     def to_json(self) -> dict[str, Any]:
+        """The summary as JSON: the counts of items by verdict and of checks by kind, and the summary line."""
         return {
             "line": self.line(),
             "paper_items": {"total": self.items, "reproduced": self.reproduced, "slips": self.slips,

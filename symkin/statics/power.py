@@ -128,6 +128,7 @@ class MeshPower:
     driver: str | None
 
     def to_json(self) -> dict[str, Any]:
+        """The mesh as JSON: its tangential, per-planet and radial forces, the power relative to the carrier, the power, and which gear drives."""
         return {"mesh": [self.mesh.a, self.mesh.b], "tangential": exact_json(self.tangential),
                 "per_planet": exact_json(self.per_planet), "radial": exact_json(self.radial),
                 "relative_power": exact_json(self.relative_power), "power": exact_json(self.power), "driver": self.driver}
@@ -194,6 +195,7 @@ class Statics:
         return bool(condition) if condition in (sp.true, sp.false) else condition
 
     def to_json(self) -> dict[str, Any]:
+        """The result as JSON: torques, tooth forces, the power through each mesh and the efficiency both ways."""
         backward = self.backward
         locks = self.self_locking
         return {
@@ -211,6 +213,7 @@ class Statics:
         }
 
     def text(self) -> str:
+        """The result as ``symkin efficiency`` prints it."""
         name = self.mechanism.name or "train"
         held = f", {', '.join(self.fixed)} held" if self.fixed else ""
         lines = [f"{name}: {self.input} drives {self.output}{held}; per unit input torque and speed"]

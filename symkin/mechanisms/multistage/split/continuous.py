@@ -112,6 +112,7 @@ class ContinuousSplit:
         return lines
 
     def to_json(self) -> dict[str, Any]:
+        """The optimum as JSON: ratios (exact where known), objective, active bounds, multipliers and the KKT residual."""
         return {
             "ratios": list(self.ratios),
             "exact_ratios": exact_json_list(self.exact_ratios),
