@@ -591,13 +591,13 @@ def parse_quantity(value: Any, unit: str, *, what: str = "value", names: Iterabl
         error = plain
     for m in _UNIT_START.finditer(s):  # the unit starts at the first place where both halves parse
         number, unit_text = s[: m.start()].strip(), s[m.end():].strip()
-        if not number or not _UNIT_TEXT.match(unit_text):
+        if not number:
             continue
         try:
             magnitude = parse_expression(number, names=names, what=what)
         except InputError:
             continue
-        try:
+        try:  # a number, then what must be a unit (_parse_unit checks its allow-list first)
             return magnitude * unit_factor(unit_text, unit, what=what)
         except InputError as err:
             error = err
