@@ -20,6 +20,8 @@ Where quantities are accepted:
 - known speeds and inputs (``Mechanism.speeds``, ``Mechanism.motion``,
   :func:`symkin.kinematics.solve_speeds`, the drives of :mod:`symkin.drives`): rad/s;
 - angles of drives: rad;
+- the Cardan slider (:meth:`symkin.mechanisms.cardan.CardanSlider.build`): lengths in m,
+  angles in rad, and the times of its tables in s;
 - the command line: ``--omega LINK=VALUE`` (rad/s), ``symkin cardan``'s ``--length`` and
   ``--pin-radius`` (m), ``--speed`` (rad/s), its angles (rad) and times (s), ``--t-end`` of
   the figure commands (s).  With ``--json`` the output's ``"units"`` names the unit of every

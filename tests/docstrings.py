@@ -36,7 +36,7 @@ def _public(node: ast.AST) -> bool:
 
 
 def _overload(node: ast.AST) -> bool:
-    return any(isinstance(d, ast.Name) and d.id == "overload" or isinstance(d, ast.Attribute) and d.attr in ("overload", "setter")
+    return any((isinstance(d, ast.Name) and d.id == "overload") or (isinstance(d, ast.Attribute) and d.attr in ("overload", "setter"))
                for d in getattr(node, "decorator_list", ()))
 
 
