@@ -323,9 +323,13 @@ class CardanSlider:
         guide_angle, carrier_angle :
             ``theta_2`` and ``theta_H(0)``.
 
+        Notes
+        -----
         Lengths are in m and angles in rad, or quantities with a unit (``"20 mm"``, ``"30 deg"``,
         pint quantities: :mod:`symkin.units`); the drive's speed in rad/s, or with a unit.
 
+        Examples
+        --------
         >>> CardanSlider.build(20, teeth=(20, 60)).path().kind
         'hypocycloid'
         >>> CardanSlider.build("20 mm", drive="24 rpm", carrier_angle="30 deg").laws()[0].rhs
