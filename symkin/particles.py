@@ -329,7 +329,14 @@ class Motion:
 class Particle:
     """A particle of a link: its position, velocity and acceleration laws in t.
 
-    Each is derived on first use by eqs. (4), (5), (6) and cached.
+    Each is derived on first use by eqs. (4), (5), (6) and cached.  ``V`` (or ``v``) and
+    ``w`` (or ``a``) are the same velocity and acceleration: the 2009 paper writes V and w,
+    most readers v and a.
+
+    >>> from symkin import schemes
+    >>> p = schemes.single_row_AI(teeth=(20, 30, 80), module=1).motion({"4": 0, "H": 1}).particle("2", (15, 0))
+    >>> p.w is p.a is p.acceleration, p.V is p.velocity
+    (True, True)
     """
 
     motion: Motion
@@ -370,6 +377,20 @@ class Particle:
             self._pole_state(0),
         )
 
+    # the 2009 paper's letters and the usual ones, one law each
+    @property
+    def V(self) -> sp.ImmutableMatrix:
+        """The velocity (the 2009 paper's V)."""
+        return self.velocity
+
+    v = V
+
+    @property
+    def w(self) -> sp.ImmutableMatrix:
+        """The acceleration (the 2009 paper's w)."""
+        return self.acceleration
+
+    a = w
     def trajectory(
         self, t_end: Any, *, t_start: Any = 0.0, samples: int = 721, values: Mapping[Any, Any] | None = None
     ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -476,6 +497,20 @@ class SpaceParticle:
         """(w_x, w_y, w_z) in t."""
         return self._absolute[2]
 
+    # the 2009 paper's letters and the usual ones, one law each
+    @property
+    def V(self) -> sp.ImmutableMatrix:
+        """The velocity (the 2009 paper's V)."""
+        return self.velocity
+
+    v = V
+
+    @property
+    def w(self) -> sp.ImmutableMatrix:
+        """The acceleration (the 2009 paper's w)."""
+        return self.acceleration
+
+    a = w
     def trajectory(
         self, t_end: Any, *, t_start: Any = 0.0, samples: int = 721, values: Mapping[Any, Any] | None = None
     ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:

@@ -40,6 +40,8 @@ from symkin.numeric import DEFAULT_CHUNK, compile
 __all__ = ["Study"]
 
 _QUANTITIES = ("position", "velocity", "acceleration")
+#: Other names a reader uses: the 2009 paper's V and w, and the usual v and a.
+_ALIASES = {"V": "velocity", "v": "velocity", "w": "acceleration", "a": "acceleration"}
 
 
 class _CompileOptions(TypedDict):
@@ -67,7 +69,9 @@ class Study:
         Links whose angular velocity law is wanted, given ``inputs``.
     particles : sequence of (link, (a, b)) or (link, (a, b), quantities)
         Particles by link and Lagrange coordinates; ``quantities`` from "position",
-        "velocity", "acceleration" (default: position).  Each gives x and y laws in t.
+        "velocity" (or "V", "v"), "acceleration" (or "w", "a") (default: position).  Each
+        gives x and y laws in t, named ``x[...]``, ``Vx[...]``, ``wx[...]`` (the 2009 paper's
+        letters).
     inputs : mapping of link to speed or drive, optional
         Known speeds (for ``speeds``) and input drives (for ``particles``); default: the
         symbols omega_k of an admissible choice of links.
@@ -109,8 +113,9 @@ class Study:
             if not isinstance(p, (tuple, list)) or len(p) not in (2, 3):
                 raise InputError(f"a particle is (link, (a, b)) or (link, (a, b), quantities), got {p!r}")
             for q in (p[2] if len(p) == 3 else ()):
-                if q not in _QUANTITIES:
-                    raise InputError(f"a particle quantity is one of {', '.join(_QUANTITIES)}, got {q!r}")
+                if _ALIASES.get(q, q) not in _QUANTITIES:
+                    raise InputError(f"a particle quantity is one of {', '.join(_QUANTITIES)} (or V, v, w, a), "
+                                     f"got {q!r}")
         if not (self.ratios or self.speeds or self.particles):
             raise InputError("an empty study: ask for ratios=, speeds= or particles=")
 
@@ -134,7 +139,7 @@ class Study:
                 quantities = item[2] if len(item) == 3 else ("position",)
                 p = motion.particle(link, point)
                 tag = f"{motion.mechanism.link(link).name}@({', '.join(map(str, point))})"
-                for q in quantities:
+                for q in (_ALIASES.get(q, q) for q in quantities):
                     vec = getattr(p, q)
                     sym = {"position": "", "velocity": "V", "acceleration": "w"}[q]
                     for axis, comp in zip("xyz", vec):
@@ -147,7 +152,8 @@ class Study:
             "study",
             tuple((a, b, fixed(c)) for a, b, c in self.ratios),
             tuple(self.speeds),
-            tuple((p[0], tuple(map(str, p[1])), tuple(p[2]) if len(p) == 3 else ("position",)) for p in self.particles),
+            tuple((p[0], tuple(map(str, p[1])), tuple(_ALIASES.get(q, q) for q in p[2]) if len(p) == 3 else ("position",))
+                  for p in self.particles),
             tuple(sorted((k, str(v)) for k, v in (self.inputs or {}).items())),
             repr(self.frame),
         )

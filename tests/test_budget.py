@@ -137,3 +137,26 @@ def test_the_cardan_path_for_a_slow_angle_is_decided_within_the_budget():
     # 0.41 turns away from a whole number of turns, so the pin draws a line off the guide
     assert sp.N(SLOW, 60) % 1 == pytest.approx(0.4096, abs=1e-3)
     assert path.kind == "line off the guide"
+
+
+def test_an_interrupt_that_is_swallowed_comes_again():
+    # the first interrupt can land where Python drops exceptions (a __del__, a gc callback) or in a
+    # bare except; the budget must still stop the work
+    swallowed = []
+
+    def stubborn(expr):
+        deadline = time.perf_counter() + 30
+        while time.perf_counter() < deadline:
+            try:
+                while time.perf_counter() < deadline:
+                    sum(range(1000))
+            except BaseException as exc:  # what careless code does
+                if swallowed:
+                    raise
+                swallowed.append(type(exc).__name__)
+        return expr
+
+    start = time.perf_counter()
+    with pytest.warns(SimplificationBudgetWarning, match="longer than 0.2 s"):
+        simplify_within(sp.Integer(1), seconds=0.2, simplifier=stubborn)
+    assert swallowed == ["_OutOfTime"] and time.perf_counter() - start < 5

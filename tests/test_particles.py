@@ -100,3 +100,25 @@ def test_constant_inputs_give_uniform_rotation():
     motion = m.motion({"1": 3, "4": 0})
     assert motion.angle("H") == 3 * t * sp.Rational(-1, 24) ** -1 / 1 or motion.angle("H") == -72 * t
     assert motion.omega("H") == -72 and motion.epsilon("H") == 0
+
+
+def test_the_papers_letters_and_the_usual_ones_name_the_same_laws():
+    from symkin import Study
+
+    mech = schemes.single_row_AI(teeth=(20, 30, 80), module=1)
+    p = mech.motion({"4": 0, "H": 1}).particle("2", (15, 0))
+    assert p.w is p.a is p.acceleration and p.V is p.v is p.velocity
+    # the acceleration is the second derivative of the position, whatever it is called
+    assert sp.simplify(p.a - p.position.diff(S.t, 2)) == sp.zeros(2, 1)
+    by_letter = Study(mech, particles=[("2", (15, 0), ("w", "v"))], inputs={"4": 0, "H": 1}).laws
+    by_word = Study(mech, particles=[("2", (15, 0), ("acceleration", "velocity"))], inputs={"4": 0, "H": 1}).laws
+    assert [law.rhs for law in by_letter] == [law.rhs for law in by_word]
+
+
+def test_the_planet_answers_to_2_in_single_and_two_row_schemes():
+    # single-row: link 2 is the planet; two-row: link 23 carries rims 2 and 3 (the paper's numbering),
+    # and a link is also found by the name of any gear it carries
+    one, two = schemes.single_row_AI(teeth=(20, 30, 80)), schemes.two_row("AI", teeth=(20, 30, 20, 70))
+    assert one.link("2").name == "2" and two.link("2").name == two.link("3").name == "23"
+    # Willis: (w2 - wH)/(w1 - wH) = -z1/z2 = -2/3 with wH = z1/(z1 + z4) = 1/5, so w2 = 1/5 - 8/15 = -1/3
+    assert one.speeds({"1": 1, "4": 0})["2"] == sp.Rational(-1, 3)

@@ -118,6 +118,9 @@ def simplify_within(
         return expr
 
 
+#: Seconds between repeated interrupts once the time is up (until the block has stopped).
+_REFIRE = 0.1
+
 #: The tracer off the main thread looks at the clock once in this many Python calls.
 _CALLS_PER_CHECK = 256
 
@@ -130,16 +133,22 @@ def _time_limit(seconds: float) -> Iterator[None]:
             yield
         return
 
+    active = [True]
+
     def expire(signum: int, frame: Any) -> None:
-        raise _OutOfTime
+        if active[0]:
+            raise _OutOfTime
 
     outer_left, outer_interval = signal.getitimer(signal.ITIMER_REAL)
     start = time.monotonic()
     previous = signal.signal(signal.SIGALRM, expire)
-    signal.setitimer(signal.ITIMER_REAL, min(seconds, outer_left) if outer_left > 0 else seconds)
+    # then again every _REFIRE s: an interrupt that lands where Python drops exceptions (a __del__, a
+    # weakref or gc callback: "Exception ignored in ...") or that a bare except swallows is raised again
+    signal.setitimer(signal.ITIMER_REAL, min(seconds, outer_left) if outer_left > 0 else seconds, _REFIRE)
     try:
         yield
     finally:
+        active[0] = False  # a repeat that lands from here on is ignored
         signal.setitimer(signal.ITIMER_REAL, 0)
         signal.signal(signal.SIGALRM, previous)
         if outer_left > 0:  # re-arm the outer timer with what is left of it (at least a moment)

@@ -23,7 +23,7 @@ from typing import NoReturn
 
 from symkin.errors import SymkinError, SymkinWarning
 
-__all__ = ["main", "COMMANDS", "ArgumentParser"]
+__all__ = ["main", "COMMANDS", "ArgumentParser", "output_schema", "JSON_SCHEMA_VERSION"]
 
 #: Modules of symkin.cli that define commands, in the order --help lists them.
 COMMANDS = ("reproduce", "gears", "trains", "efficiency", "plots", "cardan", "multistage", "helical")
@@ -132,7 +132,35 @@ def _note(w: warnings.WarningMessage) -> str:
     return one_line(f"{w.category.__name__}: {w.message}")
 
 
+#: The version of the layouts of every ``--json`` output (symkin/cli/schemas/*.schema.json).
+JSON_SCHEMA_VERSION = "1.0"
+
+
+def output_schema(command: str) -> dict:
+    """The JSON Schema of ``symkin COMMAND --json``'s output (``"error"``: of any failure).
+
+    ``reproduce`` prints the report, whose schema is
+    :func:`symkin.papers.reproduce.report_schema`.
+
+    >>> schema = output_schema("ratio")
+    >>> schema["properties"]["schema_version"]["const"], "ratio" in schema["required"]
+    ('1.0', True)
+    """
+    from importlib.resources import files
+
+    if command == "reproduce":
+        from symkin.papers.reproduce import report_schema
+
+        return report_schema()
+    path = files("symkin.cli").joinpath("schemas").joinpath(f"{command}.schema.json")
+    if not path.is_file():
+        known = sorted(p.name.removesuffix(".schema.json") for p in files("symkin.cli").joinpath("schemas").iterdir())
+        raise ValueError(f"no output schema for {command!r}; known: {', '.join([*known, 'reproduce'])}")
+    return json.loads(path.read_text())
+
+
 def _print_json(data: dict) -> None:
+    data = {"schema_version": JSON_SCHEMA_VERSION, **data}  # the report carries its own (the same)
     json.dump(data, sys.stdout, indent=2, ensure_ascii=False, allow_nan=False)
     sys.stdout.write("\n")
 
