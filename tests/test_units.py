@@ -123,3 +123,14 @@ def test_a_run_without_units_does_not_import_pint():
             "schemes.two_row('AA', teeth=(54, 45, 44, 55)).speeds({'1': '3/4', '4': 0}); print('pint' in sys.modules)")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
     assert out.strip() == "False"
+
+
+def test_symbolic_inputs_whose_class_has_no_module_pass_through():
+    # an undefined SymPy function's class has __module__ None: not a quantity, taken as it is
+    import sympy as sp
+
+    from symkin import symbols as S
+    from symkin.drives import AngleLaw
+
+    theta = sp.Function("Theta")
+    assert AngleLaw(theta(S.t)).angle(S.t) == theta(S.t) - theta(0)

@@ -499,10 +499,13 @@ MAX_UNIT_LENGTH = 40
 def is_quantity(value: Any) -> bool:
     """Whether ``value`` is a pint quantity (without importing pint when it is not one).
 
-    >>> is_quantity(3), is_quantity("3 rpm")
-    (False, False)
+    >>> import sympy as sp
+    >>> is_quantity(3), is_quantity("3 rpm"), is_quantity(sp.Function("Theta")(1))  # an undefined function's class has no module
+    (False, False, False)
     """
-    return type(value).__module__.split(".")[0] == "pint" and hasattr(value, "units") and hasattr(value, "magnitude")
+    module = getattr(type(value), "__module__", None)
+    return isinstance(module, str) and module.split(".")[0] == "pint" and hasattr(value, "units") \
+        and hasattr(value, "magnitude")
 
 
 def _registry(value: Any = None) -> Any:

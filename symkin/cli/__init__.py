@@ -132,7 +132,7 @@ def _note(w: warnings.WarningMessage) -> str:
     return one_line(f"{w.category.__name__}: {w.message}")
 
 
-#: The version of the layouts of every ``--json`` output (symkin/cli/schemas/*.schema.json).
+#: The version of the layouts of every ``--json`` output (``symkin/cli/schemas/*.schema.json``).
 JSON_SCHEMA_VERSION = "1.0"
 
 
