@@ -76,6 +76,9 @@ def test_pint_quantities_are_taken_exactly_and_give_what_bare_numbers_give():
     ("3 __import__", "m", "unknown unit"),
     ("3 " + "m*" * 40 + "m", "m", "is not a unit"),
     ("1 m^999999999", "m", "not a unit of m"),
+    ("1e400 rpm", "rad/s", "about 10.400; numbers from 1e-300 to 1e300"),   # the number's fault, not the unit's
+    ("1e400", "rad/s", "about 10.400; numbers from 1e-300 to 1e300"),
+    ("10**10**10 rpm", "rad/s", "exponent larger than 1000"),
 ])
 def test_bad_units_are_one_line_errors(text, unit, message):
     with pytest.raises(InputError, match=message) as err:

@@ -592,19 +592,32 @@ def parse_quantity(value: Any, unit: str, *, what: str = "value", names: Iterabl
         return parse_expression(s, names=names, what=what)
     except InputError as plain:
         error = plain
+    if _well_formed(s):  # a well-formed expression that was refused (out of range, a name not allowed) has no unit
+        raise error
+    refused: InputError | None = None
     for m in _UNIT_START.finditer(s):  # the unit starts at the first place where both halves parse
         number, unit_text = s[: m.start()].strip(), s[m.end():].strip()
         if not number:
             continue
         try:
             magnitude = parse_expression(number, names=names, what=what)
-        except InputError:
+        except InputError as err:
+            if _well_formed(number):  # a number refused (out of range, ...): say that, not "unknown unit"
+                refused = err
             continue
         try:  # a number, then what must be a unit (_parse_unit checks its allow-list first)
             return magnitude * unit_factor(unit_text, unit, what=what)
         except InputError as err:
             error = err
-    raise error
+    raise refused or error
+
+
+def _well_formed(text: str) -> bool:
+    try:
+        ast.parse(text.replace("^", "**"), mode="eval")
+    except SyntaxError:
+        return False
+    return True
 
 
 def as_values(values: Any, *, what: str = "values") -> dict[str, sp.Expr]:
