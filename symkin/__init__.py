@@ -20,7 +20,8 @@ The package, from the bottom up (``docs/architecture.md`` gives the path of data
   train from a file, its gear states and shift table (:func:`load_train`);
 - :mod:`~symkin.numeric`: the one place laws become numbers; :mod:`~symkin.printing`:
   LaTeX; :mod:`~symkin.study`: derive, compile and evaluate what a request needs;
-- :mod:`~symkin.statics`, and the families in :mod:`~symkin.mechanisms` (Cardan,
+- :mod:`~symkin.statics`; :mod:`~symkin.synthesis`: tooth numbers of any train for a
+  target ratio (:func:`synthesize`); the families in :mod:`~symkin.mechanisms` (Cardan,
   multistage, helical);
 - :mod:`~symkin.viz` (figures, animation), :mod:`~symkin.papers` (checks, reports) and
   :mod:`~symkin.cli` (the ``symkin`` command).
@@ -44,6 +45,7 @@ if TYPE_CHECKING:  # what the lazy attributes below are, for type checkers and I
         schemes,
         statics,
         symbols,
+        synthesis,
         trains,
         vectorloop,
         viz,
@@ -55,6 +57,7 @@ if TYPE_CHECKING:  # what the lazy attributes below are, for type checkers and I
     from symkin.particles import FrameMotion, Motion, Particle
     from symkin.printing import latex
     from symkin.study import Study
+    from symkin.synthesis import synthesize
     from symkin.trains import Train, load_train
 
 _deprecated.install()  # the module paths of symkin 0.1 keep importing for one release
@@ -80,12 +83,13 @@ _LAZY: dict[str, tuple[str, str]] = {
     "latex": ("printing", "latex"),
     "load_train": ("trains", "load_train"),
     "Train": ("trains", "Train"),
+    "synthesize": ("synthesis", "synthesize"),
 }
 
 #: Subpackages and modules reachable as ``symkin.NAME`` without importing them first.
 _SUBMODULES = frozenset({
     "cli", "drives", "errors", "kinematics", "laws", "mechanisms", "model", "numeric", "papers", "particles",
-    "printing", "schemes", "statics", "study", "superposition", "symbols", "trains", "vectorloop", "viz",
+    "printing", "schemes", "statics", "study", "superposition", "symbols", "synthesis", "trains", "vectorloop", "viz",
 })
 #: Modules of symkin 0.1 that moved (see :mod:`symkin._deprecated`), as ``symkin.NAME``.
 _MOVED = frozenset(name.split(".")[1] for name in _deprecated.MODULES if name.count(".") == 1)
@@ -125,6 +129,7 @@ __all__ = [
     "Study",
     "Train",
     "load_train",
+    "synthesize",
     "ratio",
     "solve_speeds",
     "latex",
@@ -135,6 +140,7 @@ __all__ = [
     "vectorloop",
     "mechanisms",
     "statics",
+    "synthesis",
     "numeric",
     "viz",
     "symbols",

@@ -26,6 +26,7 @@ __all__ = [
     "OverdeterminedError",
     "SingularConfigurationError",
     "UnsupportedError",
+    "TimeLimitError",
     "ToolError",
     "SymkinWarning",
     "CoaxialityWarning",
@@ -95,6 +96,11 @@ class SingularConfigurationError(DeterminacyError):
 
 class PoleError(InputError):
     """A compiled law was evaluated at a pole (a denominator vanishes at these inputs)."""
+
+
+class TimeLimitError(InputError):
+    """A search would not finish within its time limit: the message says how far it got and
+    suggests narrower bounds (nothing the user had is lost; nothing partial is returned)."""
 
 
 class UnsupportedError(SymkinError, NotImplementedError):

@@ -6,6 +6,10 @@ import pytest
 
 matplotlib.use("Agg")
 os.environ.setdefault("MPLBACKEND", "Agg")
+if "SYMKIN_CACHE_DIR" not in os.environ:  # compiled Numba kernels of the tests: not in the user's cache
+    import tempfile
+
+    os.environ["SYMKIN_CACHE_DIR"] = tempfile.mkdtemp(prefix="symkin-test-kernels-")
 
 
 @pytest.fixture

@@ -163,6 +163,14 @@ COMMANDS: dict[str, Command] = {
                         "--beta-min", "8", "--beta-max", "30", "--zmin", "17", "--zmax", "60", "--alpha-n", "20",
                         "--addendum", "1", "--min-ring-difference", "8", "--top", "3", "--quiet", "--json"),
                         ok_codes=frozenset({0, 1, 2})),
+    "synthesize": Command(("synthesize", "--train", "simple", "--driver", "S", "--driven", "C", "--fixed", "R", "--ratio",
+                           "4", "--tolerance", "0.01", "--planets", "3", "--zmin", "18", "--zmax", "60", "--pressure-angle",
+                           "20", "--addendum", "1", "--clearance", "0", "--shift", "0", "--ring-difference", "8", "--top",
+                           "3", "--time-limit", "15", "--quiet", "--json"), ok_codes=frozenset({0, 1, 2})),
+    "synthesize-state": Command(("synthesize", "--train", "wolfrom", "--state", "drive", "--ratio-range", "70,80",
+                                 "--planets", "3", "--zmax", "50", "--top", "2", "--time-limit", "10", "--quiet",
+                                 "--json"),
+                                ok_codes=frozenset({0, 1, 2})),
 }
 
 

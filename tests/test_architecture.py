@@ -33,6 +33,7 @@ LAYERS: list[tuple[str, ...]] = [
     ("symkin.kinematics", "symkin.particles", "symkin.drives", "symkin.vectorloop"),
     ("symkin.schemes", "symkin.trains"),
     ("symkin.study", "symkin.statics"),
+    ("symkin.synthesis",),
     ("symkin.mechanisms",),
     ("symkin.viz",),
     ("symkin.papers",),
@@ -169,3 +170,25 @@ def test_command_line_modules_import_no_sympy_at_module_level():
             if isinstance(node, (ast.Import, ast.ImportFrom)):
                 names = [a.name for a in node.names] if isinstance(node, ast.Import) else [node.module or ""]
                 assert not any(n.split(".")[0] == "sympy" for n in names), f"{m}:{node.lineno} imports SymPy"
+
+
+def test_help_and_the_parser_load_no_sympy():
+    # `symkin --help` and building any command's parser stay light: what a command's
+    # module imports at module level (directly or through symkin.cli.common, symkin._util,
+    # symkin.papers.registry) is checked by running it, not only by reading its imports
+    import subprocess
+    import sys
+
+    code = (
+        "import sys, io, contextlib\n"
+        "from symkin.cli import COMMANDS, build_parser, main\n"
+        "build_parser()\n"
+        "with contextlib.redirect_stdout(io.StringIO()):\n"
+        "    try:\n"
+        "        main(['--help'])\n"
+        "    except SystemExit:\n"
+        "        pass\n"
+        "print(sorted({m.split('.')[0] for m in sys.modules} & {'sympy', 'numpy', 'mpmath', 'matplotlib', 'scipy'}))\n"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert out.strip() == "[]", out

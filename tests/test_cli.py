@@ -126,7 +126,7 @@ def test_every_command_has_json_and_every_angle_states_its_unit():
 
 def test_progress_commands_take_quiet_and_omega_is_always_link_value():
     quiet = {name for name, a in _options() if "--quiet" in a.option_strings}
-    assert quiet == {"reproduce", "helical", "split"}
+    assert quiet == {"reproduce", "helical", "split", "synthesize"}
     for name, a in _options():
         if "--omega" in a.option_strings and a.help != "==SUPPRESS==":
             assert a.metavar == "LINK=VALUE", name

@@ -23,6 +23,9 @@ EXTRA = {
     "speeds-expression": ("speeds", "AI", "--teeth", "20,30,20,70", "--omega", "1=2*pi", "--omega", "4=0", "--json"),
     "states-simpson": ("states", "--train", "simpson", "--json"),
     "reproduce-one": ("reproduce", "luo2018", "--no-pdf", "--quiet", "--json"),
+    "synthesize-efficiency": ("synthesize", "--train", "ravigneaux", "--driver", "S1", "--driven", "R", "--fixed", "C",
+                              "--ratio-range", "2.3,2.4", "--planets", "3", "--zmax", "60", "--shift", "0.5", "--top",
+                              "2", "--efficiency", "--quiet", "--json"),
 }
 CALLS = {**{k: c.argv for k, c in COMMANDS.items() if c.argv[0] != "reproduce"}, **EXTRA}
 

@@ -100,6 +100,45 @@ def test_two_stage_train_ratio_is_the_product_of_its_stages():
     assert same(symbolic, (1 + r4 / rs1) * (1 + r4 / rs2))
 
 
+def test_long_train_is_solved_stage_by_stage():
+    # 50 stages in series: the block solve composes the stages' factors and never expands
+    # the product (its expanded numerator would have 2^50 terms); the total ratio is the
+    # product of the single-row stage ratios (1 + r4/r_s), each derived on its own
+    n = 50
+    train = schemes.common_ring_train(n)
+    total = train.ratio("s1", f"H{n}", fixed="4").rhs
+    stage = schemes.single_row_AI().ratio("1", "H", fixed="4").rhs  # in r_1 and r_4
+    expected = sp.Mul(*(stage.subs(S.radius("1"), S.radius(f"s{i}")) for i in range(1, n + 1)))
+    assert total == sp.factor(expected)
+    num, den = sp.fraction(total)
+    assert len(sp.Mul.make_args(num)) == n and len(sp.Mul.make_args(den)) == n
+
+
+def test_block_solve_equals_one_solve_of_the_whole_system():
+    # the speeds of a 4-stage train with the sun and the ring driven, by the block solve
+    # (cancelled where small, composed where large) and by one LU solve of the system
+    from symkin.kinematics import _solve_factored, _solve_whole, _triangular_blocks, kinematic_system
+
+    train = schemes.common_ring_train(4)
+    system = kinematic_system(train)
+    known = ["s1", "4"]
+    unknown = [n for n in system.links if n not in known]
+    col = {n: i for i, n in enumerate(system.links)}
+    A = system.matrix.extract(list(range(system.matrix.rows)), [col[u] for u in unknown])
+    B = -system.matrix.extract(list(range(system.matrix.rows)), [col[k] for k in known])
+    assert len(_triangular_blocks(A)) == 4  # one block (planet, carrier) per stage
+    cancelled, composed = _solve_factored(A, B)
+    whole = _solve_whole(A, B)
+    same_form = 0
+    for got, kept, want in zip(cancelled, composed, whole):
+        if got == want:  # small entries: the cancelled form one solve gives
+            same_form += 1
+        else:  # large ones keep their composed form, equal in value
+            assert got == kept and sp.cancel(got - want) == 0
+    assert same_form >= len(whole) // 2
+    assert _triangular_blocks(sp.Matrix([[1, 0], [1, 0]])) is None  # no equation for the second unknown
+
+
 def test_underdetermined_gives_dof_and_a_choice():
     m = schemes.two_row("AI")
     with pytest.raises(UnderdeterminedError, match="2 degrees of freedom.*only 1.*for example 1 and") as err:

@@ -19,14 +19,14 @@ import os
 import sys
 import warnings
 from collections.abc import Sequence
-from typing import NoReturn
+from typing import Any, NoReturn
 
 from symkin.errors import SymkinError, SymkinWarning
 
 __all__ = ["main", "COMMANDS", "ArgumentParser", "output_schema", "JSON_SCHEMA_VERSION"]
 
 #: Modules of symkin.cli that define commands, in the order --help lists them.
-COMMANDS = ("reproduce", "gears", "trains", "efficiency", "plots", "cardan", "multistage", "helical")
+COMMANDS = ("reproduce", "gears", "trains", "efficiency", "plots", "cardan", "multistage", "helical", "synthesis")
 
 EXIT_OK, EXIT_DIFFERS, EXIT_USAGE, EXIT_INTERNAL = 0, 1, 2, 3
 
@@ -49,8 +49,9 @@ class ArgumentParser(argparse.ArgumentParser):
         raise UsageExit(message)
 
 
-def build_parser() -> ArgumentParser:
-    """The ``symkin`` argument parser with every command of :data:`COMMANDS` registered.
+def build_parser(command: str | None = None) -> ArgumentParser:
+    """The parser of every command, or (``command`` given) one whose other commands have
+    their names and help only: ``symkin --help`` and ``symkin ratio ...`` need no more.
 
     >>> build_parser().parse_args(["ratio", "AA", "--teeth", "1,2,3,4", "--driver", "H", "--driven", "1", "--fixed", "4"]).scheme
     'AA'
@@ -64,9 +65,37 @@ def build_parser() -> ArgumentParser:
     parser.add_argument("--version", action="version", version=f"symkin {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=ArgumentParser)
     sub.required = True
+    target = sub if command is None else _Only(sub, command)
     for name in COMMANDS:
-        importlib.import_module(f"{__name__}.{name}").register(sub)
+        importlib.import_module(f"{__name__}.{name}").register(target)
     return parser
+
+
+class _Only:
+    """Subparsers that fill in the arguments of one command only: the others are added
+    with their name and help, and what their ``register`` adds to them is dropped."""
+
+    def __init__(self, sub: Any, command: str):
+        self._sub, self._command = sub, command
+
+    def add_parser(self, name: str, **kwargs: Any) -> Any:
+        parser = self._sub.add_parser(name, **kwargs)
+        return parser if name == self._command else _Dropped()
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self._sub, name)
+
+
+class _Dropped:
+    """Takes every call a command's ``register`` makes on its parser, and keeps none."""
+
+    def __getattr__(self, name: str) -> Any:
+        return lambda *args, **kwargs: self
+
+
+def _command(argv: Sequence[str]) -> str:
+    """The command a command line names (its first word that is not an option), or ""."""
+    return next((a for a in argv if not a.startswith("-")), "")
 
 
 def one_line(message: object, word: int = 80) -> str:
@@ -92,7 +121,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     """
     argv = list(sys.argv[1:] if argv is None else argv)
     wants_json = "--json" in argv
-    parser = build_parser()
+    parser = build_parser(_command(argv))
     try:
         args = parser.parse_args(argv)
     except UsageExit as exc:

@@ -6,8 +6,15 @@ import argparse
 import warnings
 from typing import TYPE_CHECKING, Any
 
-from symkin._util.parsing import as_real, parse_expression, parse_integer
-from symkin.cli.common import add_command, add_teeth_argument, emit, teeth_list
+from symkin.cli.common import (
+    add_command,
+    add_teeth_argument,
+    as_real,
+    emit,
+    parse_expression,
+    parse_integer,
+    teeth_list,
+)
 from symkin.errors import InputError, SymkinWarning
 
 if TYPE_CHECKING:

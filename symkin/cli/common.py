@@ -30,10 +30,32 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-from symkin._util.jsonout import exact_json, float_text
-from symkin._util.parsing import parse_integer, parse_quantity
 from symkin._util.progress import Progress
 from symkin.errors import InputError
+
+
+def _on_first_call(module: str, name: str) -> Callable[..., Any]:
+    """``module.name``, imported when first called: the parsers and the JSON helpers need
+    SymPy, which ``symkin --help`` and the parser never load (commands import what they use)."""
+
+    def call(*args: Any, **kwargs: Any) -> Any:
+        import importlib
+
+        return getattr(importlib.import_module(module), name)(*args, **kwargs)
+
+    call.__name__ = call.__qualname__ = name
+    call.__doc__ = f"``{module}.{name}`` (imported on first call)."
+    return call
+
+
+exact_json = _on_first_call("symkin._util.jsonout", "exact_json")
+float_text = _on_first_call("symkin._util.jsonout", "float_text")
+parse_expression = _on_first_call("symkin._util.parsing", "parse_expression")
+parse_integer = _on_first_call("symkin._util.parsing", "parse_integer")
+parse_number = _on_first_call("symkin._util.parsing", "parse_number")
+parse_quantity = _on_first_call("symkin._util.parsing", "parse_quantity")
+as_integer = _on_first_call("symkin._util.parsing", "as_integer")
+as_real = _on_first_call("symkin._util.parsing", "as_real")
 
 __all__ = [
     "teeth_list",

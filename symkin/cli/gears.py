@@ -16,7 +16,6 @@ from symkin.cli.common import (
     link_value,
     mechanism_of,
 )
-from symkin.printing import latex
 
 __all__ = ["register", "SCHEME_HELP"]
 
@@ -52,6 +51,8 @@ def register(sub: Any) -> None:
 
 def run_ratio(args: Any) -> int:
     """Run ``symkin ratio`` with the parsed ``args``: the exact ratio i_ab^(c) of a scheme or a train; hands text and JSON to :func:`symkin.cli.common.emit` and returns 0 (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
+    from symkin.printing import latex
+
     mech, about, title = mechanism_of(args)
     law = mech.ratio(args.driver, args.driven, fixed=args.fixed)
     a, b, c = (mech.link(x).name for x in (args.driver, args.driven, args.fixed))

@@ -4,8 +4,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any
 
-from symkin._util.parsing import parse_integer, parse_number
-from symkin.cli.common import Progress, add_command, add_quiet_flag, emit
+from symkin.cli.common import Progress, add_command, add_quiet_flag, emit, parse_integer, parse_number
 from symkin.errors import InputError
 
 if TYPE_CHECKING:

@@ -5,14 +5,15 @@ from __future__ import annotations
 
 from typing import Any
 
-from symkin._util.jsonout import exact_json
-from symkin._util.parsing import parse_integer, parse_number
 from symkin.cli.common import (
     Progress,
     add_command,
     add_quiet_flag,
     emit,
+    exact_json,
     figure_file,
+    parse_integer,
+    parse_number,
     save_figure,
 )
 from symkin.errors import InputError

@@ -11,17 +11,19 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-from symkin._util.parsing import as_integer, as_real, parse_expression, parse_number
 from symkin.cli.common import (
     add_command,
     add_omega_argument,
     add_out_argument,
     add_scheme_argument,
     add_teeth_argument,
+    as_integer,
     emit,
     figure_file,
     link_value,
     mechanism_of,
+    parse_expression,
+    parse_number,
     save_figure,
 )
 from symkin.errors import InputError
@@ -121,6 +123,8 @@ def _setup(args: Any) -> tuple[Any, Any, list, float, list[str], dict[str, Any],
 
     points = [_point(p, mech) for p in args.point] or default_particles(mech)
     if args.t_end is not None:
+        from symkin._util.parsing import as_real
+
         t_end = as_real(args.t_end, what="--t-end", unit="s")
         if t_end <= 0:
             raise InputError(f"--t-end must be positive, got {args.t_end}")

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import argparse
 import json
 import signal
 import warnings
@@ -12,8 +13,19 @@ from typing import Any
 
 from symkin.cli.common import add_command, add_out_argument, add_quiet_flag, emit
 from symkin.errors import InputError, SymkinWarning
-from symkin.papers.reproduce import format_table, paper_names, run
-from symkin.papers.texbuild import MISSING, find_pdflatex
+
+
+class _PapersHelp(argparse.HelpFormatter):
+    """Names the registered papers in the help of PAPER when the help is printed: finding
+    them reads every installed distribution's entry points, which ``symkin --help`` need not."""
+
+    def _get_help_string(self, action: argparse.Action) -> str | None:
+        text = super()._get_help_string(action)
+        if action.dest == "papers" and text is not None:
+            from symkin.papers.registry import paper_names
+
+            text += ", ".join(paper_names())
+        return text
 
 
 def register(sub: Any) -> None:
@@ -30,7 +42,8 @@ def register(sub: Any) -> None:
         "bad input. With --json the report (symkin/papers/report.schema.json) is printed instead of the table.",
         run=run_reproduce,
     )
-    p.add_argument("papers", nargs="*", default=["all"], metavar="PAPER", help=f"all (default) or any of: {', '.join(paper_names())}")
+    p.formatter_class = _PapersHelp
+    p.add_argument("papers", nargs="*", default=["all"], metavar="PAPER", help="all (default) or any of: ")
     add_out_argument(p, "DIR: the report folder, written whole or not at all (default ./symkin-out)", required=False,
                      default="symkin-out")
     add_quiet_flag(p)
@@ -57,6 +70,10 @@ def _terminate_as_interrupt() -> Iterator[None]:
 
 def run_reproduce(args: Any) -> int:
     """Run ``symkin reproduce`` with the parsed ``args``: derive and check the papers named, print the table and write the report folder; returns 0, or 1 when some check differs."""
+    from symkin.papers.registry import paper_names
+    from symkin.papers.reproduce import format_table, run
+    from symkin.papers.texbuild import MISSING, find_pdflatex
+
     names = list(dict.fromkeys(args.papers))
     if "all" in names:
         if len(names) > 1:

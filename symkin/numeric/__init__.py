@@ -38,7 +38,8 @@ from symkin.numeric.stable import RULE_NOTES, stable_form
 
 __all__ = ["compile", "NumericFunction", "NonFiniteInputWarning", "BACKENDS", "dask_map"]
 
-#: Points per chunk of the NumPy backend (temporaries of 128 KiB stay in cache and are reused).
+#: Points per chunk of the NumPy backend (temporaries of 128 KiB stay in cache and are reused;
+#: 8192 points was 10-40% slower at 10^5 and 10^6 points in an interleaved A/B on 2 cores).
 DEFAULT_CHUNK = 1 << 14
 
 
@@ -98,7 +99,7 @@ def compile(
     cse: bool = True,
     stable: bool = True,
     ranges: Mapping[sp.Symbol, tuple[Any, Any]] | None = None,
-    reduce_phase: Sequence[sp.Symbol] = (),
+    reduce_phase: Sequence[sp.Symbol] | None = None,
     chunk: int = DEFAULT_CHUNK,
     threads: int | None = None,
     on_pole: str = "warn",
@@ -123,9 +124,11 @@ def compile(
     ranges : {symbol: (lo, hi)}, optional
         Known ranges of symbols, which let the rewriting decide signs (e.g. an
         eccentricity in (0, 1)).
-    reduce_phase : sequence of Symbol
+    reduce_phase : sequence of Symbol, optional
         Time symbols whose phases (``sin(c omega t)``...) are reduced in double-double
-        arithmetic, for long times.
+        arithmetic, for long times.  Default: the arguments named ``t`` (the elliptical
+        drive's slider at e = 0.999999 keeps 1e-13 normwise at its speed peaks only so);
+        ``()`` turns the reduction off.
     chunk : int
         Points per chunk of the NumPy backend.
     threads : int, optional
@@ -166,6 +169,8 @@ def compile(
     missing = free - set(args)
     if missing:
         raise InputError(f"the law depends on {', '.join(sorted(map(str, missing)))}, which are not among the arguments")
+    if reduce_phase is None:  # time, by its name: phases of t are reduced unless asked not to
+        reduce_phase = tuple(a for a in args if a.name == "t")
     options = dict(
         backend=backend, precision=precision, digits=digits, cse=cse, stable=stable, ranges=dict(ranges or {}),
         reduce_phase=tuple(reduce_phase), chunk=chunk, threads=threads, on_pole=on_pole,

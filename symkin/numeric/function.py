@@ -85,8 +85,9 @@ class NumericFunction:
         self.on_pole = on_pole
         # the exact and mpmath backends evaluate point by point: a call with scalars goes
         # straight to the generated function, without arrays
-        scalar = getattr(evaluator, "evaluate_scalar", None)
-        self._scalar = None if scalar is None else (lambda values: _single(scalar(values)))
+        # (the float backends: one float64 point in Python floats, or None for the array path)
+        self._scalar: Any = getattr(evaluator, "evaluate_scalar", None)
+        self._scalar_typed = bool(getattr(evaluator, "scalar_types_checked", False))
         lines = [
             f"Compiled {', '.join(self.outputs)} ({self.backend}, {self.precision}).",
             "",
@@ -127,14 +128,14 @@ class NumericFunction:
     def __call__(self, *values: Any, out: Sequence[np.ndarray] | np.ndarray | None = None) -> Any:
         if len(values) != len(self.args):
             raise InputError(f"this function takes {len(self.args)} arguments ({', '.join(self.args)}), got {len(values)}")
-        if isinstance(out, np.ndarray):
+        if out is None:
+            # (the float backends' scalar path checks the types itself: no loop here)
+            if self._scalar_typed or (self._scalar is not None and not any(isinstance(v, _ARRAYS) for v in values)):
+                point = self._scalar(values)
+                if point is not None:
+                    return point[0] if len(point) == 1 else tuple(point)
+        elif isinstance(out, np.ndarray):
             out = [out]
-        if out is None and self._scalar is not None:
-            for v in values:
-                if isinstance(v, _ARRAYS):
-                    break
-            else:
-                return self._scalar(values)
         shape, results, flagged = self._evaluator.evaluate(values, out)
         if flagged and self.on_pole != "return":
             self._check_poles(values, shape, results)
@@ -175,10 +176,6 @@ class NumericFunction:
             if self.on_pole == "raise":
                 raise PoleError(msg + "; choose inputs away from it")
             warnings.warn(msg + "; those points hold inf or nan", PoleWarning, stacklevel=3)
-
-
-def _single(results: Sequence[Any]) -> Any:
-    return results[0] if len(results) == 1 else tuple(results)
 
 
 def _reported(v: Any, shape: tuple[int, ...]) -> np.ndarray:

@@ -17,6 +17,7 @@ jitted, Numba's scalar loops.
 
 from __future__ import annotations
 
+import functools
 import math
 from typing import Any
 
@@ -74,19 +75,48 @@ def _product_difference_core(a: Any, b: Any, c: Any, d: Any) -> Any:
 
 
 def product_difference(a: Any, b: Any, c: Any, d: Any) -> Any:
-    """``a*b - c*d`` of float64 values within about one unit in the last place of the
-    exact value, however much the two products cancel.
+    """``a*b - c*d`` of float64 values within 3 units of 2^-53 of the exact value
+    (relative), however much the two products cancel.
 
-    Exact while the inputs are below 2^995 and the products above 2^-969 in magnitude (or
-    zero); where the splitting overflows the plain ``a*b - c*d`` is returned instead.
+    The plain ``p - q`` (``p = a*b``, ``q = c*d``) is within ``2^-53 (|p| + |q| + |p - q|)``
+    of the exact value: 3 units where the products cancel to no less than half their
+    sum (``2 |p - q| >= |p + q|``, the common case, 6 operations).  Only the points where
+    they cancel more are redone in double-double arithmetic (:func:`_product_difference_core`,
+    about 50 operations: within one unit), so the result keeps its digits at any distance
+    from a pole and is zero exactly where ``a b = c d``.  The double-double is exact while the
+    inputs are below 2^995 and the products above 2^-969 in magnitude (or zero); where its
+    splitting overflows the plain difference is kept.
     """
     f = np.float64
-    a, b, c, d = (np.asarray(x, f) for x in (a, b, c, d))
-    out = _product_difference_core(a, b, c, d)
-    bad = np.isnan(out)
-    if bad.any():
-        out = np.where(bad, a * b - c * d, out)
+    if type(a) is not np.ndarray or type(b) is not np.ndarray or type(c) is not np.ndarray or type(d) is not np.ndarray:
+        a, b, c, d = (np.asarray(x, f) for x in (a, b, c, d))
+    p = a * b
+    q = c * d
+    out = p - q
+    near = np.abs(out + out) < np.abs(p + q)  # cancels to less than half the sum (nan: False)
+    if out.ndim == 0:
+        if near:
+            exact = _product_difference_core(a, b, c, d)
+            return out if exact != exact else exact
+        return out
+    if np.count_nonzero(near):  # (count_nonzero: no Python wrapper, unlike ndarray.any)
+        shape = out.shape
+        parts = [x[near] if x.shape == shape else np.broadcast_to(x, shape)[near] for x in (a, b, c, d)]
+        exact = _product_difference_core(*parts)
+        out[near] = np.where(np.isnan(exact), out[near], exact)
     return out
+
+
+def product_difference_scalar(a: float, b: float, c: float, d: float) -> float:
+    """:func:`product_difference` of Python floats (the scalar path of a compiled law)."""
+    p = a * b
+    q = c * d
+    r = p - q
+    if abs(r + r) < abs(p + q):
+        exact = _product_difference_core(a, b, c, d)
+        if exact == exact:
+            return exact
+    return r
 
 
 def product_difference_f32(a: Any, b: Any, c: Any, d: Any) -> Any:
@@ -153,6 +183,20 @@ def reduced_phase_f32(p: int, q: int, x1: Any, x2: Any, x3: Any) -> Any:
     return np.asarray(reduced_phase(p, q, x1, x2, x3), dtype=np.float32)
 
 
+def _exact_ratio_scalar(num: int, den: int) -> float:
+    return num / den  # Python integers: correctly rounded; a zero denominator raises (the array path reports it)
+
+
+def _reduced_phase_scalar(p: int, q: int, x1: float, x2: float, x3: float) -> float:
+    return float(_reduced_phase_core(float(p), float(q), float(x1), float(x2), float(x3)))
+
+
+#: Names the generated scalar code (one point, Python floats) calls.
+SCALAR_NAMESPACE = {
+    "_symkin_exact_ratio": _exact_ratio_scalar, "_symkin_reduced_phase": _reduced_phase_scalar,
+    "_symkin_product_difference": product_difference_scalar,
+}
+
 #: Names the generated NumPy code calls, by precision.
 NAMESPACE = {
     "float64": {
@@ -166,8 +210,10 @@ NAMESPACE = {
 }
 
 
+@functools.cache
 def numba_namespace(precision: str) -> dict[str, Any]:
-    """The same helpers, jitted for Numba scalar loops."""
+    """The same helpers, jitted for Numba scalar loops (once per process and precision:
+    the kernels cached on disk find the same helpers)."""
     import numba
 
     two_prod = numba.njit(inline="always")(_two_prod)
@@ -209,9 +255,13 @@ def numba_namespace(precision: str) -> dict[str, Any]:
         @numba.njit(inline="always")
         def difference(a, b, c, d):  # pragma: no cover - compiled
             a, b, c, d = np.float64(a), np.float64(b), np.float64(c), np.float64(d)
-            r = core(a, b, c, d)
-            if r != r:  # the splitting overflowed (or an input is nan): the plain form
-                r = a * b - c * d
+            p = a * b
+            q = c * d
+            r = p - q
+            if abs(r + r) < abs(p + q):  # the products cancel: double-double (see product_difference)
+                e = core(a, b, c, d)
+                if e == e:  # else the splitting overflowed: the plain form
+                    r = e
             return r
 
     return {"_symkin_exact_ratio": ratio, "_symkin_reduced_phase": phase, "_symkin_product_difference": difference}

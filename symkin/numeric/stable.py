@@ -161,12 +161,15 @@ class ReducedPhase(sp.Function):
 
 
 class ProductDifference(_Deferred):
-    """``a*b - c*d``, evaluated in double-double arithmetic by the float backends.
+    """``a*b - c*d``, evaluated in double-double arithmetic by the float backends where
+    the two products cancel.
 
-    Both products are split exactly into a double and its rounding error (Dekker), and
-    the four parts are summed in double-double arithmetic, so the float64 result is
-    within about one unit in the last place of the exact ``a b - c d`` of the binary
-    inputs, whatever the cancellation (float32: the products are exact in float64).
+    Where ``2 |a b - c d| < |a b + c d|`` both products are split exactly into a double and
+    its rounding error (Dekker), and the four parts are summed in double-double
+    arithmetic; elsewhere the plain difference is within 3 units of 2^-53 already.  So the
+    float64 result is within 3 units of 2^-53 of the exact ``a b - c d`` of the binary
+    inputs, whatever the cancellation, and zero exactly where it is (float32: the
+    products are exact in float64).
     This holds while the inputs are below 2^995 and the products above 2^-969 in
     magnitude (or zero); outside that range the plain ``a*b - c*d`` is used.
     """

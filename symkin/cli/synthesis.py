@@ -1,0 +1,160 @@
+"""``symkin synthesize``: tooth numbers of any train for a target ratio."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from symkin._util.jsonout import exact_json
+from symkin._util.parsing import parse_integer, parse_number
+from symkin.cli.common import Progress, add_command, add_quiet_flag, add_train_argument, emit
+from symkin.errors import InputError
+
+__all__ = ["register"]
+
+
+def register(sub: Any) -> None:
+    """Add the ``synthesize`` command to the ``symkin`` subparsers ``sub`` (called by :func:`symkin.cli.build_parser`)."""
+    p = add_command(
+        sub, "synthesize",
+        help="tooth numbers of any train for a target ratio (k planets assembled, clear and coaxial)",
+        description=(
+            "Find tooth numbers for a train file whose teeth are symbols (teeth = \"z1\"; a file that gives every "
+            "tooth number has them all searched) that give the ratio omega_driver/omega_driven with the --fixed links "
+            "held (or a --state of the file) within the tolerance, with --planets equally spaced copies of every "
+            "planet kind that can be assembled and clear each other, every planet's meshes coaxial (or within --shift "
+            "of one working centre distance), and every tooth number within the limits (--zmin defaults to the least "
+            "number cut without undercut at the pressure angle). The conditions are derived from the train's model "
+            "and printed (--latex as LaTeX). Designs are ranked by ratio error, then size, then tooth sum; each is "
+            "re-checked by building its train and deriving its ratio and planet positions again. --scheduler runs "
+            "the search on Dask; the result is the same."
+        ),
+        run=run_synthesize,
+    )
+    add_train_argument(p, required=True)
+    p.add_argument("--driver", help="the driving link (or gear)")
+    p.add_argument("--driven", help="the driven link (or gear)")
+    p.add_argument("--fixed", action="append", default=[], metavar="LINK",
+                   help="a link held still (repeat, or LINK,LINK); the frame's gears are held already")
+    p.add_argument("--state", help="instead of --driver/--driven/--fixed: a gear state of the train file")
+    p.add_argument("--ratio", help="target ratio omega_driver/omega_driven, exact (2.4, 12/5, -3)")
+    p.add_argument("--tolerance", default="0.01", help="relative ratio tolerance (default 0.01 = 1 %%)")
+    p.add_argument("--ratio-range", metavar="LO,HI", help="instead of --ratio: every ratio from LO to HI")
+    p.add_argument("--planets", "-k", required=True,
+                   help="equally spaced planets of each kind, or 'file' for each planet's count in the train file")
+    p.add_argument("--zmin", help="least tooth number of every unknown gear (default: the least without undercut)")
+    p.add_argument("--zmax", default="150", help="largest tooth number of every unknown gear (default 150)")
+    p.add_argument("--pressure-angle", default="20", metavar="DEG",
+                   help="pressure angle in degrees, for the undercut limit (default 20)")
+    p.add_argument("--addendum", default="1", help="addendum coefficient h_a* of the tip circles (default 1)")
+    p.add_argument("--clearance", default="0", help="least gap between neighbouring planets' tip circles, in modules "
+                   "(default 0)")
+    p.add_argument("--shift", default="0", metavar="Y",
+                   help="profile shift allowed: largest |a_w - a|/m of a mesh to a planet (default 0: pitch circles)")
+    p.add_argument("--ring-difference", default="8",
+                   help="least tooth difference of an internal gear and a gear meshing it (default 8)")
+    p.add_argument("--top", default="10", help="how many designs to list, or 'all' (default 10)")
+    p.add_argument("--time-limit", default="60", metavar="SECONDS", help="stop a longer search (default 60)")
+    p.add_argument("--scheduler", metavar="ADDRESS",
+                   help="run the search on Dask: a scheduler's address (tcp://host:8786) or 'local' (a local cluster)")
+    p.add_argument("--workers", help="processes of a local Dask cluster (default: the machine's cores)")
+    p.add_argument("--efficiency", nargs="?", const="default", metavar="ETA",
+                   help="also give each listed design's efficiency (its statics, driver driving driven): every mesh "
+                        "ETA, or without ETA 0.98 per external and 0.99 per internal mesh (or the file's values)")
+    p.add_argument("--latex", action="store_true", help="also print the derived conditions in LaTeX")
+    add_quiet_flag(p)
+
+
+def _ratio_range(text: str) -> tuple[Any, Any]:
+    parts = [x.strip() for x in text.split(",")]
+    if len(parts) != 2:
+        raise InputError(f"--ratio-range takes LO,HI (two numbers), got {text!r}")
+    return parse_number(parts[0], what="--ratio-range LO"), parse_number(parts[1], what="--ratio-range HI")
+
+
+def run_synthesize(args: Any) -> int:
+    """Run ``symkin synthesize`` with the parsed ``args``: tooth numbers of a train file for a target ratio; hands text and JSON to :func:`symkin.cli.common.emit` and returns 0 (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
+    from symkin.synthesis import synthesize
+
+    if args.ratio is None and args.ratio_range is None:
+        raise InputError("give --ratio R (with --tolerance) or --ratio-range LO,HI")
+    if args.ratio is not None and args.ratio_range is not None:
+        raise InputError("give either --ratio or --ratio-range, not both")
+    if args.state is None and (args.driver is None or args.driven is None):
+        raise InputError("name --driver and --driven (and --fixed links), or a --state of the train file")
+    fixed = [f.strip() for item in args.fixed for f in item.split(",")]
+    if any(not f for f in fixed):
+        raise InputError("--fixed names a link, e.g. --fixed C")
+    planets = None if args.planets.strip().lower() == "file" else int(parse_integer(args.planets, what="--planets"))
+    top = None if args.top.strip().lower() == "all" else int(parse_integer(args.top, what="--top"))
+    bar = Progress(enabled=not args.quiet)
+    try:
+        result = synthesize(
+            args.train,
+            ratio=None if args.ratio is None else parse_number(args.ratio, what="--ratio"),
+            tolerance=parse_number(args.tolerance, what="--tolerance"),
+            ratio_range=None if args.ratio_range is None else _ratio_range(args.ratio_range),
+            driver=args.driver, driven=args.driven, fixed=fixed or None, state=args.state,
+            planets=planets,
+            zmin=None if args.zmin is None else int(parse_integer(args.zmin, what="--zmin")),
+            zmax=int(parse_integer(args.zmax, what="--zmax")),
+            pressure_angle=parse_number(args.pressure_angle, what="--pressure-angle"),
+            addendum=parse_number(args.addendum, what="--addendum"),
+            clearance=parse_number(args.clearance, what="--clearance"),
+            shift=parse_number(args.shift, what="--shift"),
+            ring_difference=int(parse_integer(args.ring_difference, what="--ring-difference")),
+            top=top,
+            scheduler=args.scheduler,
+            workers=None if args.workers is None else int(parse_integer(args.workers, what="--workers")),
+            time_limit=float(parse_number(args.time_limit, what="--time-limit")),
+            progress=lambda done, total, found: bar.show(f"searching: {done}/{total} chunks, {found} designs"),
+        )
+    finally:
+        bar.close()
+    checks = [d.check() for d in result.designs]
+    etas = None
+    if args.efficiency is not None:
+        mesh = "default" if args.efficiency == "default" else parse_number(args.efficiency, what="--efficiency")
+        etas = [d.efficiency(mesh) for d in result.designs]
+    data = result.to_json()
+    for i, (design, check) in enumerate(zip(data["designs"], checks)):
+        design["check"] = check.to_json()
+        if etas is not None:
+            design["efficiency"] = exact_json(etas[i])
+    emit(args, _text(result, checks, args.latex, etas), data)
+    return 0 if all(c.passed for c in checks) else 1
+
+
+def _text(result: Any, checks: list[Any], latex: bool, etas: list[Any] | None = None) -> str:
+    from symkin.synthesis.result import describe_designs
+
+    p = result.problem
+    o = p.options
+    counts = ", ".join(f"{n} x {k}" for n, k in p.counts)
+    lines = [
+        f"{p.train.name or 'train'}: {p.ratio.lhs} = {p.ratio.rhs}, target {result.target.text()}, planets {counts}, "
+        f"{o.zmin} <= z <= {o.zmax}" + (f", profile shift up to {o.shift} m" if o.shift else ", meshes on their pitch circles"),
+    ]
+    lines += [f"note: {n}" for n in result.notes]
+    lines.append("conditions derived from the model:")
+    for c in result.conditions:
+        lines.append(f"  {c}")
+        if latex:
+            lines.append(f"    {c.latex()}")
+    ex = result.execution
+    lines.append(f"search: {result.search}; {result.made} tuples made, {ex.get('chunks', 0)} chunks {ex.get('scheduler', '')}, "
+                 f"{result.seconds:.2f} s in all")
+    width = max(len(str(n)) for _, n in result.funnel)
+    lines += [f"  {n:>{width}}  {name}" for name, n in result.funnel]
+    shown = len(result.designs)
+    lines.append(f"{result.found} designs; {'all' if shown == result.found else f'the best {shown}'} by ratio error, "
+                 "then size (envelope diameter), then tooth sum:")
+    table = describe_designs(result.designs)
+    for i, (row, check) in enumerate(zip(table, [None, *checks])):
+        mark = "check" if check is None else ("ok" if check.passed else f"FAILED {check.problem}")
+        if etas is not None:
+            row += "  efficiency" if i == 0 else f"  {float(etas[i - 1]):10.5f}"
+        lines.append(f"  {row}  {mark}")
+    lines.append("check: each train built with its teeth; ratio derived again, coaxiality and planet positions from "
+                 "the model, the least gap between planet copies measured" +
+                 ("; efficiency from each train's statics (basic-train method), not a ranking key" if etas else ""))
+    return "\n".join(lines)

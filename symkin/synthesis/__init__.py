@@ -1,0 +1,28 @@
+"""Tooth numbers for a target ratio, for any train: conditions derived from the model, an exact pruned search.
+
+- :mod:`.problem`: the conditions derived from a train whose tooth numbers are symbols
+  (coaxiality, assembly of k planets, neighbours, limits), printable as LaTeX
+  (:func:`derive`, :class:`Condition`);
+- :mod:`.search`: the search plan (the coaxiality solved for some tooth numbers, the ratio
+  window for one more) and the evaluation of a chunk of the space, exact in integers and
+  rationals;
+- :mod:`.runner`: chunks run here or on Dask, with progress and a time limit;
+- :mod:`.result`: the designs, each re-checked by building its train;
+- :func:`synthesize`: all of it in one call.
+
+    >>> from symkin.synthesis import synthesize
+    >>> res = synthesize("ravigneaux", driver="S1", driven="R", fixed="C", ratio="12/5", tolerance=0, planets=3,
+    ...                  zmax=72)
+    >>> res.designs[0].gear_teeth, res.designs[0].check().passed
+    ((('s1', 30), ('s2', 24), ('p1', 18), ('p2', 24), ('r', 72)), True)
+"""
+
+from __future__ import annotations
+
+from symkin.synthesis.api import synthesize
+from symkin.synthesis.problem import Condition, Options, Problem, derive, undercut_minimum
+from symkin.synthesis.result import Design, DesignCheck, SynthesisResult
+from symkin.synthesis.search import Target
+
+__all__ = ["synthesize", "derive", "Problem", "Condition", "Options", "Target", "Design", "DesignCheck",
+           "SynthesisResult", "undercut_minimum"]

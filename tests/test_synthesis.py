@@ -1,0 +1,428 @@
+"""Tooth-number synthesis of any train (symkin.synthesis) against independent routes.
+
+- the derived conditions against the textbook ones (coaxiality, assembly, neighbours),
+  and the derived assembly against placing planet copies tooth by tooth;
+- the search's full result against a brute force over every tuple with the textbook
+  conditions applied by hand (simple planetary, Ravigneaux, double-pinion, Wolfrom);
+- known designs present: the 2014 paper's 22 stages of ring 180 (KhAI 2014), textbook
+  simple planetary sets, the ready-made trains' own tooth numbers;
+- every returned design re-checked by building its train (ratio by Willis' formula typed
+  here, geometry by the law of cosines);
+- Dask and local runs, and any chunking, give the same result;
+- bad requests give one clear message in bounded time.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import itertools
+import math
+import random
+import time
+import warnings
+from fractions import Fraction
+
+import pytest
+import sympy as sp
+
+import symkin
+from symkin.errors import InputError, TimeLimitError
+from symkin.model import Gear
+from symkin.synthesis import derive, synthesize
+from symkin.synthesis.integers import solvable
+from symkin.synthesis.result import assembles_tooth_by_tooth
+from symkin.trains import load_train, read_train
+
+# ---------------------------------------------------------------- helpers
+SIN = {k: math.sin(math.pi / k) for k in range(2, 10)}
+
+
+def neighbours_clear(arm2: Fraction, tip_diameter: Fraction, k: int) -> bool:
+    """Textbook neighbour condition 2 a sin(pi/k) > d_a (a = arm); exact for k = 2 and 6."""
+    if k == 1:
+        return True
+    exact = {2: Fraction(1), 6: Fraction(1, 2)}
+    if k in exact:
+        return arm2 * exact[k] > tip_diameter
+    return float(arm2) * SIN[k] > float(tip_diameter) + 1e-12
+
+
+def numeric_train(train, values):
+    """The train with its symbolic tooth numbers replaced by ``values`` (by symbol name)."""
+    links = []
+    for L in train.links:
+        gears = tuple(Gear.from_teeth(g.name, values[str(g.teeth)] if g.teeth.free_symbols else g.teeth,
+                                      internal=g.internal, module=g.module) for g in L.gears)
+        links.append(dataclasses.replace(L, gears=gears))
+    return dataclasses.replace(train, links=tuple(links))
+
+
+def found_set(result, names):
+    return {tuple(d.values[n] for n in names) for d in result.designs}
+
+
+SINGLE_ROW_180 = """
+name = "single-row AI, ring 180"
+module = 1
+meshes = [["s", "p"], ["p", "r"]]
+[links.S]
+gears = { s = "z_1" }
+[links.H]
+[links.P]
+carrier = "H"
+gears = { p = "z_2" }
+[links.frame]
+gears = { r = { teeth = 180, internal = true } }
+"""
+
+
+# ---------------------------------------------------------------- integers
+def test_integer_systems_against_a_brute_force():
+    import numpy as np
+
+    rng = random.Random(3)
+    n1, n2 = np.meshgrid(np.arange(-80, 81), np.arange(-80, 81))
+    for _ in range(600):
+        rows, cols = rng.randint(1, 3), rng.randint(1, 2)
+        G = [[rng.randint(-6, 6) for _ in range(cols)] for _ in range(rows)]
+        h = [Fraction(rng.randint(-12, 12), rng.choice([1, 1, 1, 2])) for _ in range(rows)]
+        ok = np.ones_like(n1, dtype=bool)
+        for row, v in zip(G, h):  # every pair of integers within 80 of 0 (more than any solution needs here)
+            ok &= (row[0] * n1 + (row[1] * n2 if cols == 2 else 0)) * v.denominator == v.numerator
+        assert solvable(G, h) == bool(ok.any()), (G, h)
+
+
+# ---------------------------------------------------------------- derived conditions
+def test_the_derived_conditions_of_a_simple_planetary_are_the_textbook_ones():
+    p = derive(load_train("simple"), driver="S", driven="C", fixed="R", planets=4)
+    zs, zp, zr = p.unknowns
+    (coax,) = [c for c in p.conditions() if c.kind == "coaxiality"]
+    assert sp.solve(coax.relation, zr) == [zs + 2 * zp]  # z_r = z_s + 2 z_p with one module
+    assert sp.simplify(p.ratio.rhs - (1 + zr / zs)) == 0  # Willis: 1 - i_SR^(C) = 1 + z_r/z_s
+    for s, r in itertools.product(range(10, 40), range(60, 90)):  # (z_s + z_r)/k whole
+        assert p.assembles({"z_s": s, "z_p": (r - s) // 2, "z_r": r}) == ((s + r) % 4 == 0)
+
+
+def test_the_derived_assembly_of_a_double_pinion_set_is_the_textbook_one():
+    p = derive(load_train("double-pinion"), driver="S", driven="R", fixed="C", planets=3)
+    for s, r in itertools.product(range(12, 40), range(70, 100)):  # (z_r - z_s)/k whole
+        assert p.assembles({"z_s": s, "z_p1": 18, "z_p2": 18, "z_r": r}) == ((r - s) % 3 == 0)
+
+
+@pytest.mark.parametrize("name, request_", [
+    ("simple", dict(driver="S", driven="C", fixed="R")),
+    ("wolfrom", dict(state="drive")),
+    ("double-pinion", dict(driver="S", driven="R", fixed="C")),
+    ("ravigneaux", dict(driver="S1", driven="R", fixed="C")),
+    ("simpson", dict(state="first")),
+])
+def test_the_derived_assembly_agrees_with_placing_copies_tooth_by_tooth(name, request_):
+    rng = random.Random(hash(name) % 1000)
+    warnings.simplefilter("ignore")
+    seen = {True: 0, False: 0}
+    for k in (2, 3, 4, 5):
+        p = derive(load_train(name), planets=k, **request_)
+        for _ in range(40):
+            values = {str(z): rng.randint(5, 40) + (45 if any(p.train.gear(g).internal for g in p.gears_of(z)) else 0)
+                      for z in p.unknowns}
+            try:
+                train = numeric_train(p.train, values)
+            except symkin.ModelError:
+                continue
+            by_teeth = all(assembles_tooth_by_tooth(train, g.planets, k) for g in p.assembly)
+            assert p.assembles(values) == by_teeth, (k, values)
+            seen[by_teeth] += 1
+    assert seen[True] >= 5 and seen[False] >= 5  # both answers were exercised
+
+
+def test_the_conditions_print_as_latex_that_reads_back():
+    from sympy.parsing.latex import parse_latex
+
+    p = derive(load_train("simple"), driver="S", driven="C", fixed="R", planets=3)
+    names = {sp.Symbol(f"z_{{{z.name[2:]}}}"): z for z in p.unknowns}
+
+    def back(tex):
+        expr = parse_latex(tex)
+        return expr.subs({s: names.get(s, s) for s in expr.free_symbols})
+
+    kinds = set()
+    for c in p.conditions():
+        tex = c.latex()
+        if c.kind == "coaxiality":
+            eq = back(tex)
+            assert sp.simplify((eq.lhs - eq.rhs) - (c.relation.lhs - c.relation.rhs)) == 0
+        elif c.kind == "assembly":
+            left, _, right = tex.partition(r" \in ")
+            assert right == r"\mathbb{Z}" and sp.simplify(back(left) - c.relation.args[0]) == 0
+        elif c.kind == "neighbours":
+            rel = back(tex.replace(r"\left", "").replace(r"\right", ""))
+            assert sp.simplify(rel.lhs - c.relation.lhs) == 0 and sp.simplify(rel.rhs - c.relation.rhs) == 0
+        kinds.add(c.kind)
+    assert kinds == {"limits", "internal gear", "coaxiality", "assembly", "neighbours"}
+
+
+def test_undercut_minimum_is_the_rack_limit():
+    from symkin.synthesis import undercut_minimum
+
+    for alpha in (14.5, 20, 22.5, 25, 30):
+        bound = 2 / math.sin(math.radians(alpha)) ** 2  # z sin^2(alpha) >= 2 h_a*
+        assert undercut_minimum(str(alpha)) == math.ceil(bound - 1e-12)
+    assert undercut_minimum(20) == 18 and undercut_minimum(20, "0.8") == 14
+
+
+# ---------------------------------------------------------------- completeness against brute forces
+def test_simple_planetary_search_finds_exactly_the_brute_force_set():
+    k, lo, hi, zmin, zmax = 4, Fraction(49, 10), Fraction(51, 10), 18, 100
+    brute = set()
+    for s, pl in itertools.product(range(zmin, zmax + 1), repeat=2):
+        r = s + 2 * pl  # coaxial
+        ratio = 1 + Fraction(r, s)  # Willis, ring fixed
+        if r > zmax or not lo <= ratio <= hi or r - pl < 8 or (s + r) % k:
+            continue
+        if neighbours_clear(Fraction(s + pl), Fraction(pl + 2), k):
+            brute.add((s, pl, r))
+    res = synthesize("simple", driver="S", driven="C", fixed="R", ratio_range=(lo, hi), planets=k, zmax=zmax, top=None)
+    assert found_set(res, ["z_s", "z_p", "z_r"]) == brute and res.found == len(brute) > 0
+    assert (20, 30, 80) in brute  # a textbook set: sun 20, planets 30 x 4, ring 80, i = 5
+
+
+def test_ravigneaux_search_finds_exactly_the_brute_force_set():
+    k, target, zmin, zmax = 3, Fraction(12, 5), 18, 72
+    lo, hi = target * Fraction(99, 100), target * Fraction(101, 100)
+    brute = set()
+    teeth = range(zmin, zmax + 1)
+    for s1, s2, p2 in itertools.product(teeth, repeat=3):
+        r = s2 + 2 * p2  # the long pinion coaxial with the large sun and the ring
+        if r > zmax or not lo <= Fraction(r, s1) <= hi or r - p2 < 8:  # carrier held: i = z_r / z_s1
+            continue
+        if (s1 + s2) % k or (r + s2) % k:  # assembly, worked by hand for this set
+            continue
+        if not neighbours_clear(Fraction(s2 + p2), Fraction(p2 + 2), k):
+            continue
+        for p1 in teeth:
+            if not neighbours_clear(Fraction(s1 + p1), Fraction(p1 + 2), k):
+                continue
+            a, b, d = (s1 + p1) / 2, (s2 + p2) / 2, (p1 + p2) / 2
+            if not abs(a - b) <= d <= a + b:
+                continue
+            gamma = math.acos((a * a + b * b - d * d) / (2 * a * b))  # the short pinion's copies against the long one
+            reach = (p1 + p2) / 2 + 2
+            if all(a * a + b * b - 2 * a * b * math.cos(gamma + 2 * math.pi * t / k) > reach**2 for t in range(1, k)):
+                brute.add((s1, s2, p1, p2, r))
+    res = synthesize("ravigneaux", driver="S1", driven="R", fixed="C", ratio=target, tolerance="0.01", planets=k,
+                     zmax=zmax, top=None)
+    assert found_set(res, ["z_s1", "z_s2", "z_p1", "z_p2", "z_r"]) == brute and len(brute) > 10
+
+
+def test_double_pinion_search_finds_exactly_the_brute_force_set():
+    k, zmin, zmax = 3, 18, 60
+    brute = set()
+    teeth = range(zmin, zmax + 1)
+    for s, r in itertools.product(teeth, repeat=2):
+        if Fraction(r, s) != 2 or (r - s) % k:  # carrier held: i = +z_r/z_s; assembly (z_r - z_s)/k
+            continue
+        for p1, p2 in itertools.product(teeth, repeat=2):
+            if r - p2 < 8:
+                continue
+            a, b, d = (s + p1) / 2, (r - p2) / 2, (p1 + p2) / 2
+            if not (neighbours_clear(Fraction(s + p1), Fraction(p1 + 2), k) and
+                    neighbours_clear(Fraction(r - p2), Fraction(p2 + 2), k)):
+                continue
+            if not abs(a - b) <= d <= a + b:
+                continue
+            gamma = math.acos((a * a + b * b - d * d) / (2 * a * b))
+            reach = (p1 + p2) / 2 + 2
+            if all(a * a + b * b - 2 * a * b * math.cos(gamma + 2 * math.pi * t / k) > reach**2 for t in range(1, k)):
+                brute.add((s, p1, p2, r))
+    res = synthesize("double-pinion", driver="S", driven="R", fixed="C", ratio=2, tolerance=0, planets=k, zmax=zmax,
+                     top=None)
+    assert found_set(res, ["z_s", "z_p1", "z_p2", "z_r"]) == brute and len(brute) > 5
+
+
+def test_wolfrom_search_finds_exactly_the_brute_force_set():
+    warnings.simplefilter("ignore")
+    k, zmin, zmax = 3, 12, 45
+    lo, hi = Fraction(60), Fraction(90)
+    train = load_train("wolfrom")
+    p = derive(train, state="drive", planets=k, zmin=zmin, zmax=zmax)
+    brute = set()
+    for s, p1, p2 in itertools.product(range(zmin, zmax + 1), repeat=3):
+        r1, r2 = s + 2 * p1, s + p1 + p2  # one planet arm for both rows
+        if max(r1, r2) > zmax or r1 - p1 < 8 or r2 - p2 < 8:
+            continue
+        # Willis with r1 held: i = (1 + r1/s) / (1 - r1 p2 / (p1 r2)), typed here
+        basic = 1 - Fraction(r1 * p2, p1 * r2)
+        if basic == 0:
+            continue
+        ratio = (1 + Fraction(r1, s)) / basic
+        if not lo <= ratio <= hi:
+            continue
+        if not all(neighbours_clear(Fraction(s + p1), Fraction(z + 2), k) for z in (p1, p2)):
+            continue
+        values = {"z_s": s, "z_p1": p1, "z_p2": p2, "z_r1": r1, "z_r2": r2}
+        if assembles_tooth_by_tooth(numeric_train(p.train, values), ["P"], k):  # tooth by tooth, not the derived rows
+            brute.add((s, p1, p2, r1, r2))
+    res = synthesize(train, state="drive", ratio_range=(lo, hi), planets=k, zmin=zmin, zmax=zmax, top=None)
+    assert found_set(res, ["z_s", "z_p1", "z_p2", "z_r1", "z_r2"]) == brute and len(brute) > 3
+
+
+# ---------------------------------------------------------------- known designs
+def test_the_2014_paper_stages_of_ring_180_are_found():
+    train = read_train(SINGLE_ROW_180)
+    res = synthesize(train, driver="S", driven="H", ratio_range=(1, 100), planets=3, zmin=18, zmax=180, top=None)
+    found = sorted((d.ratio, d.values["z_1"], d.values["z_2"]) for d in res.designs)
+    # KhAI 2014: 22 feasible stages, u from 2.25 to 11 (ring 180, 3 satellites, 18 <= z <= 180)
+    assert len(found) == 22 and found[0][0] == sp.Rational(9, 4) and found[-1][0] == 11
+    # the same as the scheme-specific enumeration, and as worked by hand (z1 = 18, 24, ..., 144)
+    from symkin.mechanisms.multistage.stages import enumerate_stages
+
+    stages = enumerate_stages(180, 3, zmin=18, zmax=180)
+    assert found == sorted((s.ratio, s.sun, s.planet) for s in stages)
+    assert sorted(z for _, z, _ in found) == list(range(18, 145, 6))
+
+
+@pytest.mark.parametrize("name, request_, target, options, teeth", [
+    ("simple", dict(driver="S", driven="C", fixed="R"), 4, dict(planets=3, zmax=80), {"s": 24, "p": 24, "r": 72}),
+    ("simple", dict(driver="S", driven="C", fixed="R"), 5, dict(planets=4, zmax=90), {"s": 20, "p": 30, "r": 80}),
+    ("ravigneaux", dict(driver="S1", driven="R", fixed="C"), sp.Rational(12, 5), dict(planets=3, zmax=72),
+     {"s1": 30, "s2": 36, "p1": 18, "p2": 18, "r": 72}),
+    ("double-pinion", dict(driver="S", driven="R", fixed="C"), 3, dict(planets=3, zmax=90),
+     {"s": 30, "p1": 18, "p2": 18, "r": 90}),
+    ("wolfrom", dict(state="drive"), 76, dict(planets=3, zmin=12, zmax=60),
+     {"s": 12, "p1": 24, "p2": 21, "r2": 57, "r1": 60}),
+])
+def test_the_ready_made_and_textbook_sets_are_among_the_designs(name, request_, target, options, teeth):
+    res = synthesize(name, ratio=target, tolerance=0, top=None, **request_, **options)
+    assert teeth in [dict(d.gear_teeth) for d in res.designs]
+
+
+# ---------------------------------------------------------------- every design re-checked
+def test_every_listed_design_is_rechecked_by_building_its_train():
+    cases = [
+        ("simple", dict(driver="S", driven="C", fixed="R"), dict(ratio="4.5", planets=4)),
+        ("wolfrom", dict(state="drive"), dict(ratio=100, tolerance="0.05", planets=3, zmax=90)),
+        ("ravigneaux", dict(state="second"), dict(ratio="22/15", tolerance="0.01", planets=3, zmax=60)),
+        ("double-pinion", dict(driver="S", driven="C", fixed="R"), dict(ratio="-1.5", tolerance="0.02", planets=3,
+                                                                        zmax=70)),
+    ]
+    for name, request_, options in cases:
+        res = synthesize(name, top=5, **request_, **options)
+        assert res.designs
+        for d in res.designs:
+            check = d.check()
+            assert check.passed, (name, d.gear_teeth, check)
+            assert abs(d.ratio - res.target.ratio) <= res.target.tolerance * abs(res.target.ratio)
+            assert d.error == abs(d.ratio - res.target.ratio) / abs(res.target.ratio)
+        keys = [(d.error, d.size, sum(d.values.values())) for d in res.designs]
+        assert keys == sorted(keys)  # ranked by error, then size, then tooth sum
+
+
+def test_a_wolfrom_design_has_the_ratio_willis_gives():
+    res = synthesize("wolfrom", state="drive", ratio=76, tolerance="0.02", planets=3, zmax=80, top=3)
+    for d in res.designs:
+        t = dict(d.gear_teeth)
+        willis = (1 + Fraction(t["r1"], t["s"])) / (1 - Fraction(t["r1"] * t["p2"], t["p1"] * t["r2"]))
+        assert d.ratio == sp.Rational(willis.numerator, willis.denominator)
+        assert t["r1"] == t["s"] + 2 * t["p1"] and t["r2"] == t["s"] + t["p1"] + t["p2"]
+
+
+def test_profile_shift_lets_ferguson_s_suns_differ_and_the_train_stays_coaxial():
+    with pytest.raises(InputError, match="no coaxial tooth numbers"):
+        synthesize("ferguson", state="s2", ratio=-99, tolerance="0.05", planets=1, zmax=130)
+    res = synthesize("ferguson", state="s2", ratio=-99, tolerance="0.05", planets=1, zmax=130, shift="0.5", top=20)
+    assert res.designs
+    for d in res.designs:
+        assert all(abs(y) <= sp.Rational(1, 2) for _, y in d.shifts)
+        train = d.train()
+        assert not train.coaxiality_defects() and d.check().passed
+    t = [dict(d.gear_teeth) for d in res.designs]
+    assert {"p": 20, "s1": 100, "s2": 99, "s3": 99} in t or any(x["s1"] != x["s2"] for x in t)
+
+
+# ---------------------------------------------------------------- dask and chunking
+def test_any_chunking_gives_the_same_result():
+    kw = dict(driver="S1", driven="R", fixed="C", ratio="12/5", tolerance="0.01", planets=3, zmax=72, top=15)
+    results = [synthesize("ravigneaux", chunk=c, **kw) for c in (None, 97, 5000)]
+    first = results[0]
+    for r in results[1:]:
+        assert [d.gear_teeth for d in r.designs] == [d.gear_teeth for d in first.designs]
+        assert r.found == first.found and r.funnel == first.funnel
+
+
+def test_dask_on_a_local_cluster_gives_the_same_result():
+    pytest.importorskip("distributed")
+    from symkin.synthesis.runner import local_cluster
+
+    kw = dict(driver="S1", driven="R", fixed="C", ratio="12/5", tolerance="0.01", planets=3, zmax=70, top=20,
+              chunk=2000)
+    here = synthesize("ravigneaux", **kw)
+    with local_cluster(2) as cluster:
+        there = synthesize("ravigneaux", scheduler=cluster.scheduler_address, **kw)
+        start = time.perf_counter()  # the time limit holds on Dask too: the chunks left are cancelled
+        with pytest.raises(TimeLimitError, match="more than the time limit of 4 s"):
+            synthesize("ravigneaux", scheduler=cluster.scheduler_address, **{**kw, "zmax": 1500, "tolerance": "0.5",
+                                                                             "time_limit": 4})
+        assert time.perf_counter() - start < 30  # wall clock, as the limit is; the whole space takes hours
+    assert [(d.gear_teeth, d.ratio, d.error, d.size) for d in there.designs] == \
+        [(d.gear_teeth, d.ratio, d.error, d.size) for d in here.designs]
+    assert there.found == here.found and there.funnel == here.funnel and there.execution["workers"] == 2
+    assert there.execution["chunks"] == here.execution["chunks"] > 2
+
+
+# ---------------------------------------------------------------- bad requests
+def test_a_ratio_the_train_cannot_give_names_the_reachable_range():
+    with pytest.raises(InputError, match=r"outside what this train gives .* ranges from 2.5625 to 6.55556"):
+        synthesize("simple", driver="S", driven="C", fixed="R", ratio=40, zmax=100)
+
+
+@pytest.mark.parametrize("options, words", [
+    (dict(ratio=4, planets=7), "neighbour condition"),
+    (dict(ratio="4.1", tolerance=0, planets=3), "assembled with 3 equally spaced planets"),
+    (dict(ratio="3.95", tolerance="0.001"), "widen the tolerance"),
+    (dict(ratio=4, ring_difference=60, zmax=70), "internal gear at least 60 teeth"),
+])
+def test_no_design_says_which_condition_removed_the_last_candidates(options, words):
+    with pytest.raises(InputError, match=words):
+        synthesize("simple", driver="S", driven="C", fixed="R", **{"zmax": 100, **options})
+    res = synthesize("simple", driver="S", driven="C", fixed="R", allow_empty=True, **{"zmax": 100, **options})
+    assert res.found == 0 and words in res.reason
+
+
+def test_a_search_too_large_for_its_time_limit_says_so_and_suggests_bounds():
+    start = time.perf_counter()
+    with pytest.raises(TimeLimitError, match=r"more than the time limit of 1 s; narrow the tooth limits \(e.g. zmax \d+"):
+        synthesize("ravigneaux", driver="S1", driven="R", fixed="C", ratio="12/5", tolerance="0.5", zmax=2000,
+                   time_limit=1)
+    assert time.perf_counter() - start < 6
+
+
+@pytest.mark.parametrize("options, words", [
+    (dict(driver="S", driven="C", fixed="R"), "give the target ratio"),
+    (dict(driver="S", driven="C", fixed="R", ratio=0), "the target ratio is 0"),
+    (dict(driver="S", driven="C", fixed="R", ratio=4, tolerance=1), "from 0 to less than 1"),
+    (dict(driver="S", driven="C", fixed="R", ratio=4, ratio_range=(1, 2)), "not both"),
+    (dict(driver="S", driven="C", fixed="R", ratio_range=(3, 2)), "is empty"),
+    (dict(state="low", driver="S", ratio=4), "not both"),
+    (dict(driver="S", ratio=4), "name the driver and the driven"),
+    (dict(driver="S", driven="X", ratio=4), "no link 'X'"),
+    (dict(driver="S", driven="C", fixed="R", ratio=4, zmin=50, zmax=40), "larger than zmax"),
+    (dict(driver="S", driven="C", fixed="R", ratio=4, planets=0), "between 1 and 64"),
+    (dict(driver="S", driven="C", fixed="R", ratio=4, clearance=-1), "from 0 to 10 modules"),
+    (dict(driver="S", driven="C", fixed="R", ratio=4, shift=3), "from 0 to 2 modules"),
+    (dict(driver="S", driven="C", fixed="R", ratio=4, time_limit=0), "positive number of seconds"),
+    (dict(driver="S", driven="C", fixed="R", ratio=4, zmax=20000), "between 1 and 10000"),
+    (dict(driver="S", driven="C", fixed="R", ratio=4, top=0), "between 1 and 100000"),
+])
+def test_bad_requests_give_one_line(options, words):
+    with pytest.raises(symkin.SymkinError, match=words):
+        synthesize("simple", **options)
+
+
+def test_a_train_without_tooth_numbers_or_with_given_radii_is_refused():
+    text = SINGLE_ROW_180.replace('gears = { p = "z_2" }', 'gears = { p = { radius = 40 } }')
+    with pytest.raises(InputError, match="gives a radius and no tooth number"):
+        synthesize(read_train(text), driver="S", driven="H", ratio=5)
+    fixed = SINGLE_ROW_180.replace('"z_1"', "20").replace('"z_2"', "80")  # every number given: all searched
+    res = synthesize(read_train(fixed), driver="S", driven="H", ratio=10, planets=3, zmax=180)
+    assert res.notes and "every one is searched" in res.notes[0]
+    assert [str(z) for z in res.problem.unknowns] == ["z_s", "z_p", "z_r"] and res.designs[0].ratio == 10
