@@ -4,9 +4,16 @@ from __future__ import annotations
 
 from typing import Any
 
-from symkin._util.jsonout import exact_json
-from symkin._util.parsing import parse_integer, parse_number
-from symkin.cli.common import Progress, add_command, add_quiet_flag, add_train_argument, emit
+from symkin.cli.common import (  # exact_json and the parsers load SymPy on first call only
+    Progress,
+    add_command,
+    add_quiet_flag,
+    add_train_argument,
+    emit,
+    exact_json,
+    parse_integer,
+    parse_number,
+)
 from symkin.errors import InputError
 
 __all__ = ["register"]

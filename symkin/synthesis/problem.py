@@ -120,7 +120,7 @@ class Options:
     clearance : number
         Least gap between the tip circles of neighbouring planets, in modules, default 0.
     shift : number
-        Profile shift allowed: the largest |a_w - a| / m of a mesh (centre-distance
+        Profile shift allowed: the largest ``|a_w - a| / m`` of a mesh (centre-distance
         modification coefficient y), default 0 (meshes on their pitch circles).
     ring_difference : int
         Least tooth difference of an internal gear and a gear meshing it, default 8.
