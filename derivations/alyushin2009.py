@@ -753,6 +753,16 @@ def _drill_head_reference():
 FIGURE_TEETH = {"AI1": (20, 30, 80), "AI": (20, 30, 20, 70), "AA": (54, 45, 44, 55), "II": (200, 99, 100, 201)}
 
 
+#: Captions of the figures in the report, and the checks (label prefixes) each illustrates.
+REPORT_FIGURES = {
+    "alyushin2009_trajectories": ("Planet-particle trajectories of the four schemes, gear 4 fixed, one carrier turn, "
+                                  "from the derived position law (4); gears drawn with involute teeth (m = 1 mm).",
+                                  ("(4)", "(5)", "(6)")),
+    "alyushin2009_drill_head": ("The drill head in space: a bit tooth, the planet axis and the main axis point O "
+                                "while the manipulator feeds and nods the head.", ("drill head",)),
+}
+
+
 def figures(folder: Path) -> list[Path]:
     """Trajectories of a planet particle on the pitch circle of rim 2 and one inside it,
     for each scheme, gear 4 fixed, over one carrier turn (see :func:`trajectories_figure`)."""
@@ -771,7 +781,8 @@ def drill_head_figure() -> Any:
         drill_head_motion(), [("2", DRILL_TOOTH), ("2", (0, 0, DRILL_TOOTH[2]))], float(DRILL_SPAN),
         labels=[f"bit tooth {DRILL_TOOTH[0]} mm off the planet axis", "planet axis (crown centre)"],
         title="Alyushin & Verzhanskiy 2009, drill head: single-row AI z = (24, 12, 48), m = 2 mm, sun 3 rad/s;\n"
-              "the manipulator feeds the head 2 mm/s along z and nods it 5 deg (pitch 5 deg sin(t/2)); mm",
+              "the manipulator feeds the head 2 mm/s along z and nods it 5 deg (pitch 5 deg sin(t/2))",
+        length="mm",
     )
     ax = fig.axes[0]
     ax.set_box_aspect([hi - lo for lo, hi in (ax.get_xlim(), ax.get_ylim(), ax.get_zlim())])  # true proportions
@@ -779,18 +790,17 @@ def drill_head_figure() -> Any:
 
 
 def trajectories_figure() -> Any:
-    """The figure of :func:`figures`, as a matplotlib Figure."""
-    from matplotlib.figure import Figure
+    """The figure of :func:`figures`, as a matplotlib Figure (a page wide, module 1 mm, gears with teeth)."""
+    from symkin.viz import figures, style
 
-    from symkin.viz import figures
-
-    fig = Figure(figsize=(9, 9))
+    fig = style.new_figure(style.PAGE, style.PAGE * 1.08)
     for n, k in enumerate(SCHEMES, 1):
         m = _scheme(k, teeth=FIGURE_TEETH[k], module=1)
         ax = fig.add_subplot(2, 2, n)
+        style.style_axes(ax)
         motion = m.motion({"4": 0, "H": 1})
         rim2 = m.gear("2").radius
-        figures.draw_pitch_circles(ax, m)
+        figures.draw_pitch_circles(ax, m, teeth=True)
         figures.draw_trajectories(
             ax,
             motion,
@@ -799,12 +809,13 @@ def trajectories_figure() -> Any:
             relative_to="pole",
             labels=["on the pitch circle of rim 2", "at half its radius"],
         )
-        ax.set_aspect("equal")
-        ax.set_title(f"{k}: z = {FIGURE_TEETH[k]}, gear 4 fixed, one carrier turn", fontsize=9)
-        ax.legend(fontsize=7, loc="lower left")
-        ax.tick_params(labelsize=7)
-    fig.suptitle("Alyushin & Verzhanskiy 2009: planet-particle trajectories, eq. (4)")
-    return fig
+        figures.label_plane(ax, "mm")
+        ax.set_title(f"{k}: z = {FIGURE_TEETH[k]}", fontsize=style.FONT)
+    handles, labels = fig.axes[0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="outside lower center", ncol=2, fontsize=style.SMALL, frameon=False)
+    fig.suptitle("Alyushin & Verzhanskiy 2009: planet-particle trajectories, eq. (4); gear 4 fixed, "
+                 "one carrier turn, m = 1 mm", fontsize=style.FONT)
+    return style.finish(fig)
 
 
 def notes() -> list[str]:

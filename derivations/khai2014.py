@@ -483,6 +483,15 @@ def notes() -> list[str]:
     return out
 
 
+#: Captions of the figures in the report, and the checks (label prefixes) each illustrates.
+REPORT_FIGURES = {
+    "khai2014_stages": ("The feasible stages of one ring: Phi/d of each stage error model and the centre distance "
+                        "a_w against the stage ratio u.", ("stages:",)),
+    "khai2014_split": ("The split of the total ratio over the stages: the least objective with one stage ratio held, "
+                       "and the best discrete designs.", ("fig. 4",)),
+}
+
+
 def figures(folder: Path) -> list[Path]:
     """Draw the paper's figures into ``folder`` (the stage model and the ratio split); returns the files written."""
     from symkin.viz.figures import save

@@ -561,6 +561,16 @@ def _synthesis_checks() -> list[Check]:
 
 
 # --------------------------------------------------------------------------- figures
+#: Captions of the figures in the report, and the checks (label prefixes) each illustrates.
+REPORT_FIGURES = {
+    "kladova2010_existence_regions": ("Existence regions of Table 1 derived: the ratios i_1H^(4) realisable with "
+                                      "balanced helical planets against d_w2/d_w3, for k = 3, 4, 6, 12 planets.",
+                                      ("Table 1",)),
+    "kladova2010_synthesis": ("The synthesis example: every design found, its envelope and ratio error, and the helix "
+                              "angles that balance the axial forces.", ("synthesis",)),
+}
+
+
 def figures(folder: Path) -> list[Path]:
     """Existence regions (Table 1) for k = 3, 4, 6, derived and as published; the synthesis example."""
     return _region_figure(folder) + _synthesis_figure(folder)
@@ -568,15 +578,17 @@ def figures(folder: Path) -> list[Path]:
 
 def _region_figure(folder: Path) -> list[Path]:
     import numpy as np
-    from matplotlib.figure import Figure
+    from matplotlib.ticker import LogLocator, ScalarFormatter
 
-    from symkin.viz import figures
+    from symkin.viz import figures, style
 
-    fig = Figure(figsize=(13, 4.6), layout="constrained")
+    fig = style.new_figure(style.PAGE, 3.6)
     limits = {"AI": (1, 25), "AA": (-6, 2.2), "II": (-1.6, 1.1)}
-    colours = {3: "tab:blue", 4: "tab:orange", 6: "tab:green", 12: "tab:purple"}
+    colours = {3: style.PALETTE[0], 4: style.PALETTE[4], 6: style.PALETTE[2], 12: style.PALETTE[3]}
+    dashes = {3: "-", 4: "--", 6: "-.", 12: ":"}
     for n, kind in enumerate(("AI", "AA", "II"), 1):
         ax = fig.add_subplot(1, 3, n)
+        style.style_axes(ax)
         flagged = False
         for b in HS.existence_bounds(kind):
             first = b.case == "delta < 1"
@@ -589,38 +601,46 @@ def _region_figure(folder: Path) -> list[Path]:
                 v = sp.lambdify(DELTA, expr.subs(K, kk), "numpy")(d) * np.ones_like(d)
                 return np.where(np.abs(v) < 1e3, v, np.nan)  # do not join the branches of a pole
 
-            ax.fill_between(d, curve(free_end), curve(k_end), color="tab:blue", alpha=0.15, lw=0,
+            ax.fill_between(d, curve(free_end), curve(k_end), color=style.PALETTE[5], alpha=0.25, lw=0,
                             label="region, k = 3" if first else None)
-            ax.plot(d, curve(free_end), color="k", lw=1.0, label="large central gears ($r_1 \\to \\infty$)" if first else None)
+            ax.plot(d, curve(free_end), color="k", ls="-", lw=1.0, label="large central gears ($r_1 \\to \\infty$)" if first else None)
             for kk, col in colours.items():
-                ax.plot(d, curve(k_end, kk), color=col, lw=1.0, label=f"neighbour bound, k = {kk}" if first else None)
+                ax.plot(d, curve(k_end, kk), color=col, ls=dashes[kk], lw=1.0,
+                        label=f"neighbour bound, k = {kk}" if first else None)
             pub_lo, pub_hi = PUBLISHED_TABLE[kind, b.case]
             for bound, drv in ((pub_lo, b.lower), (pub_hi, b.upper)):
                 if np.nanmax(np.abs(curve(bound) - curve(drv))) > 1e-9:  # the checks compare them exactly
-                    ax.plot(d, curve(bound), "r--", lw=1.2, label=None if flagged else "published bound (differs), k = 3")
+                    ax.plot(d, curve(bound), color=style.PALETTE[1], ls=(0, (2, 1)), lw=1.4,
+                            label=None if flagged else "published bound (differs), k = 3")
                     flagged = True
         ax.axvline(1, color="0.5", lw=0.6)
         ax.set_ylim(*limits[kind])
         if kind == "AI":
             ax.set_yscale("log")
-        ax.set_xlabel(r"$d_{w2}/d_{w3}$")
-        ax.set_ylabel(r"$i_{1H}^{(4)}$")
-        ax.set_title(f"{kind}", fontsize=10)
-        ax.legend(fontsize=7, loc="lower right" if kind == "AI" else "lower left")
-        ax.grid(alpha=0.3)
-    fig.suptitle("Kladova et al. 2010, Table 1 derived: ratios realisable with balanced helical planets "
-                 "(ratio, coaxiality, neighbour condition on pitch circles)", fontsize=10)
-    return figures.save(fig, folder / "kladova2010_existence_regions")
+            ax.yaxis.set_major_locator(LogLocator(subs=(1, 2, 5)))
+            ax.yaxis.set_major_formatter(ScalarFormatter())
+        ax.set_xlabel(r"$d_{w2}/d_{w3}$ [-]", fontsize=style.FONT)
+        ax.set_ylabel(r"$i_{1H}^{(4)}$ [-]", fontsize=style.FONT)
+        ax.set_title(f"{kind}", fontsize=style.FONT)
+    handles: dict = {}
+    for ax in fig.axes:
+        for h, lab in zip(*ax.get_legend_handles_labels()):
+            handles.setdefault(lab, h)
+    fig.legend(list(handles.values()), list(handles), loc="outside lower center", ncol=3, fontsize=style.SMALL,
+               frameon=False)
+    fig.suptitle("Kladova et al. 2010, Table 1 derived: ratios realisable with balanced helical planets\n"
+                 "(ratio, coaxiality, neighbour condition on pitch circles)", fontsize=style.FONT)
+    return figures.save(style.finish(fig), folder / "kladova2010_existence_regions")
 
 
 def _synthesis_figure(folder: Path) -> list[Path]:
-    from matplotlib.figure import Figure
-
-    from symkin.viz import figures
+    from symkin.viz import figures, style
 
     full = synthesis_example()
-    fig = Figure(figsize=(10, 4.2))
+    fig = style.new_figure(style.PAGE, 3.6)
     ax1, ax2 = fig.add_subplot(1, 2, 1), fig.add_subplot(1, 2, 2)
+    for ax in (ax1, ax2):
+        style.style_axes(ax)
     err = [100 * float(d.relative_error) for d in full.designs]
     env = [d.envelope_diameter for d in full.designs]
     b12 = [d.betas_deg[0] for d in full.designs]
@@ -628,20 +648,21 @@ def _synthesis_figure(folder: Path) -> list[Path]:
     sc = ax1.scatter(env, err, c=b12, s=10, cmap="viridis")
     top = _listed()
     ax1.scatter([d.envelope_diameter for d in top], [100 * float(d.relative_error) for d in top], s=30,
-                facecolors="none", edgecolors="red", label=f"listed (best {len(top)})")
-    fig.colorbar(sc, ax=ax1, label=r"$\beta_{12}$ (deg)")
-    ax1.set_xlabel("planet envelope diameter 2 a_w + max(d_a2, d_a3) (mm)")
-    ax1.set_ylabel("ratio error (%)")
-    ax1.set_title(f"{full.found} designs: AI, i = 25 +- 2 %, k = 3", fontsize=9)
-    ax1.legend(fontsize=7)
-    ax2.scatter(b34, b12, s=10, c="tab:blue")
-    ax2.set_xlabel(r"$\beta_{34}$ (deg)")
-    ax2.set_ylabel(r"$\beta_{12}$ (deg)")
-    ax2.set_title("helix angles that balance the axial forces (equal leads)", fontsize=9)
-    for ax in (ax1, ax2):
-        ax.grid(alpha=0.3)
-    fig.suptitle("Synthesis: unshifted helical meshes, m_n12 = 2 mm, m_n34 = 2.5 mm, Z in [17, 110]", fontsize=10)
-    return figures.save(fig, folder / "kladova2010_synthesis")
+                facecolors="none", edgecolors=style.PALETTE[1], label=f"listed (best {len(top)})")
+    bar = fig.colorbar(sc, ax=ax1)
+    bar.set_label(r"$\beta_{12}$ [deg]", fontsize=style.FONT)
+    bar.ax.tick_params(labelsize=style.SMALL)
+    ax1.set_xlabel("planet envelope diameter\n$2 a_w + \\max(d_{a2}, d_{a3})$ [mm]", fontsize=style.FONT)
+    ax1.set_ylabel("ratio error [%]", fontsize=style.FONT)
+    ax1.set_title(f"{full.found} designs: AI, i = 25 $\\pm$ 2 %, k = 3", fontsize=style.FONT)
+    style.legend_outside(ax1)
+    ax2.scatter(b34, b12, s=10, c=style.PALETTE[0])
+    ax2.set_xlabel(r"$\beta_{34}$ [deg]", fontsize=style.FONT)
+    ax2.set_ylabel(r"$\beta_{12}$ [deg]", fontsize=style.FONT)
+    ax2.set_title("helix angles that balance the axial\nforces (equal leads)", fontsize=style.FONT)
+    fig.suptitle("Synthesis: unshifted helical meshes, $m_{n12}$ = 2 mm, $m_{n34}$ = 2.5 mm, Z in [17, 110]",
+                 fontsize=style.FONT)
+    return figures.save(style.finish(fig), folder / "kladova2010_synthesis")
 
 
 def notes() -> list[str]:

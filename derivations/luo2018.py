@@ -727,15 +727,28 @@ def _figure_claims() -> list[Check]:
 
 
 # --------------------------------------------------------------------------- figures
+#: Captions of the figures in the report, and the checks (label prefixes) each illustrates.
+REPORT_FIGURES = {
+    "luo2018_paths": ("What the pin traces for four Cardan mechanisms, from the 2009 superposition laws "
+                      "(pitch circles drawn with involute teeth).", ("(22) superposition",)),
+    "luo2018_fig4_constant_speed": ("Fig. 4 / Table 1: displacement, velocity and acceleration of the slider at "
+                                    "constant carrier speed.", ("Table 1", "stroke")),
+    "luo2018_fig7_velocity": ("Fig. 7: slider velocity through elliptical gears for varying e, m and theta_H0.",
+                              ("(26)",)),
+    "luo2018_fig8_acceleration": ("Fig. 8: slider acceleration through elliptical gears for varying e, m and theta_H0.",
+                                  ("(33)-(35)",)),
+    "luo2018_carrier_angle_branches": ("The carrier angle through elliptical gears: the derived continuous angle "
+                                       "beside the principal-arctan form (27)-(28).", ("(27)-(28)",)),
+}
+
+
 def figures(folder: Path) -> list[Path]:
     """Pin paths; Table 1's curves (fig. 4); figures 7 and 8; the carrier angle across a branch point."""
     return _paths_figure(folder) + _table1_figure(folder) + _sweep_figures(folder) + _branch_figure(folder)
 
 
 def _paths_figure(folder: Path) -> list[Path]:
-    from matplotlib.figure import Figure
-
-    from symkin.viz import figures
+    from symkin.viz import figures, style
 
     cases = [
         ("z = 20/40, pin on the pitch circle", dict(teeth=(20, 40))),
@@ -743,92 +756,89 @@ def _paths_figure(folder: Path) -> list[Path]:
         ("z = 20/40, pin on the pitch circle, theta_1(0) = pi", dict(teeth=(20, 40), pin_angle=sp.pi)),
         ("z = 20/60, pin on the pitch circle", dict(teeth=(20, 60))),
     ]
-    fig = Figure(figsize=(9, 9))
+    fig = style.new_figure(style.PAGE, style.PAGE * 1.05)
     for n, (title, kw) in enumerate(cases, 1):
         slider = CardanSlider.build(1, drive=1, **kw)
         ax = fig.add_subplot(2, 2, n)
-        figures.draw_pitch_circles(ax, slider.mechanism)
+        style.style_axes(ax)
+        figures.draw_pitch_circles(ax, slider.mechanism, teeth=True)
         _, x, y = slider.pin.trajectory(float(2 * sp.pi), samples=721)
         ax.plot(x, y, lw=1.3, label="pin O (superposition)")
-        ax.plot(x[:1], y[:1], "o", ms=3)
-        ax.axline((0, 0), (1, 0), lw=0.6, ls=":", color="k", label="guide, theta_2 = 0")
+        ax.plot(x[:1], y[:1], "o", ms=3, ls="none", color=style.PALETTE[0])
+        ax.axline((0, 0), (1, 0), lw=0.6, ls=":", color="k", label=r"guide, $\theta_2 = 0$")
         ax.set_aspect("equal")
-        ax.set_title(f"{title}\nderived path: {slider.path().kind}", fontsize=9)
-        ax.legend(fontsize=7, loc="lower left")
-        ax.tick_params(labelsize=7)
-    fig.suptitle("Luo et al. 2018: what the pin traces (l_H = 1, one carrier turn)")
-    return figures.save(fig, folder / "luo2018_paths")
+        ax.set_xlabel(r"$x / l_H$ [-]", fontsize=style.FONT)
+        ax.set_ylabel(r"$y / l_H$ [-]", fontsize=style.FONT)
+        ax.set_title(f"{title}\nderived path: {slider.path().kind}".replace("theta_1(0)", r"$\theta_1(0)$")
+                     .replace("l_H", "$l_H$"), fontsize=style.FONT)
+    handles, labels = fig.axes[0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="outside lower center", ncol=2, fontsize=style.SMALL, frameon=False)
+    fig.suptitle("Luo et al. 2018: what the pin traces ($l_H$ = 1, one carrier turn)", fontsize=style.FONT)
+    return figures.save(style.finish(fig), folder / "luo2018_paths")
 
 
 def _table1_figure(folder: Path) -> list[Path]:
-    from matplotlib.figure import Figure
-
-    from symkin.viz import figures
+    from symkin.viz import figures, style
 
     slider = table1_slider()
     ts = np.linspace(0, float(slider.period()), 501)
     d = slider.evaluate(ts)
-    fig = Figure(figsize=(7, 6))
-    for n, (key, unit, _name) in enumerate((("s", "mm", "displacement"), ("v", "mm/s", "velocity"), ("a", "mm/s$^2$", "acceleration")), 1):
-        ax = fig.add_subplot(3, 1, n)
+    fig = style.new_figure(style.COLUMN * 1.5, 4.6)
+    axes = fig.subplots(3, 1, sharex=True)
+    for ax, (key, unit, name) in zip(axes, (("s", "mm", "displacement"), ("v", "mm/s", "velocity"), ("a", "mm/s$^2$", "acceleration"))):
+        style.style_axes(ax)
         ax.plot(ts, d[key] * 1e3, lw=1.2)
-        ax.set_ylabel(f"{key} [{unit}]", fontsize=8)
-        ax.grid(lw=0.3)
-        ax.tick_params(labelsize=7)
-    ax.set_xlabel("t [s]", fontsize=8)
-    fig.suptitle("Luo et al. 2018, fig. 4 / Table 1: l = 20 mm, omega_H = 0.8 pi rad/s (period 2.5 s)", fontsize=10)
-    return figures.save(fig, folder / "luo2018_fig4_constant_speed")
+        ax.set_ylabel(f"{name} {key} [{unit}]", fontsize=style.FONT)
+    axes[-1].set_xlabel("time t [s]", fontsize=style.FONT)
+    fig.suptitle("Luo et al. 2018, fig. 4 / Table 1: l = 20 mm,\n"
+                 r"$\omega_H$ = 0.8$\pi$ rad/s (period 2.5 s)", fontsize=style.FONT)
+    return figures.save(style.finish(fig), folder / "luo2018_fig4_constant_speed")
 
 
 def _sweep_figures(folder: Path) -> list[Path]:
-    from matplotlib.figure import Figure
-
-    from symkin.viz import figures
+    from symkin.viz import figures, style
 
     data = curves()
     names = {"a": "e", "b": "m", "c": r"$\theta_{H0}$"}
     out = []
     for key, fig_no, unit, quantity in (("v", 7, "mm/s", "velocity"), ("a", 8, "mm/s$^2$", "acceleration")):
-        fig = Figure(figsize=(10, 10))
-        for n, panel in enumerate(("a", "b", "c"), 1):
-            ax = fig.add_subplot(3, 1, n)
+        fig = style.new_figure(style.PAGE, 7.6)
+        axes = fig.subplots(3, 1, sharex=True)
+        for ax, panel in zip(axes, ("a", "b", "c")):
+            style.style_axes(ax)
             for value, _, d, stroke, _ in data[panel]:
                 ax.plot(d["t"], d[key] * 1e3, lw=1.1, label=f"{names[panel]} = ${sp.latex(value)}$, K = {stroke.ratio:.2f}")
-            ax.set_ylabel(f"{key} [{unit}]", fontsize=8)
-            ax.grid(lw=0.3)
-            ax.legend(fontsize=7, loc="center left", bbox_to_anchor=(1.01, 0.5))
-            ax.tick_params(labelsize=7)
+            ax.set_ylabel(f"{quantity} {key} [{unit}]", fontsize=style.FONT)
+            style.legend_outside(ax, where="right")
             fixed = {"a": "m = 1, $\\theta_{H0} = \\pi/6$", "b": "e = 2/5, $\\theta_{H0} = \\pi/6$", "c": "e = 2/5, m = 1"}[panel]
-            ax.set_title(f"({panel}) varying {names[panel]}; {fixed}", fontsize=9)
-        ax.set_xlabel("t [s]  (K = forward / return stroke time)", fontsize=8)
+            ax.set_title(f"({panel}) varying {names[panel]}; {fixed}", fontsize=style.FONT)
+        axes[-1].set_xlabel("time t [s]   (K = forward / return stroke time)", fontsize=style.FONT)
         fig.suptitle(
             f"Luo et al. 2018, fig. {fig_no}: slider {quantity} through elliptical gears\n"
-            "l = 20 mm, input 0.8 pi rad/s, theta_2 = 0, pin installed for the guide",
-            fontsize=10,
+            r"l = 20 mm, input 0.8$\pi$ rad/s, $\theta_2$ = 0, pin installed for the guide",
+            fontsize=style.FONT,
         )
-        out += figures.save(fig, folder / f"luo2018_fig{fig_no}_{quantity}")
+        out += figures.save(style.finish(fig), folder / f"luo2018_fig{fig_no}_{quantity}")
     return out
 
 
 def _branch_figure(folder: Path) -> list[Path]:
-    from matplotlib.figure import Figure
-
-    from symkin.viz import figures
+    from symkin.viz import figures, style
 
     values = {omega: TABLE1_OMEGA, e: BASE_E, m: 2, theta_H0: 0}
     ts = np.linspace(0, 2.5, 1001)
     derived = sp.lambdify(t, (EllipticalGears(omega, e, m).angle(t)).subs(values))(ts)
     published = sp.lambdify(t, PUBLISHED_27.subs(values))(ts)
-    fig = Figure(figsize=(7, 4))
+    fig = style.new_figure(style.COLUMN * 1.5, 3.6)
     ax = fig.add_subplot()
+    style.style_axes(ax)
     ax.plot(ts, derived, lw=1.4, label="derived: continuous")
-    ax.plot(ts, published, lw=1.0, ls="--", label="(27)-(28) principal arctan (reconstructed)")
-    ax.set_xlabel("t [s]", fontsize=8)
-    ax.set_ylabel(r"$\theta_H - \theta_{H0}$ [rad]", fontsize=8)
-    ax.grid(lw=0.3)
-    ax.legend(fontsize=8)
-    ax.set_title("carrier angle through elliptical gears, e = 2/5, m = 2, input 0.8 pi rad/s", fontsize=9)
-    return figures.save(fig, folder / "luo2018_carrier_angle_branches")
+    ax.plot(ts, published, lw=1.0, label="(27)-(28) principal arctan (reconstructed)")
+    ax.set_xlabel("time t [s]", fontsize=style.FONT)
+    ax.set_ylabel(r"$\theta_H - \theta_{H0}$ [rad]", fontsize=style.FONT)
+    style.legend_outside(ax)
+    ax.set_title("carrier angle through elliptical gears,\ne = 2/5, m = 2, input 0.8$\\pi$ rad/s", fontsize=style.FONT)
+    return figures.save(style.finish(fig), folder / "luo2018_carrier_angle_branches")
 
 
 def notes() -> list[str]:

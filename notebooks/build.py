@@ -78,6 +78,8 @@ def execute(nb: nbformat.NotebookNode, cwd: Path, timeout: int = 600) -> nbforma
         if km.has_kernel:
             km.shutdown_kernel(now=True)
     nb.metadata["language_info"] = {"name": "python"}  # no interpreter version: the stored file stays stable
+    # widget state is not stored: a widget needs a live kernel, and its state would repeat the outputs
+    nb.metadata.pop("widgets", None)
     return nb
 
 

@@ -385,6 +385,20 @@ class Speeds(MappingABC):
         known = {n for n, _ in self.known}
         return tuple(self.law(n) for n in self if n not in known)
 
+    def _repr_latex_(self) -> str:
+        """Every link's speed as aligned display math, for Jupyter (:func:`symkin.latex`).
+
+        >>> from symkin import schemes
+        >>> print(schemes.single_row_AI(teeth=(20, 30, 80)).speeds({"1": 1, "4": 0})._repr_latex_())
+        $\\displaystyle \\begin{aligned}
+        \\omega_{2} &= - \\frac{1}{3} \\\\
+        \\omega_{H} &= \\frac{1}{5}
+        \\end{aligned}$
+        """
+        from symkin.printing import latex
+
+        return f"$\\displaystyle {latex(self, aligned=True)}$"
+
     def coefficient(self, link: str, known_link: str) -> sp.Expr:
         """d omega_link / d omega_known: the constant factor in the linear law."""
         names = [n for n, _ in self.known]
@@ -682,6 +696,7 @@ def _solve_factored(A: sp.Matrix, B: sp.Matrix) -> tuple[sp.Matrix, sp.Matrix] |
     back = {d: a for a, d in to_dummy.items()}
     if to_dummy:
         A, B = A.xreplace(to_dummy), B.xreplace(to_dummy)
+    A, B = _without_denominators(A, B)
     blocks = _triangular_blocks(A)
     if blocks is None:
         return None
@@ -715,6 +730,21 @@ def _solve_factored(A: sp.Matrix, B: sp.Matrix) -> tuple[sp.Matrix, sp.Matrix] |
     if back:
         return result.xreplace(back), composed.xreplace(back)
     return result, composed
+
+
+def _without_denominators(A: sp.Matrix, B: sp.Matrix) -> tuple[sp.Matrix, sp.Matrix]:
+    """Each equation (a row of A and B) times the lcm of its entries' denominators, so the
+    blocks are solved over polynomials (working pitch radii of a profile-shifted mesh,
+    ``60 z_p/(z_p + z_s)``, are fractions); the solution is unchanged."""
+    A, B = A.as_mutable(), B.as_mutable()
+    for r in range(A.rows):
+        row = [e for e in [*A.row(r), *B.row(r)] if e != 0]
+        dens = [sp.fraction(sp.together(e))[1] for e in row]
+        den = sp.lcm_list(dens) if any(d != 1 for d in dens) else sp.Integer(1)
+        if den != 1:
+            A[r, :] = (A.row(r) * den).applyfunc(sp.cancel)
+            B[r, :] = (B.row(r) * den).applyfunc(sp.cancel)
+    return A, B
 
 
 def _block_solve(block: list[list[sp.Expr]], rhs: list[list[sp.Expr]]) -> list[list[sp.Expr]] | None:

@@ -66,3 +66,12 @@ class Law:
 
     def __str__(self) -> str:
         return sp.sstr(self)
+
+    def _repr_latex_(self) -> str:
+        """The law as display math, for Jupyter (``lhs = rhs``; SymPy's LaTeX printer).
+
+        >>> x = sp.Symbol("x")
+        >>> print(Law(sp.Symbol("y"), x**2)._repr_latex_())
+        $\\displaystyle y = x^{2}$
+        """
+        return f"$\\displaystyle {sp.latex(self)}$"

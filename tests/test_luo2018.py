@@ -2,6 +2,7 @@
 
 import itertools
 import json
+import time
 
 import pytest
 import sympy as sp
@@ -105,8 +106,9 @@ def test_steady_share_measures_the_flat_stretch():
 
 def test_reproduce_luo2018_writes_report_and_figures(tmp_path):
     out = tmp_path / "report"
+    start = time.process_time()  # CPU time: a loaded machine slows the wall clock, not the work
     (result,) = run(["luo2018"], out, quiet=True)
-    assert result.ok and result.seconds < 30
+    assert result.ok and time.process_time() - start < 30
     data = json.loads((out / "report.json").read_text())
     assert data["papers"]["luo2018"]["ok"] is True
     for name in ("paths", "fig4_constant_speed", "fig7_velocity", "fig8_acceleration", "carrier_angle_branches"):

@@ -112,7 +112,7 @@ def test_cli_trajectory_curves_and_animation(tmp_path, capsys):
 
 
 BAD = [
-    (["trajectory", "AI1", "--teeth", "20,30,80", "--omega", "4=0", "--omega", "H=1", "--out", "x.jpg"], ".png or .pdf"),
+    (["trajectory", "AI1", "--teeth", "20,30,80", "--omega", "4=0", "--omega", "H=1", "--out", "x.jpg"], ".png, .pdf, .svg or .eps"),
     (["trajectory", "AI1", "--teeth", "20,30,80", "--omega", "4=0", "--omega", "H=1", "--point", "9:1,2", "--out", "x.png"], "no link '9'"),
     (["trajectory", "AI1", "--teeth", "20,30,80", "--omega", "4=0", "--omega", "H=1", "--point", "2:1", "--out", "x.png"], "two coordinates"),
     (["trajectory", "AI1", "--teeth", "20,30,80", "--omega", "4=0", "--omega", "H=1", "--point", "2-1,0", "--out", "x.png"], "LINK:a,b"),

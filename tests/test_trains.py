@@ -343,3 +343,16 @@ def test_a_train_is_a_mechanism_everywhere():
     assert isinstance(train, symkin.Mechanism)
     study = symkin.Study(train, ratios=[("S", "R2", ())])
     assert float(study.evaluate({})["i_{SR2}"]) == 76.0
+
+
+def test_profile_shifted_meshes_with_unknown_teeth_give_willis_ratio():
+    # Ferguson's train with tooth numbers left as symbols: the working pitch radii of the shifted meshes,
+    # 60 z/(z_p + z), are fractions; the ratio must still be Willis': with s1 held and the arm driving,
+    # (w_s2 - w_H)/(0 - w_H) = z_s1/z_s2, so i_H,S2 = z_s2/(z_s2 - z_s1)
+    text = _library_text("ferguson")
+    for gear, teeth in (("p", 20), ("s1", 100), ("s2", 99), ("s3", 101)):
+        text = text.replace(f"{gear} = {teeth} }}", f'{gear} = "z_{gear}" }}')
+    train = read_train(text)
+    z = {g: sp.Symbol(f"z_{g}", integer=True, positive=True) for g in ("s1", "s2", "s3")}
+    assert sp.simplify(train.shift("s2").ratio.rhs - z["s2"] / (z["s2"] - z["s1"])) == 0
+    assert sp.simplify(train.shift("s3").ratio.rhs - z["s3"] / (z["s3"] - z["s1"])) == 0

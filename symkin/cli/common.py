@@ -137,18 +137,18 @@ def add_out_argument(parser: Any, what: str, *, required: bool = True, default: 
 
 
 def figure_file(text: str, option: str = "--out") -> Path:
-    """The figure file an option names: a .png or .pdf in an existing folder.
+    """The figure file an option names: a .png, .pdf, .svg or .eps in an existing folder.
 
     >>> figure_file("plot.png")
     PosixPath('plot.png')
     """
     out = Path(text)
-    if out.suffix.lower() not in (".png", ".pdf"):
-        raise InputError(f"{option} {text}: give a file ending in .png or .pdf")
+    if out.suffix.lower() not in (".png", ".pdf", ".svg", ".eps"):
+        raise InputError(f"{option} {text}: give a file ending in .png, .pdf, .svg or .eps")
     if not out.resolve().parent.is_dir():
         raise InputError(f"{option} {text}: the folder {out.resolve().parent} does not exist")
     if out.is_dir():
-        raise InputError(f"{option} {text} is a folder; give a file name ending in .png or .pdf")
+        raise InputError(f"{option} {text} is a folder; give a file name ending in .png, .pdf, .svg or .eps")
     return out
 
 

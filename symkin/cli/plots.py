@@ -57,34 +57,35 @@ def register(sub: Any) -> None:
     """Add the ``trajectory``, ``curves`` and ``animate`` commands to the ``symkin`` subparsers ``sub`` (called by :func:`symkin.cli.build_parser`)."""
     p = add_command(
         sub, "trajectory",
-        help="plot the paths of chosen particles of a scheme (PNG or PDF)",
+        help="plot the paths of chosen particles of a scheme (PNG, PDF, SVG or EPS)",
         description="Plot the paths of particles of a scheme's links over a time span, with the pitch circles "
-        "at t = 0, eq. (4). Writes FILE (.png or .pdf).",
+        "at t = 0, eq. (4), axes in metres for bare numbers. Writes FILE (.png, or vector .pdf, .svg, .eps).",
         run=run_trajectory,
     )
-    _common(p, "a figure, .png or .pdf")
+    _common(p, "a figure, .png, .pdf, .svg or .eps")
 
     q = add_command(
         sub, "curves",
         help="plot speed and acceleration of chosen particles against time",
-        description="Plot |V| and |w| of particles of a scheme's links against time, eqs. (5) and (6). "
-        "Writes FILE (.png or .pdf).",
+        description="Plot the speed |V| and the acceleration |a| (|w| in the 2009 paper) of particles of a "
+        "scheme's links against time, eqs. (5) and (6), in m/s and m/s^2 for bare numbers. "
+        "Writes FILE (.png, or vector .pdf, .svg, .eps).",
         run=run_curves,
     )
-    _common(q, "a figure, .png or .pdf")
+    _common(q, "a figure, .png, .pdf, .svg or .eps")
 
     a = add_command(
         sub, "animate",
-        help="animate a scheme: carrier, gears turning, particles tracing their paths (GIF or MP4)",
+        help="animate a scheme: carrier, gears turning, particles tracing their paths (GIF, MP4 or HTML)",
         description="Animate a scheme over a time span: the carrier, every gear turning, and particles tracing "
-        "their paths. Writes FILE.gif (always available) or FILE.mp4 (needs ffmpeg); the file appears only "
-        "when complete.",
+        "their paths, gears with involute teeth. Writes FILE.gif (always available), FILE.mp4 (needs ffmpeg) "
+        "or FILE.html (a self-contained page with playback controls); the file appears only when complete.",
         run=run_animate,
     )
-    _common(a, "an animation, .gif or .mp4 (needs ffmpeg)")
+    _common(a, "an animation, .gif, .html or .mp4 (needs ffmpeg)")
     a.add_argument("--fps", default="20", help="frames per second (default 20)")
     a.add_argument("--frames", default=None, help=f"number of frames, 2 to {MAX_FRAMES} (default: 4 s of animation per turn)")
-    a.add_argument("--dpi", default="80", help="resolution (default 80)")
+    a.add_argument("--dpi", default="100", help="resolution in dots per inch of a 6 in frame (default 100: 600 px)")
 
 
 # --------------------------------------------------------------------------- parsing
@@ -185,9 +186,8 @@ def _report(args: Any, kind: str, out: Path, mech: Any, points: list, t_end: flo
 # --------------------------------------------------------------------------- commands
 def run_trajectory(args: Any) -> int:
     """Run ``symkin trajectory`` with the parsed ``args``: writes the particles' paths to ``--out``; hands text and JSON to :func:`symkin.cli.common.emit` and returns 0 (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
-    from matplotlib.figure import Figure
-
-    from symkin.viz.figures import draw_pitch_circles, draw_trajectories
+    from symkin.viz import style
+    from symkin.viz.figures import draw_pitch_circles, draw_trajectories, label_plane
 
     out = figure_file(args.out)
     mech, motion, points, t_end, labels, about, title = _setup(args)
@@ -199,14 +199,15 @@ def run_trajectory(args: Any) -> int:
         save_figure(fig, out)
         _report(args, "trajectory", out, mech, points, t_end, about, title)
         return 0
-    fig = Figure(figsize=(5.5, 5.5))
+    fig = style.new_figure(style.COLUMN, style.COLUMN + 0.9)
     ax = fig.add_subplot()
-    draw_pitch_circles(ax, mech)
+    style.style_axes(ax)
+    draw_pitch_circles(ax, mech, teeth=True)
     draw_trajectories(ax, motion, points, t_end, relative_to="pole", labels=labels)
-    ax.set_aspect("equal")
-    ax.set_title(f"{title}: particle paths, t = 0 ... {t_end:.3g} s", fontsize=9)
-    ax.legend(fontsize=7, loc="upper right")
-    save_figure(fig, out)
+    label_plane(ax)
+    ax.set_title(f"{title}: particle paths,\nt = 0 ... {t_end:.3g} s", fontsize=style.FONT)
+    style.legend_outside(ax)
+    save_figure(style.finish(fig), out)
     _report(args, "trajectory", out, mech, points, t_end, about, title)
     return 0
 

@@ -4,16 +4,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from symkin.cli.common import (  # exact_json and the parsers load SymPy on first call only
-    Progress,
-    add_command,
-    add_quiet_flag,
-    add_train_argument,
-    emit,
-    exact_json,
-    parse_integer,
-    parse_number,
-)
+from symkin.cli.common import Progress, add_command, add_quiet_flag, add_train_argument, emit
 from symkin.errors import InputError
 
 __all__ = ["register"]
@@ -72,6 +63,8 @@ def register(sub: Any) -> None:
 
 
 def _ratio_range(text: str) -> tuple[Any, Any]:
+    from symkin._util.parsing import parse_number
+
     parts = [x.strip() for x in text.split(",")]
     if len(parts) != 2:
         raise InputError(f"--ratio-range takes LO,HI (two numbers), got {text!r}")
@@ -80,6 +73,8 @@ def _ratio_range(text: str) -> tuple[Any, Any]:
 
 def run_synthesize(args: Any) -> int:
     """Run ``symkin synthesize`` with the parsed ``args``: tooth numbers of a train file for a target ratio; hands text and JSON to :func:`symkin.cli.common.emit` and returns 0 (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
+    from symkin._util.jsonout import exact_json
+    from symkin._util.parsing import parse_integer, parse_number
     from symkin.synthesis import synthesize
 
     if args.ratio is None and args.ratio_range is None:

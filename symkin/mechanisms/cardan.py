@@ -705,6 +705,24 @@ class SliderTable:
             "columns": {k: [float(x) for x in self.columns[k]] for k in self.shown},
         }
 
+    def _repr_html_(self) -> str:
+        """The table for Jupyter: the path and stroke times, then the columns (SI units).
+
+        >>> import numpy as np
+        >>> html = CardanSlider.build(1, drive=1).table(np.linspace(0, 1, 3))._repr_html_()
+        >>> "<th>s [m]</th>" in html
+        True
+        """
+        from symkin._util.display import html_table
+
+        units = {"t": "s", "s": "m", "v": "m/s", "a": "m/s²", "x": "m", "y": "m", "deviation": "m"}
+        head = [f"{k} [{units[k]}]" for k in self.shown]
+        rows = [[f"{self.columns[k][i]:.6g}" for k in self.shown] for i in range(len(self.columns["t"]))]
+        caption = f"path: {self.path.kind}: {self.path.description}"
+        if self.strokes is not None:
+            caption += f"; stroke times {self.strokes.forward:.4g} s forward, {self.strokes.back:.4g} s back"
+        return html_table(head, rows, caption=caption)
+
     def text(self) -> str:
         """The table as ``symkin cardan`` prints it: the mechanism, drive, path, period, stroke times, s(t) and the columns."""
         sl = self.slider

@@ -46,6 +46,7 @@ from typing import Any
 
 import sympy as sp
 
+from symkin._util.display import markdown_table
 from symkin._util.parsing import as_expr, parse_number
 from symkin.printing import latex
 
@@ -570,6 +571,24 @@ class Check:
     def verdict(self) -> Verdict:
         """The computed verdict of the check's comparison."""
         return self.comparison.verdict
+
+    def _repr_markdown_(self) -> str:
+        """The check for Jupyter: its heading, derived and published as math, the verdict.
+
+        >>> print(Check.make("p", "(1)", "one", 1, 1, compare_exact(1, 1))._repr_markdown_())
+        **(1)**: one
+        <BLANKLINE>
+        |  | value |
+        |---|---|
+        | derived | $1$ |
+        | published | $1$ |
+        | verdict | **match** (paper item): exactly 1 |
+        """
+        rows = [["derived", f"${self.derived_latex}$" if self.derived_latex else str(self.derived)],
+                ["published", f"${self.published_latex}$" if self.published_latex else str(self.published)],
+                ["verdict", f"**{self.verdict.value}** ({self.kind.value} item): {self.comparison.detail}"
+                 if self.kind is Kind.PAPER else f"**{self.verdict.value}** ({self.kind.value}): {self.comparison.detail}"]]
+        return f"**{self.label}**: {self.description}\n\n" + markdown_table(["", "value"], rows)
 
     def to_json(self) -> dict[str, Any]:
         """The check as report.json holds it (see ``symkin/papers/report.schema.json``)."""

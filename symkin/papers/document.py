@@ -137,7 +137,7 @@ def math_rows(value: Any, width: float = LINE_WIDTH) -> list[str]:
     return lines[:1] + [rf"\qquad {line}" for line in lines[1:]]
 
 
-def _check_block(check: Any) -> str:
+def _check_block(check: Any, anchor: str = "", figure: str = "") -> str:
     rows = []
     for label, value in (("derived", check.derived), ("published", check.published)):
         for n, row in enumerate(math_rows(value)):
@@ -148,12 +148,13 @@ def _check_block(check: Any) -> str:
     if getattr(check, "source", "printed") == "reconstructed":
         kind += " (form reconstructed where the OCR lost it)"
     lines = [
-        rf"\subsection*{{{math_text(check.label)}: {math_text(check.description)}}}",
+        rf"\subsection*{{{math_text(check.label)}: {math_text(check.description)}}}" + (rf"\label{{{anchor}}}" if anchor else ""),
         r"\begin{align*}",
         " \\\\\n".join(rows),
         r"\end{align*}",
         # sloppy: the evidence quotes formulas as text, whose long tokens need looser lines
-        rf"{{\sloppy \textit{{{escape(kind)}}}, \textbf{{{escape(check.verdict.value)}}}: {escape(check.comparison.detail)}\par}}",
+        rf"{{\sloppy \textit{{{escape(kind)}}}, \textbf{{{escape(check.verdict.value)}}}: {escape(check.comparison.detail)}"
+        + (rf" (Figure~\ref{{{figure}}})" if figure else "") + r"\par}",
         "",
     ]
     alt = getattr(check.comparison, "alternative", None)
@@ -181,60 +182,111 @@ def _summary(results: list[Any]) -> str:
     return escape(text) + "\n"
 
 
-def _items(result: Any) -> list[str]:
-    """The paper's printed items with their verdicts, as a list."""
+def _items(result: Any, anchors: dict[int, str]) -> list[str]:
+    """The paper's printed items with their verdicts and the pages of their checks, as a list."""
     items = paper_items(result)
     if not items:
         return []
-    out = [r"\subsection*{Printed items and their verdicts}", r"\begin{itemize}"]
+    out = [r"\begin{itemize}"]
     for it in items:
         verdict = it.verdict.value if it.verdict is not None else "not checked: " + (it.item.not_checked or "no reason given")
-        labels = ", ".join(c.label for c in it.checks)
+        refs = ", ".join(rf"{math_text(c.label)} (p.~\pageref{{{anchors[id(c)]}}})" for c in it.checks if id(c) in anchors)
         out.append(rf"\item {math_text(it.item.item)} ({math_text(it.item.what)}): \textbf{{{escape(verdict)}}}"
-                   + (f" [{math_text(labels)}]" if labels else ""))
+                   + (f"; {refs}" if refs else ""))
     out.append(r"\end{itemize}")
     return out
 
 
-def _figures(results: list[Any], root: Path) -> list[str]:
-    out: list[str] = []
+def _figure(fig: Path, root: Path, caption: str, label: str) -> list[str]:
+    rel = fig.resolve().relative_to(root.resolve())
+    return [
+        r"\begin{figure}[!htbp]",
+        r"\centering",
+        rf"\includegraphics[width=\linewidth,height=0.62\textheight,keepaspectratio]{{{rel.as_posix()}}}",
+        rf"\caption{{{caption}}}",
+        rf"\label{{{label}}}",
+        r"\end{figure}",
+        "",
+    ]
+
+
+_Placed = tuple[dict[int, list[tuple[Path, str, str]]], list[tuple[Path, str, str]], dict[int, str]]
+
+
+def _placed_figures(result: Any, root: Path | None) -> _Placed:
+    """Each PDF figure of ``result`` with its caption and label: after the last check its
+    caption names (by label prefix, ``REPORT_FIGURES`` of the paper), or unplaced; and the
+    figure each check points to."""
+    figure_of: dict[int, str] = {}
+    if root is None:
+        return {}, [], figure_of
+    captions = getattr(result, "captions", {}) or {}
+    after: dict[int, list[tuple[Path, str, str]]] = {}
+    loose: list[tuple[Path, str, str]] = []
+    for fig in getattr(result, "figures", []):
+        fig = Path(fig)
+        if fig.suffix.lower() != ".pdf":
+            continue
+        try:
+            fig.resolve().relative_to(Path(root).resolve())
+        except ValueError:
+            continue
+        text, prefixes = captions.get(fig.stem, ("", ()))
+        checks = [c for c in result.checks if any(c.label.startswith(p) for p in prefixes)]
+        label = "fig:" + re.sub(r"[^A-Za-z0-9]", "-", fig.stem)
+        named = ", ".join(dict.fromkeys(c.label for c in checks))
+        caption = math_text(text or fig.stem.replace("_", " "))
+        if checks:
+            caption += r" \emph{Checks:} " + math_text(named) + "."
+        entry = (fig, caption, label)
+        if checks:
+            after.setdefault(id(checks[-1]), []).append(entry)
+            for c in checks:
+                figure_of.setdefault(id(c), label)
+        else:
+            loose.append(entry)
+    return after, loose, figure_of
+
+
+def _items_index(results: list[Any], anchors: dict[int, str]) -> list[str]:
+    """An index of every paper's printed items: verdict, and the pages of the checks."""
+    out = [r"\clearpage", r"\section*{Index of paper items}",
+           "Every item each paper prints, with its verdict and the pages of the checks that compare it." + "\n"]
     for r in results:
-        for fig in r.figures:
-            fig = Path(fig)
-            if fig.suffix.lower() != ".pdf":
-                continue
-            try:
-                rel = fig.resolve().relative_to(root.resolve())
-            except ValueError:
-                continue
-            out += [
-                r"\begin{center}",
-                rf"\includegraphics[width=\linewidth,height=0.8\textheight,keepaspectratio]{{{rel.as_posix()}}}",
-                r"\end{center}",
-                "",
-            ]
+        block = _items(r, anchors)
+        if block:
+            out += [rf"\subsection*{{{escape(r.key)}}}"] + block
     return out
 
 
 def equations_document(results: Iterable[Any], root: Path | None = None) -> str:
     """A complete LaTeX document for a list of :class:`~symkin.papers.reproduce.PaperResult`.
 
-    With ``root`` (the report folder), the papers' PDF figures inside it are included.
+    With ``root`` (the report folder), the papers' PDF figures inside it are included as
+    numbered figures with captions, each after the checks it illustrates (the paper's
+    ``REPORT_FIGURES``: figure name -> caption and check-label prefixes), and each of
+    those checks points to it.  The document ends with an index of every printed item.
     """
     results = list(results)
     parts = [PREAMBLE, _summary(results)]
+    anchors: dict[int, str] = {}
     for r in results:
         parts.append(rf"\section{{{escape(r.citation)}}}")
         parts.append(rf"Paper key: \texttt{{{escape(r.key)}}}." + "\n")
+        after, loose, figure_of = _placed_figures(r, root)
         for c in r.checks:
-            parts.append(_check_block(c))
-        parts += _items(r)
+            anchors[id(c)] = f"chk:{len(anchors) + 1}"
+            parts.append(_check_block(c, anchors[id(c)], figure_of.get(id(c), "")))
+            for fig, caption, label in after.get(id(c), []):
+                parts += _figure(fig, Path(root or "."), caption, label)
+        for fig, caption, label in loose:
+            parts += _figure(fig, Path(root or "."), caption, label)
+        if paper_items(r):
+            parts.append(r"\subsection*{Printed items and their verdicts}" + "\n"
+                         + "See the index of paper items at the end.")
         for note in getattr(r, "notes", []) or []:
             parts.append(r"\textit{Note:} " + escape(note) + "\n")
-    if root is not None:
-        figures = _figures(results, Path(root))
-        if figures:
-            parts.append(r"\clearpage" + "\n" + r"\section*{Figures}")
-            parts += figures
+    if any(paper_items(r) for r in results):
+        parts += _items_index(results, anchors)
     parts.append(r"\end{document}")
     return "\n".join(parts) + "\n"

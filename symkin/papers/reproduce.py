@@ -42,7 +42,9 @@ SCHEMA_VERSION = "1.0"
 
 @dataclass
 class PaperResult:
-    """One paper's checks, its list of printed items, figures and notes."""
+    """One paper's checks, its list of printed items, figures and notes; ``captions`` maps a
+    figure's name (its file stem) to its caption and the label prefixes of the checks it
+    illustrates (the paper module's ``REPORT_FIGURES``)."""
 
     key: str
     citation: str
@@ -51,11 +53,36 @@ class PaperResult:
     notes: list[str] = field(default_factory=list)
     seconds: float = 0.0
     items: list[PrintedItem] = field(default_factory=list)
+    captions: dict[str, tuple[str, tuple[str, ...]]] = field(default_factory=dict)
 
     @property
     def ok(self) -> bool:
         """True when no check differs (``differs`` is the only failing verdict)."""
         return all(c.verdict.ok for c in self.checks)
+
+    def _repr_html_(self) -> str:
+        """The paper's checks and printed items as tables, for Jupyter (math typeset by MathJax).
+
+        >>> from symkin.papers.checks import compare_exact
+        >>> r = PaperResult("p", "A paper", [Check.make("p", "(1)", "one", 1, 1, compare_exact(1, 1))])
+        >>> "<td>(1)</td>" in r._repr_html_()
+        True
+        """
+        from symkin._util.display import html_table
+
+        checks = html_table(
+            ["check", "item", "kind", "verdict", "derived", "published", "detail"],
+            [(c.label, c.item, c.kind.value, c.verdict.value, f"${c.derived_latex}$" if c.derived_latex else "",
+              f"${c.published_latex}$" if c.published_latex else "", c.comparison.detail) for c in self.checks],
+            caption=f"{self.citation}: {summarize([self]).line()}", raw_columns=(4, 5))
+        items = self.item_results
+        if not items:
+            return checks
+        table = html_table(["printed item", "what", "verdict", "checks"],
+                           [(it.item.item, it.item.what,
+                             it.verdict.value if it.verdict is not None else "not checked: " + it.item.not_checked,
+                             ", ".join(c.label for c in it.checks)) for it in items], caption="Printed items")
+        return checks + table
 
     @property
     def item_results(self) -> list[ItemResult]:
@@ -116,7 +143,7 @@ def run(
             notes = list(getattr(mod, "notes", lambda: [])())
             results.append(
                 PaperResult(name, mod.CITATION, checks, figures, notes, time.perf_counter() - start,
-                            list(getattr(mod, "PRINTED_ITEMS", ())))
+                            list(getattr(mod, "PRINTED_ITEMS", ())), dict(getattr(mod, "REPORT_FIGURES", {})))
             )
         bar.step("writing report.json, report.txt, equations.tex")
         data = report_json(results, tmp)

@@ -14,6 +14,7 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 from typing import Any
 
+from symkin._util.display import html_table
 from symkin.papers.checks import ItemResult, Kind, PrintedItem, Verdict, item_results
 
 __all__ = ["Summary", "summarize", "paper_items"]
@@ -77,6 +78,18 @@ class Summary:
             + "; " + plural(self.consistency, "consistency check") + more(self.consistency, self.consistency_differ)
             + "; " + plural(self.extensions, "extension") + more(self.extensions, self.extensions_differ)
         )
+
+    def _repr_html_(self) -> str:
+        """The counts as a table, for Jupyter.
+
+        >>> "<td>reproduced</td><td>2</td>" in Summary(items=3, reproduced=2)._repr_html_()
+        True
+        """
+        rows = [("paper items", self.items), ("reproduced", self.reproduced), ("slips explained", self.slips),
+                ("paper errors confirmed", self.errors), ("differ", self.differ), ("not checked", self.not_checked),
+                ("consistency checks", f"{self.consistency} ({self.consistency_differ} differ)"),
+                ("extensions", f"{self.extensions} ({self.extensions_differ} differ)")]
+        return html_table(["", "count"], rows, caption=self.line())
 
     def to_json(self) -> dict[str, Any]:
         """The summary as JSON: the counts of items by verdict and of checks by kind, and the summary line."""

@@ -39,6 +39,7 @@ from typing import Any
 import sympy as sp
 
 from symkin import symbols as S
+from symkin._util.display import html_table
 from symkin._util.jsonout import exact_json, float_text
 from symkin._util.parsing import as_real
 from symkin.errors import InputError, ModelError
@@ -211,6 +212,32 @@ class Statics:
             "torques_with_losses": {k: exact_json(v) if v.is_number else str(v) for k, v in self.lossy_torques.items()},
             "meshes": [m.to_json() for m in self.meshes],
         }
+
+    def _repr_html_(self) -> str:
+        """Efficiency both ways, self-locking and the meshes as HTML tables, for Jupyter.
+
+        >>> from symkin import schemes
+        >>> from symkin.statics import statics
+        >>> "<td>self-locking</td>" in statics(schemes.single_row_AI(teeth=(20, 30, 80)), input="1", output="H",
+        ...                                      fixed="4", efficiency=0.98)._repr_html_()
+        True
+        """
+
+        def shown(v: Any) -> str:
+            return f"${sp.latex(v)}$" + (f" = {float_text(v)}" if v.is_number else "")
+
+        locks = self.self_locking
+        held = f", {', '.join(self.fixed)} held" if self.fixed else ""
+        rows = [(f"efficiency {self.input} &rarr; {self.output}", shown(self.efficiency.rhs)),
+                (f"driven back {self.output} &rarr; {self.input}", shown(self.backward.efficiency.rhs)),
+                ("self-locking", "yes" if locks is True else "no" if locks is False else f"when ${sp.latex(locks)}$"),
+                ("circulating power / input power", shown(self.circulating))]
+        summary = html_table(["", "per unit input torque and speed"], rows, raw_columns=(0, 1),
+                             caption=f"{self.mechanism.name or 'train'}: {self.input} drives {self.output}{held}")
+        meshes = html_table(["mesh", "tangential force", "per planet", "power", "driver"],
+                            [(f"{m.mesh.a}-{m.mesh.b}", f"${sp.latex(m.tangential)}$", f"${sp.latex(m.per_planet)}$",
+                              f"${sp.latex(m.power)}$", m.driver or "-") for m in self.meshes], raw_columns=(1, 2, 3))
+        return summary + meshes
 
     def text(self) -> str:
         """The result as ``symkin efficiency`` prints it."""

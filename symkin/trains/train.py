@@ -20,6 +20,7 @@ from typing import Any
 import sympy as sp
 
 from symkin import symbols as S
+from symkin._util.display import html_table
 from symkin._util.jsonout import exact_json, float_text
 from symkin.errors import DeterminacyError, ModelError
 from symkin.kinematics import Speeds, solve_speeds
@@ -109,6 +110,19 @@ class ShiftTable:
     def to_json(self) -> dict[str, Any]:
         """The shift table as JSON: the train's name and each state."""
         return {"train": self.train.name, "states": [s.to_json() for s in self.shifts]}
+
+    def _repr_html_(self) -> str:
+        """The shift table as an HTML table with the ratios as math, for Jupyter.
+
+        >>> from symkin.trains import load_train
+        >>> "<th>ratio</th>" in load_train("simpson").shift_table()._repr_html_()
+        True
+        """
+        rows = [(s.state.name, s.state.input, s.state.output, ", ".join(s.state.brakes) or "-",
+                 ", ".join(f"{a}+{b}" for a, b in s.state.clutches) or "-", f"${sp.latex(s.ratio.rhs)}$",
+                 float_text(s.ratio.rhs)) for s in self.shifts]
+        return html_table(["state", "input", "output", "brakes", "clutches", "ratio", "float"], rows,
+                          caption=f"{self.train.name or 'train'}: ratio = omega_input/omega_output", raw_columns=(5,))
 
 
 @dataclass(frozen=True)

@@ -3,8 +3,11 @@
 Everything drawn comes from the derived laws: each link's axis is a particle of its
 carrier (eq. 4) and its orientation is read from a second particle of the link, so a
 moving frame (a drill head on a manipulator) animates too.  Frames are drawn with
-matplotlib's object API and written as GIF (Pillow, always available) or MP4 (needs
-ffmpeg); the file is written under a temporary name and renamed when complete.
+matplotlib's object API, gears with involute teeth (:mod:`symkin.viz.teeth`) where
+their tooth numbers are known, and written as GIF (Pillow, always available), MP4 (needs
+ffmpeg) or a self-contained HTML page with playback controls (:meth:`Frames.html`,
+matplotlib's ``to_jshtml``); the file is written under a temporary name and renamed when
+complete.
 
     >>> from symkin import schemes
     >>> from symkin.viz.animation import Frames
@@ -18,7 +21,7 @@ from __future__ import annotations
 
 import os
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -32,16 +35,19 @@ from symkin._util.parsing import as_values, substitute
 from symkin.errors import InputError, ToolError
 from symkin.model import FRAME, LinkKind
 from symkin.numeric.sampling import on_grid, time_grid
+from symkin.viz import style
+from symkin.viz.teeth import involute_outline, mesh_phases
 
 __all__ = ["Frames", "draw_frame", "frame_figure", "animate", "WRITERS", "ffmpeg_available"]
 
 #: File suffix -> matplotlib writer name.
-WRITERS = {".gif": "pillow", ".mp4": "ffmpeg"}
+WRITERS = {".gif": "pillow", ".mp4": "ffmpeg", ".html": "jshtml"}
 #: Largest frame rate and resolution :func:`animate` accepts.
 MAX_FPS, MAX_DPI = 1000, 1000
 
-_COLOURS = ("#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#8c564b", "#17becf", "#7f7f7f", "#bcbd22")
-_PATH_COLOURS = ("#ff7f0e", "#000000", "#e377c2", "#2ca02c", "#d62728")
+# links in the Okabe-Ito colours (told apart with any colour vision), paths in black and vermilion
+_COLOURS = (style.PALETTE[0], style.PALETTE[2], style.PALETTE[4], style.PALETTE[3], style.PALETTE[5], "#7f7f7f")
+_PATH_COLOURS = ("#000000", style.PALETTE[1], style.PALETTE[3], style.PALETTE[0])
 
 
 def ffmpeg_available() -> bool:
@@ -69,6 +75,11 @@ class Frames:
     particle_xy : array (particles, frames, 2)
     labels : tuple of str
     title : str
+    teeth : dict
+        Gear name -> (tooth number, angle of a tooth centre at t = 0): the gears drawn with
+        involute teeth, phased so that they mesh (:func:`symkin.viz.teeth.mesh_phases`).
+    length : str
+        The unit of the coordinates, for the axis labels (bare numbers are metres).
     """
 
     t: np.ndarray
@@ -79,6 +90,8 @@ class Frames:
     particle_xy: np.ndarray
     labels: tuple[str, ...]
     title: str
+    teeth: Mapping[str, tuple[int, float]] = field(default_factory=dict)
+    length: str = "m"
 
     @classmethod
     def build(
@@ -92,11 +105,15 @@ class Frames:
         values: Mapping[Any, Any] | None = None,
         labels: Sequence[str] | None = None,
         title: str | None = None,
+        teeth: bool = True,
+        length: str = "m",
     ) -> Frames:
         """Sample ``motion`` at ``frames`` equal steps of [0, t_end].
 
         ``particles`` are (link, (a, b)) pairs, by default relative to the link's axis at
         t = 0 (``relative_to="pole"``); ``values`` gives numbers for every symbol but t.
+        With ``teeth``, gears with tooth numbers are drawn with involute teeth; ``length``
+        is the unit of the axes.
         """
         t = time_grid(t_end, samples=frames)
         subs = as_values(values)
@@ -127,7 +144,34 @@ class Frames:
         particle_xy = np.stack([rest[:, 0], rest[:, 1]], axis=-1)
         links, axis_xy, angle = _copies(mech, links, axis_xy, angle, main_xy)
         names = tuple(labels) if labels else tuple(f"link {name}, point {tuple(p)}" for name, p in particles)
-        return cls(t, tuple(links), axis_xy, angle, main_xy, particle_xy, names, title or mech.name or "mechanism")
+        phases = mesh_phases(mech, subs) if teeth else {}
+        toothed = {name: (int(mech.gear(name).teeth), phase) for name, phase in phases.items()}
+        return cls(t, tuple(links), axis_xy, angle, main_xy, particle_xy, names, title or mech.name or "mechanism",
+                   toothed, length)
+
+    def _repr_html_(self) -> str:
+        """In Jupyter, frames show as the animation with its playback controls (:meth:`html`)."""
+        return self.html(dpi=60, size=5.0)
+
+    def html(self, *, fps: int = 20, dpi: int = 80, size: float = 6.0) -> str:
+        """The animation as a self-contained HTML page with playback controls (matplotlib's
+        ``to_jshtml``, frames embedded as PNG), to open in a browser or show in Jupyter.
+
+        >>> from symkin import schemes
+        >>> frames = Frames.build(schemes.single_row_AI(teeth=(20, 30, 80), module=1).motion({"4": 0, "H": 1}),
+        ...                       [("2", (15, 0))], t_end=6.3, frames=3)
+        >>> page = frames.html(dpi=20)
+        >>> page.startswith("<!DOCTYPE html>"), "play_animation" in page, page.count("data:image/png;base64")
+        (True, True, 3)
+        """
+        fig, anim = _animation(self, size)
+        try:
+            fig.set_dpi(dpi)
+            body = anim.to_jshtml(fps=fps, embed_frames=True, default_mode="loop")
+        finally:
+            anim._draw_was_started = True  # no "deleted without rendering" warning (a private attribute)
+        return ("<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>" + _html_escape(self.title)
+                + "</title></head><body>\n" + body + "\n</body></html>\n")
 
     def limits(self) -> tuple[float, float, float, float]:
         """Axis limits that hold every gear and path over the whole motion."""
@@ -184,16 +228,26 @@ class _Artists:
     """The matplotlib artists of one animation, updated frame by frame."""
 
     def __init__(self, ax: Any, frames: Frames, trail: bool = True):
+        from matplotlib.patches import Polygon
+
         self.frames, self.trail = frames, trail
-        self.gear_lines: list[tuple[int, float, bool, Line2D, Line2D]] = []
+        self.gear_lines: list[tuple[int, float, bool, Line2D, Line2D, np.ndarray | None, Any]] = []
         self.arms: list[tuple[int, int, Line2D]] = []
         index = {name: i for i, (name, *_rest) in enumerate(frames.links)}
         for i, (name, kind, gears, carrier) in enumerate(frames.links):
             colour = _COLOURS[index[name.split("#")[0]] % len(_COLOURS)]  # a planet's copies in its colour
-            for _gname, radius, internal in gears:
-                (circle,) = ax.plot([], [], color=colour, lw=1.6 if internal else 1.2)
+            for gname, radius, internal in gears:
+                outline = None
+                if gname in frames.teeth:
+                    z, phase = frames.teeth[gname]
+                    outline = np.array(involute_outline(radius, z, internal=internal, phase=phase))
+                (circle,) = ax.plot([], [], color=colour, lw=1.1 if internal else 0.9)
                 (marks,) = ax.plot([], [], color=colour, lw=0.9)
-                self.gear_lines.append((i, radius, internal, circle, marks))
+                face = None
+                if not internal:  # external gears filled lightly, so that overlapping outlines read as meshing
+                    face = Polygon(np.zeros((1, 2)), closed=True, facecolor=colour, alpha=0.18, lw=0)
+                    ax.add_patch(face)
+                self.gear_lines.append((i, radius, internal, circle, marks, outline, face))
             if kind == "planet" and carrier is not None:
                 (arm,) = ax.plot([], [], color="0.25", lw=3.2, solid_capstyle="round", zorder=4)
                 self.arms.append((index.get(carrier, -1), i, arm))
@@ -201,29 +255,36 @@ class _Artists:
         self.dots = []
         for k, label in enumerate(frames.labels):
             colour = _PATH_COLOURS[k % len(_PATH_COLOURS)]
-            (path,) = ax.plot([], [], color=colour, lw=1.3, label=label, zorder=5)
+            (path,) = ax.plot([], [], color=colour, lw=1.3, label=label, zorder=5, ls=style.LINESTYLES[k % 2])
             (dot,) = ax.plot([], [], "o", color=colour, ms=5, zorder=6)
             self.paths.append(path)
             self.dots.append(dot)
         (self.hub,) = ax.plot([], [], "o", color="0.1", ms=4, zorder=6)
-        self.clock = ax.text(0.02, 0.97, "", transform=ax.transAxes, va="top", fontsize=8)
+        self.clock = ax.text(0.02, 0.97, "", transform=ax.transAxes, va="top", fontsize=style.FONT)
 
     def update(self, n: int) -> list[Any]:
         sc = self.frames
         theta = np.linspace(0, 2 * np.pi, 121)
-        for i, radius, internal, circle, marks in self.gear_lines:
+        for i, radius, internal, circle, marks, outline, face in self.gear_lines:
             cx, cy = sc.axis_xy[i, n]
-            circle.set_data(cx + radius * np.cos(theta), cy + radius * np.sin(theta))
             phi = sc.angle[i, n]
-            if internal:  # short teeth marks outside the ring show its rotation
+            if outline is not None:  # the teeth turn with the link
+                c, s = np.cos(phi), np.sin(phi)
+                xs, ys = cx + c * outline[0] - s * outline[1], cy + s * outline[0] + c * outline[1]
+            else:
+                xs, ys = cx + radius * np.cos(theta), cy + radius * np.sin(theta)
+            circle.set_data(xs, ys)
+            if face is not None:
+                face.set_xy(np.column_stack([xs, ys]))
+            if internal:  # short marks outside the ring show its rotation
                 k = np.arange(12) * 2 * np.pi / 12 + phi
-                r0, r1 = radius, radius * 1.1
+                r0, r1 = radius * 1.1, radius * 1.16
             else:  # three spokes from the axis show the gear's rotation
                 k = np.arange(3) * 2 * np.pi / 3 + phi
-                r0, r1 = 0.0, radius
-            xs = np.column_stack([cx + r0 * np.cos(k), cx + r1 * np.cos(k), np.full_like(k, np.nan)]).ravel()
-            ys = np.column_stack([cy + r0 * np.sin(k), cy + r1 * np.sin(k), np.full_like(k, np.nan)]).ravel()
-            marks.set_data(xs, ys)
+                r0, r1 = 0.0, radius * (0.8 if outline is not None else 1.0)
+            mx = np.column_stack([cx + r0 * np.cos(k), cx + r1 * np.cos(k), np.full_like(k, np.nan)]).ravel()
+            my = np.column_stack([cy + r0 * np.sin(k), cy + r1 * np.sin(k), np.full_like(k, np.nan)]).ravel()
+            marks.set_data(mx, my)
         for c, p, arm in self.arms:
             start = sc.axis_xy[c, n] if c >= 0 else sc.main_xy[n]
             arm.set_data([start[0], sc.axis_xy[p, n, 0]], [start[1], sc.axis_xy[p, n, 1]])
@@ -232,8 +293,9 @@ class _Artists:
             path.set_data(xy[:, 0], xy[:, 1])
             dot.set_data([sc.particle_xy[k, n, 0]], [sc.particle_xy[k, n, 1]])
         self.hub.set_data([sc.main_xy[n, 0]], [sc.main_xy[n, 1]])
-        self.clock.set_text(f"t = {sc.t[n]:.3g}")
-        return [a for *_, a, b in self.gear_lines] + [b for *_, b in self.gear_lines] + [a for *_, a in self.arms] + self.paths + self.dots
+        self.clock.set_text(f"t = {sc.t[n]:.3g} s")
+        return ([g[3] for g in self.gear_lines] + [g[4] for g in self.gear_lines]
+                + [g[6] for g in self.gear_lines if g[6] is not None] + [a for *_, a in self.arms] + self.paths + self.dots)
 
 
 def draw_frame(ax: Any, frames: Frames, n: int, *, trail: bool = True) -> None:
@@ -242,7 +304,7 @@ def draw_frame(ax: Any, frames: Frames, n: int, *, trail: bool = True) -> None:
     artists = _Artists(ax, frames, trail)
     artists.update(n)
     if frames.labels:
-        ax.legend(fontsize=7, loc="lower right")
+        style.legend_outside(ax)
 
 
 def _setup(ax: Any, frames: Frames) -> None:
@@ -250,8 +312,31 @@ def _setup(ax: Any, frames: Frames) -> None:
     ax.set_xlim(x0, x1)
     ax.set_ylim(y0, y1)
     ax.set_aspect("equal")
-    ax.tick_params(labelsize=7)
-    ax.set_title(frames.title, fontsize=9)
+    ax.tick_params(labelsize=style.SMALL)
+    ax.set_xlabel(style.label("x", frames.length), fontsize=style.FONT)
+    ax.set_ylabel(style.label("y", frames.length), fontsize=style.FONT)
+    ax.set_title(frames.title, fontsize=style.FONT)
+
+
+def _html_escape(text: str) -> str:
+    import html
+
+    return html.escape(text)
+
+
+def _animation(frames: Frames, size: float) -> tuple[Figure, Any]:
+    """The figure and the FuncAnimation of ``frames`` (``size`` inches wide)."""
+    from matplotlib import animation
+
+    fig = style.new_figure(size, size + (0.5 if frames.labels else 0.2))
+    ax = fig.add_subplot()
+    _setup(ax, frames)
+    artists = _Artists(ax, frames, trail=True)
+    artists.update(0)
+    if frames.labels:
+        style.legend_outside(ax)
+    style.finish(fig)
+    return fig, animation.FuncAnimation(fig, artists.update, frames=len(frames.t), blit=False)
 
 
 def frame_figure(frames: Frames, n: int, *, trail: bool = True, size: float = 5.0) -> Figure:
@@ -263,9 +348,9 @@ def frame_figure(frames: Frames, n: int, *, trail: bool = True, size: float = 5.
     >>> len(frame_figure(frames, 2).axes[0].lines) > 4
     True
     """
-    fig = Figure(figsize=(size, size))
+    fig = style.new_figure(size, size + (0.5 if frames.labels else 0.2))
     draw_frame(fig.add_subplot(), frames, n, trail=trail)
-    return fig
+    return style.finish(fig)
 
 
 def animate(
@@ -273,10 +358,13 @@ def animate(
     out: str | os.PathLike[str],
     *,
     fps: int = 20,
-    dpi: int = 80,
-    size: float = 5.0,
+    dpi: int = 100,
+    size: float = 6.0,
 ) -> Path:
-    """Write the animation of ``frames`` to ``out`` (``.gif``, or ``.mp4`` with ffmpeg).
+    """Write the animation of ``frames`` to ``out``: ``.gif``, ``.mp4`` (with ffmpeg), or
+    ``.html`` (a self-contained page with playback controls, :meth:`Frames.html`).
+
+    The default is 600 pixels square (6 in at 100 dpi).
 
     The file appears only when complete: frames go to a temporary file beside ``out``
     that is renamed at the end; on any error or interrupt the temporary file is removed
@@ -314,21 +402,20 @@ def animate(
             "ffmpeg was not found, so an MP4 cannot be written; write a GIF instead (a file ending in .gif) "
             "or install ffmpeg (Debian/Ubuntu: sudo apt-get install ffmpeg)"
         )
-    fig = Figure(figsize=(size, size))
-    ax = fig.add_subplot()
-    _setup(ax, frames)
-    artists = _Artists(ax, frames, trail=True)
-    if frames.labels:
-        artists.update(0)
-        ax.legend(fontsize=7, loc="lower right")
-    anim = animation.FuncAnimation(fig, artists.update, frames=len(frames.t), blit=False)
+    if suffix == ".html":
+        if not out.resolve().parent.is_dir():
+            raise InputError(f"cannot write {out}: the folder {out.resolve().parent} does not exist")
+        page = frames.html(fps=fps, dpi=dpi, size=size)
+        with replacing(out) as (tmp,):
+            tmp.write_text(page, encoding="utf-8")
+        return out
+    _fig, anim = _animation(frames, size)
     writer = animation.writers[WRITERS[suffix]](fps=fps)
     try:
         with replacing(out) as (tmp,):
             anim.save(str(tmp), writer=writer, dpi=dpi)
     except BaseException:
-        # no "deleted without rendering" warning on top of the error; the attribute is
-        # private to matplotlib, so its stubs (animation.pyi) do not declare it
-        anim._draw_was_started = True  # type: ignore[attr-defined]
+        # no "deleted without rendering" warning on top of the error (a private attribute)
+        anim._draw_was_started = True
         raise
     return out

@@ -27,6 +27,8 @@ from symkin._util.atomic import replacing
 from symkin._util.parsing import as_values, substitute
 from symkin.errors import InputError
 from symkin.model import LinkKind, Mechanism
+from symkin.viz import style
+from symkin.viz.teeth import involute_outline, mesh_phases
 
 __all__ = [
     "space_figure",
@@ -34,9 +36,17 @@ __all__ = [
     "draw_pitch_circles",
     "draw_trajectories",
     "trajectory_figure",
+    "label_plane",
     "kinematics_figure",
     "save",
+    "FORMATS",
 ]
+
+#: File suffixes :func:`save` writes: raster PNG and the vector formats PDF, SVG and EPS.
+FORMATS = ("png", "pdf", "svg", "eps")
+#: Where each gear's name is put on its pitch circle (degrees), gear by gear, so that the
+#: names of concentric gears of nearly equal size (a two-row AA's 1 and 4) stand apart.
+_LABEL_ANGLES = (40, 140, 220, 320, 90, 270, 180, 0)
 
 
 def default_particles(mech: Mechanism) -> list[tuple[str, tuple[sp.Expr, sp.Expr]]]:
@@ -56,9 +66,22 @@ def default_particles(mech: Mechanism) -> list[tuple[str, tuple[sp.Expr, sp.Expr
     return [(planet.name, (r, sp.Integer(0))), (planet.name, (r / 2, sp.Integer(0)))]
 
 
-def draw_pitch_circles(ax: Any, mech: Mechanism, values: Mapping[Any, Any] | None = None) -> None:
-    """Pitch circles of every gear at t = 0 (planets at their initial position), thin grey."""
+def draw_pitch_circles(ax: Any, mech: Mechanism, values: Mapping[Any, Any] | None = None, *,
+                       teeth: bool = False) -> None:
+    """Pitch circles of every gear at t = 0 (planets at their initial position), thin grey,
+    each named at its own angle; with ``teeth``, gears with a tooth number are drawn with
+    involute teeth (:mod:`symkin.viz.teeth`) phased so that they mesh.
+
+    >>> from matplotlib.figure import Figure
+    >>> from symkin import schemes
+    >>> ax = Figure().add_subplot()
+    >>> draw_pitch_circles(ax, schemes.single_row_AI(teeth=(20, 30, 80), module=1), teeth=True)
+    >>> sorted(t.get_text() for t in ax.texts)
+    ['1', '2', '4']
+    """
     named = as_values(values)
+    phases = mesh_phases(mech, named) if teeth else {}
+    n = 0
     for link in mech.links:
         centre = (0.0, 0.0)
         if link.axis == "radial":  # a bevel pinion's pitch circle stands across the plane: seen edge on
@@ -69,8 +92,17 @@ def draw_pitch_circles(ax: Any, mech: Mechanism, values: Mapping[Any, Any] | Non
             centre = (x, y)
         for gear in link.gears:
             r = float(substitute(gear.radius, named))
-            ax.add_patch(Circle(centre, r, fill=False, lw=0.6, ls="--" if gear.internal else "-", color="0.6"))
-            ax.annotate(gear.name, (centre[0] + r * 0.7071, centre[1] + r * 0.7071), color="0.45", fontsize=7)
+            if gear.name in phases:
+                gx, gy = involute_outline(r, int(sp.sympify(gear.teeth)), internal=gear.internal, phase=phases[gear.name])
+                ax.plot(centre[0] + gx, centre[1] + gy, lw=0.5, color="0.45", ls="-")
+                ax.add_patch(Circle(centre, r, fill=False, lw=0.4, ls=":", color="0.6"))
+            else:
+                ax.add_patch(Circle(centre, r, fill=False, lw=0.6, ls="--" if gear.internal else "-", color="0.6"))
+            angle = np.radians(_LABEL_ANGLES[n % len(_LABEL_ANGLES)])
+            n += 1
+            out = r * (1.08 if gear.internal else 0.86)  # inside a gear, outside a ring: clear of its teeth
+            ax.annotate(gear.name, (centre[0] + out * np.cos(angle), centre[1] + out * np.sin(angle)), color="0.3",
+                        fontsize=style.SMALL, ha="center", va="center")
 
 
 def _draw_pinion(ax: Any, mech: Mechanism, link: Any, named: Mapping[str, Any]) -> None:
@@ -86,10 +118,10 @@ def _draw_pinion(ax: Any, mech: Mechanism, link: Any, named: Mapping[str, Any]) 
         cx, cy = x0 + reach * np.cos(alpha), y0 + reach * np.sin(alpha)
         half = abs(float(substitute(geo.pitch_y, named)))
         dx, dy = -np.sin(alpha) * half, np.cos(alpha) * half
-        ax.plot([cx - dx, cx + dx], [cy - dy, cy + dy], lw=0.8, color="0.6")
+        ax.plot([cx - dx, cx + dx], [cy - dy, cy + dy], lw=0.8, color="0.6", ls="-")
         ax.plot([x0, cx], [y0, cy], lw=0.5, ls=":", color="0.6")
         gear = geo.gear_a if geo.link_a.name == link.name else geo.gear_b
-        ax.annotate(gear.name, (cx + dx, cy + dy), color="0.45", fontsize=7)
+        ax.annotate(gear.name, (cx + dx, cy + dy), color="0.3", fontsize=style.SMALL)
 
 
 def draw_trajectories(
@@ -103,13 +135,22 @@ def draw_trajectories(
     labels: Sequence[str] | None = None,
     samples: int = 1441,
 ) -> None:
-    """Draw the path of each (link, point) particle from t = 0 to ``t_end``."""
+    """Draw the path of each (link, point) particle from t = 0 to ``t_end`` (a dot at t = 0).
+
+    >>> from matplotlib.figure import Figure
+    >>> from symkin import schemes
+    >>> ax = Figure().add_subplot()
+    >>> motion = schemes.single_row_AI(radii=(1, 1, 3)).motion({"4": 0, "H": 1})
+    >>> draw_trajectories(ax, motion, [("2", (1, 0))], 6.3)
+    >>> len(ax.lines)
+    2
+    """
     for i, (link, point) in enumerate(particles):
         p = motion.particle(link, point, relative_to=relative_to)
         x, y = p.trajectory(t_end, samples=samples, values=values)[1:3]  # seen from +z for a path in space
         label = labels[i] if labels else f"link {link}, point {tuple(point)}"
         (line,) = ax.plot(x, y, lw=1.1, label=label)
-        ax.plot(x[:1], y[:1], "o", ms=3, color=line.get_color())
+        ax.plot(x[:1], y[:1], "o", ms=3, color=line.get_color(), ls="none")
 
 
 def trajectory_figure(
@@ -122,16 +163,41 @@ def trajectory_figure(
     values: Mapping[Any, Any] | None = None,
     title: str | None = None,
     labels: Sequence[str] | None = None,
+    teeth: bool = True,
+    length: str = "m",
 ) -> Figure:
-    """One axes: pitch circles (at t = 0) and particle paths of ``mech`` under ``inputs``."""
-    fig = Figure(figsize=(5, 5))
+    """One axes: the gears (at t = 0, with teeth where tooth numbers are known) and particle
+    paths of ``mech`` under ``inputs``; axes in ``length`` units (bare numbers are metres).
+
+    >>> from symkin import schemes
+    >>> m = schemes.single_row_AI(teeth=(20, 30, 80), module=1)
+    >>> fig = trajectory_figure(m, {"4": 0, "H": 1}, [("2", (15, 0))], 6.3, length="mm")
+    >>> fig.axes[0].get_xlabel()
+    'x [mm]'
+    """
+    fig = style.new_figure(style.COLUMN, style.COLUMN + 0.9)
     ax = fig.add_subplot()
-    draw_pitch_circles(ax, mech, values)
+    style.style_axes(ax)
+    draw_pitch_circles(ax, mech, values, teeth=teeth)
     draw_trajectories(ax, mech.motion(inputs), particles, t_end, relative_to=relative_to, values=values, labels=labels)
+    label_plane(ax, length)
+    ax.set_title(title or mech.name, fontsize=style.FONT)
+    style.legend_outside(ax)
+    return style.finish(fig)
+
+
+def label_plane(ax: Any, length: str = "m") -> None:
+    """Equal scales and the axes ``x``, ``y`` labelled in ``length`` units.
+
+    >>> from matplotlib.figure import Figure
+    >>> ax = Figure().add_subplot()
+    >>> label_plane(ax, "mm")
+    >>> ax.get_ylabel()
+    'y [mm]'
+    """
     ax.set_aspect("equal")
-    ax.set_title(title or mech.name)
-    ax.legend(fontsize=7, loc="upper right")
-    return fig
+    ax.set_xlabel(style.label("x", length), fontsize=style.FONT)
+    ax.set_ylabel(style.label("y", length), fontsize=style.FONT)
 
 
 def space_figure(
@@ -144,6 +210,7 @@ def space_figure(
     labels: Sequence[str] | None = None,
     title: str | None = None,
     samples: int = 1441,
+    length: str = "m",
 ) -> Figure:
     """Particle paths in space (the frame moving in space, or bevel pinions), in 3-D axes,
     with the path of the main axis point O when the frame moves.
@@ -155,8 +222,9 @@ def space_figure(
     >>> fig.axes[0].name
     '3d'
     """
-    fig = Figure(figsize=(6, 5.5))
+    fig = style.new_figure(style.PAGE * 0.75, style.PAGE * 0.75)
     ax = fig.add_subplot(projection="3d")
+    style.style_axes(ax)
     space = getattr(motion, "space", None)
     if space is not None and not space.still:
         from symkin.numeric.sampling import on_grid, time_grid
@@ -169,13 +237,12 @@ def space_figure(
         _, x, y, z = p.trajectory(t_end, samples=samples, values=values)
         label = labels[i] if labels else f"link {link}, point {tuple(point)}"
         (line,) = ax.plot(x, y, z, lw=1.0, label=label)
-        ax.plot(x[:1], y[:1], z[:1], "o", ms=3, color=line.get_color())
-    ax.set_xlabel("x")
-    ax.set_ylabel("y")
-    ax.set_zlabel("z")
-    ax.set_title(title or motion.mechanism.name or "paths in space", fontsize=9)
-    ax.legend(fontsize=7, loc="upper left")
-    return fig
+        ax.plot(x[:1], y[:1], z[:1], "o", ms=3, color=line.get_color(), ls="none")
+    for name, set_label in (("x", ax.set_xlabel), ("y", ax.set_ylabel), ("z", ax.set_zlabel)):
+        set_label(style.label(name, length), fontsize=style.FONT, labelpad=8)
+    ax.set_title(title or motion.mechanism.name or "paths in space", fontsize=style.FONT)
+    style.legend_outside(ax)
+    return style.finish(fig)
 
 
 def kinematics_figure(
@@ -188,42 +255,68 @@ def kinematics_figure(
     labels: Sequence[str] | None = None,
     title: str | None = None,
     samples: int = 721,
+    length: str = "m",
+    time: str = "s",
 ) -> Figure:
-    """Speed and acceleration of each particle against time (two stacked axes).
+    """Speed and acceleration of each particle against time (two stacked axes), in
+    ``length`` and ``time`` units (bare numbers are metres and seconds).
+
+    The acceleration is ``a`` here and ``w`` in the 2009 paper (eq. 6).
 
     >>> from symkin import schemes
     >>> motion = schemes.single_row_AI(radii=(1, 1, 3)).motion({"4": 0, "H": 1})
     >>> fig = kinematics_figure(motion, [("2", (1, 0))], 6.3)
     >>> [ax.get_ylabel() for ax in fig.axes]
-    ['speed |V|', 'acceleration |w|']
+    ['speed |V| [m/s]', 'acceleration |a| [m/s$^2$]']
     """
-    fig = Figure(figsize=(6.4, 5.2))
+    units = style.units_of(length, time)
+    fig = style.new_figure(style.COLUMN * 1.5, style.COLUMN * 1.5)
     ax_v, ax_a = fig.subplots(2, 1, sharex=True)
+    for ax in (ax_v, ax_a):
+        style.style_axes(ax)
     for i, (link, point) in enumerate(particles):
         p = motion.particle(link, point, relative_to=relative_to)
         data = p.sample(t_end, samples=samples, values=values)
         label = labels[i] if labels else f"link {link}, point {tuple(point)}"
         ax_v.plot(data["t"], data["speed"], lw=1.1, label=label)
         ax_a.plot(data["t"], data["acceleration"], lw=1.1, label=label)
-    ax_v.set_ylabel("speed |V|")
-    ax_a.set_ylabel("acceleration |w|")
-    ax_a.set_xlabel("time t")
+    ax_v.set_ylabel(style.label("speed |V|", units["speed"]), fontsize=style.FONT)
+    ax_a.set_ylabel(style.label("acceleration |a|", units["acceleration"]), fontsize=style.FONT)
+    ax_a.set_xlabel(style.label("time t", time), fontsize=style.FONT)
     for ax in (ax_v, ax_a):
-        ax.grid(True, lw=0.4, alpha=0.6)
         ax.set_ylim(bottom=0)
-    ax_v.legend(fontsize=7, loc="upper right")
-    fig.suptitle(title or "speed and acceleration of the particles, eqs. (5), (6)", fontsize=10)
-    return fig
+    style.legend_outside(ax_a)
+    fig.suptitle(title or "speed and acceleration of the particles, eqs. (5), (6)", fontsize=style.FONT)
+    return style.finish(fig)
 
 
-def save(fig: Figure, path: Path, formats: Sequence[str] = ("png", "pdf")) -> list[Path]:
-    """Save ``fig`` as ``path`` with each suffix in ``formats``; returns the files written.
+def save(fig: Figure, path: Path, formats: Sequence[str] | None = None) -> list[Path]:
+    """Save ``fig`` as ``path``; returns the files written.
 
-    The files appear together when all are written (:func:`symkin._util.atomic.replacing`): a
-    failure leaves any earlier ones as they were.
+    The format is the suffix of ``path`` when it is one of :data:`FORMATS` (``.pdf``, ``.svg``
+    and ``.eps`` are vector files, ``.png`` is raster at 200 dpi); a path without one gets a PNG
+    and a PDF, or each suffix in ``formats``.  The files appear together when all are
+    written (:func:`symkin._util.atomic.replacing`): a failure leaves any earlier ones as they were.
+
+    >>> import tempfile
+    >>> from matplotlib.figure import Figure
+    >>> fig = Figure()
+    >>> _ = fig.add_subplot().plot([0, 1])
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     [p.name for p in save(fig, Path(d) / "curve.svg")]
+    ['curve.svg']
     """
-    targets = [Path(path).with_suffix("." + fmt) for fmt in formats]
+    path = Path(path)
+    if formats is None:
+        formats = (path.suffix[1:].lower(),) if path.suffix[1:].lower() in FORMATS else ("png", "pdf")
+    unknown = [f for f in formats if f.lower() not in FORMATS]
+    if unknown:
+        raise InputError(f"cannot save a figure as {', '.join(unknown)}: give one of {', '.join(FORMATS)}")
+    targets = [path.with_suffix("." + fmt.lower()) for fmt in formats]
+    # a figure laid out by matplotlib's constrained layout already fits its page: no second
+    # draw to find a tight box (which doubles the time of saving)
+    tight = None if fig.get_layout_engine() is not None else "tight"
     with replacing(*targets) as temps:
-        for tmp in temps:
-            fig.savefig(tmp, dpi=150, bbox_inches="tight")
+        for tmp, target in zip(temps, targets):
+            fig.savefig(tmp, dpi=200 if target.suffix == ".png" else 150, bbox_inches=tight, format=target.suffix[1:])
     return targets
