@@ -819,6 +819,7 @@ def trajectories_figure() -> Any:
 
 
 def notes() -> list[str]:
+    """Remarks printed under the paper's checks in the report: how published forms are compared (coaxiality, the axes of fig. 2) and how the paper's claims are read."""
     return [
         "Published forms that assume coaxiality are compared after substituting the coaxiality "
         "condition the engine derives from the mesh geometry.",

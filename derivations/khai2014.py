@@ -178,10 +178,12 @@ def _check(label: str, description: str, derived, published, comparison, **extra
 
 # ---------------------------------------------------------------------------- shared results
 def stage_set():
+    """The feasible stages of the paper's ring (180 teeth, 3 satellites, the paper's tooth limits), enumerated exactly."""
     return enumerate_stages(RING, SATELLITES, zmin=Z_MIN, zmax=Z_MAX)
 
 
 def paper_model() -> StageErrorModel:
+    """The paper's stage error model, the regression line Phi/d = a + b u."""
     return StageErrorModel.linear(A_LINEAR, B_LINEAR)
 
 
@@ -200,12 +202,14 @@ _CACHE: dict = {}
 
 
 def optimum():
+    """The continuous optimum of the paper's fig. 4 case (cached)."""
     if "optimum" not in _CACHE:
         _CACHE["optimum"] = optimise_split(TOTAL, STAGES, lower=U_LOWER, upper=U_UPPER, model=paper_model())
     return _CACHE["optimum"]
 
 
 def discrete(tolerance: str):
+    """The best discrete designs from :func:`stage_set` within ``tolerance`` (cached)."""
     key = ("discrete", tolerance)
     if key not in _CACHE:
         _CACHE[key] = best_designs(TOTAL, stage_set(), STAGES, model=paper_model(), tolerance=tolerance, top=5)
@@ -444,6 +448,7 @@ def _figure_reference_checks() -> list[Check]:
 
 # ---------------------------------------------------------------------------- notes and figures
 def notes() -> list[str]:
+    """Remarks printed under the paper's checks in the report: the feasible stages, the continuous optimum and why its bounds are active."""
     found = stage_set()
     best = optimum()
     line = line_model()
@@ -488,6 +493,7 @@ REPORT_FIGURES = {
 
 
 def figures(folder: Path) -> list[Path]:
+    """Draw the paper's figures into ``folder`` (the stage model and the ratio split); returns the files written."""
     from symkin.viz.figures import save
     from symkin.viz.split import split_figure, stage_model_figure
 

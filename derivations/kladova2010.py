@@ -666,6 +666,7 @@ def _synthesis_figure(folder: Path) -> list[Path]:
 
 
 def notes() -> list[str]:
+    """Remarks printed under the paper's checks in the report, with the helix hands that balance the axial forces in each scheme."""
     hands = {kd: balancing_hands(kd) for kd in HS.SCHEMES}
     return [
         "Balance: the torque balance of the planet gives F_t2 d_w2 = F_t3 d_w3; the axial force of a helical rim is "

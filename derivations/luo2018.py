@@ -842,6 +842,7 @@ def _branch_figure(folder: Path) -> list[Path]:
 
 
 def notes() -> list[str]:
+    """Remarks printed under the paper's checks in the report: how the slider law and the straight-line conditions are derived, and the stroke times of the curves of figures 7-8."""
     rows = []
     for panel, entries in curves().items():
         name = SWEEPS[panel][0]

@@ -52,8 +52,8 @@ class Drive(ABC):
 
 
 
-def _as_expr(value: Any, what: str) -> sp.Expr:
-    return as_expr(value, what=what, names=("t",))
+def _as_expr(value: Any, what: str, unit: str | None = None) -> sp.Expr:
+    return as_expr(value, what=what, names=("t",), unit=unit)
 
 
 @dataclass(frozen=True)
@@ -63,11 +63,17 @@ class ConstantSpeed(Drive):
     omega: sp.Expr
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "omega", _as_expr(self.omega, "constant speed"))
+        object.__setattr__(self, "omega", _as_expr(self.omega, "constant speed", "rad/s"))
         if S.t in self.omega.free_symbols:
             raise InputError("a constant speed cannot depend on t; use SpeedLaw for a speed that varies")
 
     def angle(self, t: sp.Symbol) -> sp.Expr:
+        """The turned angle ``omega t`` at time ``t``.
+
+        >>> from symkin import symbols as S
+        >>> ConstantSpeed(2).angle(S.t)
+        2*t
+        """
         return self.omega * t
 
     def time_of_angle(self, angle: Any) -> sp.Expr:
@@ -78,7 +84,7 @@ class ConstantSpeed(Drive):
         """
         if self.omega == 0:
             raise InputError("a link standing still never turns; give a non-zero speed")
-        return _as_expr(angle, "angle") / self.omega
+        return _as_expr(angle, "angle", "rad") / self.omega
 
 
 @dataclass(frozen=True)
@@ -91,9 +97,10 @@ class AngleLaw(Drive):
     law: sp.Expr
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "law", _as_expr(self.law, "angle law"))
+        object.__setattr__(self, "law", _as_expr(self.law, "angle law", "rad"))
 
     def angle(self, t: sp.Symbol) -> sp.Expr:
+        """The angle law at time ``t``, shifted so that the angle is 0 at t = 0."""
         law = self.law.subs(S.t, t)
         return law - law.subs(t, 0)
 
@@ -105,14 +112,21 @@ class SpeedLaw(Drive):
     law: sp.Expr
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "law", _as_expr(self.law, "speed law"))
+        object.__setattr__(self, "law", _as_expr(self.law, "speed law", "rad/s"))
 
     def angle(self, t: sp.Symbol) -> sp.Expr:
+        """The integral of the speed law from 0 to ``t``.
+
+        >>> from symkin import symbols as S
+        >>> SpeedLaw(2 * S.t).angle(S.t)
+        t**2
+        """
         tau = sp.Dummy("tau", real=True)
         integral = sp.integrate(self.law.subs(S.t, tau), (tau, 0, t))
         return integral
 
     def speed(self, t: sp.Symbol) -> sp.Expr:
+        """The speed law at time ``t``."""
         return self.law.subs(S.t, t)
 
 
@@ -201,13 +215,16 @@ class EllipticalGears(Drive):
         return numerator, sp.expand(2 * denominator - numerator)
 
     def speed(self, t: sp.Symbol) -> sp.Expr:
+        """The driven gear's angular velocity at time ``t``: the input speed times the ratio of the gears' instantaneous radii."""
         driver, driven = self._radii(self.omega * t)
         return self.omega * driver / driven
 
     def acceleration(self, t: sp.Symbol) -> sp.Expr:
+        """The driven gear's angular acceleration at time ``t`` (the derivative of :meth:`speed`)."""
         return sp.diff(self.speed(t), t)
 
     def angle(self, t: sp.Symbol) -> sp.Expr:
+        """The driven gear's angle at time ``t``, in closed form without a branch jump (continuous in ``t``)."""
         e, m, u = self.eccentricity, self.order, self.order * self.omega * t
         return self.omega * t + 2 / m * sp.atan(sp.together(e * sp.sin(u) / (1 - e * sp.cos(u))))
 
@@ -222,18 +239,21 @@ class EllipticalGears(Drive):
         pi
         """
         e, m = self.eccentricity, self.order
-        psi = _as_expr(angle, "angle")
+        psi = _as_expr(angle, "angle", "rad")
         v = m * psi
         return (psi - 2 / m * sp.atan(sp.together(e * sp.sin(v) / (1 + e * sp.cos(v))))) / self.omega
 
 
 def as_drive(value: Any, what: str = "drive") -> Drive:
-    """A drive from a Drive, or a speed: a number, an expression in t, or safe text.
+    """A drive from a Drive, or a speed: a number (rad/s), an expression in t, safe text, or
+    a speed with a unit (text such as ``"300 rpm"`` or a pint quantity, converted to rad/s).
 
     >>> as_drive(0)
     ConstantSpeed(omega=0)
+    >>> as_drive("300 rpm")
+    ConstantSpeed(omega=10*pi)
     """
     if isinstance(value, Drive):
         return value
-    expr = _as_expr(value, what)
+    expr = _as_expr(value, what, "rad/s")
     return SpeedLaw(expr) if S.t in expr.free_symbols else ConstantSpeed(expr)

@@ -173,6 +173,7 @@ class KinematicSystem:
     dof: int
 
     def rows(self, names: Sequence[str]) -> sp.Matrix:
+        """The rows of the motion matrix for the links ``names``: each link's speed in terms of the independent motions."""
         return sp.Matrix([list(self.motions.row(self.links.index(n))) for n in names]) if names else sp.zeros(0, self.dof)
 
     def rank_of(self, names: Sequence[str]) -> int:
@@ -459,7 +460,8 @@ def solve_speeds(mech: Mechanism, known: Mapping[str, Any], *, joined: Sequence[
     mech : Mechanism
     known : mapping of link name to speed
         Exactly ``mech.dof`` independent links (fewer with ``joined``); a fixed link has
-        speed 0.  Values may be numbers, symbols or expressions (of time too).
+        speed 0.  Values may be numbers (rad/s), symbols or expressions (of time too), or
+        speeds with a unit: text such as ``"300 rpm"`` or a pint quantity, converted to rad/s.
     joined : sequence of (link, link)
         Pairs of links made to turn together (an engaged clutch).
 
@@ -479,6 +481,8 @@ def solve_speeds(mech: Mechanism, known: Mapping[str, Any], *, joined: Sequence[
     >>> ai = schemes.two_row("AI")
     >>> sp.factor(ai.speeds({"1": S.omega("1"), "4": 0})["H"])
     omega_1*r_1*r_3/(r_1*r_3 + r_2*r_4)
+    >>> schemes.two_row("AA", teeth=(54, 45, 44, 55)).speeds({"1": "300 rpm", "4": 0})["H"]
+    -240*pi
     """
     if not isinstance(known, MappingABC):
         raise InputError(f"known speeds are a mapping of link name to speed, got {known!r}")
@@ -489,7 +493,7 @@ def solve_speeds(mech: Mechanism, known: Mapping[str, Any], *, joined: Sequence[
             raise InputError("the frame (link 0) does not move; give the speeds of moving links")
         if link in resolved:
             raise InputError(f"the speed of link {link} is given twice (as {name!r} too); give it once")
-        resolved[link] = as_expr(value, what=f"speed of link {link}", names=("t",))
+        resolved[link] = as_expr(value, what=f"speed of link {link}", names=("t",), unit="rad/s")
     names = tuple(resolved)
     pairs = _joined_pairs(mech, joined)
     order = tuple(sorted(names))

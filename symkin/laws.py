@@ -41,6 +41,12 @@ class Law:
 
     @property
     def equation(self) -> sp.Eq:
+        """The law as an unevaluated SymPy equation ``lhs = rhs``.
+
+        >>> from symkin import schemes
+        >>> schemes.two_row("AA", teeth=(100, 100, 101, 99)).ratio("H", "1", fixed="4").equation
+        Eq(i_{H1}^{(4)}, 101/2)
+        """
         return sp.Eq(self.lhs, self.rhs, evaluate=False)
 
     @property

@@ -471,6 +471,12 @@ class Mechanism:
 
     @property
     def link_names(self) -> tuple[str, ...]:
+        """The names of the moving links, in the order they were given.
+
+        >>> from symkin import schemes
+        >>> schemes.two_row("AA").link_names
+        ('1', '23', 'H', '4')
+        """
         return tuple(L.name for L in self.moving_links)
 
     def gear(self, name: str) -> Gear:

@@ -112,16 +112,23 @@ class SpaceFrame:
 
     @cached_property
     def origin(self) -> tuple[sp.ImmutableMatrix, sp.ImmutableMatrix, sp.ImmutableMatrix]:
+        """The position of the main axis point O in space, its velocity and its acceleration (column vectors in t)."""
         o = vec3(self.x, self.y, self.z)
         return o, sp.ImmutableMatrix(sp.diff(o, S.t)), sp.ImmutableMatrix(sp.diff(o, S.t, 2))
 
     @cached_property
     def turns(self) -> tuple[sp.ImmutableMatrix, sp.ImmutableMatrix, sp.ImmutableMatrix]:
+        """The rotation of the base, and its first and second time derivatives (3 x 3 matrices in t)."""
         R = self.rotation
         return R, sp.ImmutableMatrix(sp.diff(R, S.t)), sp.ImmutableMatrix(sp.diff(R, S.t, 2))
 
     @property
     def still(self) -> bool:
+        """Whether the base does not move (no translation, no rotation).
+
+        >>> SpaceFrame().still
+        True
+        """
         return self.x == 0 and self.y == 0 and self.z == 0 and self.rotation == sp.eye(3)
 
 
@@ -142,6 +149,7 @@ class Motion:
 
     @classmethod
     def build(cls, mechanism: Mechanism, inputs: Mapping[str, Any], frame: FrameMotion | SpaceFrame | None = None) -> Motion:
+        """The motion of ``mechanism`` under ``inputs`` (link name to drive or speed) and an optional moving ``frame``; checks the inputs first."""
         if not isinstance(inputs, Mapping):
             raise InputError(f"inputs are a mapping of link name to drive or speed, got {inputs!r}")
         resolved: dict[str, Drive] = {}

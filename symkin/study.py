@@ -182,6 +182,7 @@ class Study:
 
     @property
     def outputs(self) -> tuple[str, ...]:
+        """The names of the outputs, in the order :meth:`evaluate` returns them."""
         return self.function.outputs
 
     def evaluate(self, values: Mapping[Any, Any] | None = None, *, t: Any = None, reuse: bool = False) -> dict[str, Any]:

@@ -70,10 +70,12 @@ class LinkVector:
 
     @property
     def x(self) -> sp.Expr:
+        """The vector's x component, ``length cos(angle)``."""
         return self.length * sp.cos(self.angle)
 
     @property
     def y(self) -> sp.Expr:
+        """The vector's y component, ``length sin(angle)``."""
         return self.length * sp.sin(self.angle)
 
     @property
@@ -82,6 +84,7 @@ class LinkVector:
         return self.length * sp.exp(sp.I * self.angle)
 
     def subs(self, *args: Any, **kwargs: Any) -> LinkVector:
+        """The vector with ``subs`` applied to its length and angle (SymPy's ``subs`` arguments)."""
         return LinkVector(self.length.subs(*args, **kwargs), self.angle.subs(*args, **kwargs), self.name)
 
 

@@ -27,7 +27,7 @@ PACKAGE = ROOT / "symkin"
 #: Layers from the bottom up: a module may import its own layer or a lower one.
 LAYERS: list[tuple[str, ...]] = [
     ("symkin._version", "symkin.errors", "symkin.symbols", "symkin.laws"),
-    ("symkin._util", "symkin._deprecated"),
+    ("symkin._util", "symkin._deprecated", "symkin.units"),
     ("symkin.numeric", "symkin.printing", "symkin.superposition"),
     ("symkin.model",),
     ("symkin.kinematics", "symkin.particles", "symkin.drives", "symkin.vectorloop"),

@@ -46,6 +46,9 @@ __all__ = [
     "parse_number",
     "parse_integer",
     "parse_expression",
+    "parse_quantity",
+    "is_quantity",
+    "unit_factor",
     "FUNCTIONS",
     "CONSTANTS",
 ]
@@ -294,19 +297,27 @@ def as_fraction(value: Any, *, what: str = "value", error: type[Exception] = Inp
     return Fraction(int(r.p), int(r.q))
 
 
-def as_real(value: Any, *, what: str = "value", error: type[Exception] = InputError, positive: bool = False) -> sp.Expr:
+def as_real(value: Any, *, what: str = "value", error: type[Exception] = InputError, positive: bool = False,
+            unit: str | None = None) -> sp.Expr:
     """An exact finite real constant: :func:`as_rational` for numbers, and exact SymPy
     constants such as ``sqrt(2)/2`` or ``pi/6`` (given as SymPy objects or as text, parsed
     by :func:`parse_expression`) kept as they are.
 
     >>> as_real("pi/6"), as_real(0.5), as_real(sp.sqrt(2) / 2)
     (pi/6, 1/2, sqrt(2)/2)
+    >>> as_real("10 deg", unit="rad")            # with ``unit``, a quantity is converted to it
+    pi/18
     >>> as_real("t + 1", what="the guide angle")
     Traceback (most recent call last):
     ...
     symkin.errors.InputError: the guide angle: 't' is not allowed here; allowed names: E, pi; functions: ...
     """
-    if isinstance(value, str):
+    if unit is not None and (isinstance(value, str) or is_quantity(value)):
+        try:
+            expr = parse_quantity(value, unit, what=what)
+        except InputError as err:
+            raise (err if error is InputError else error(str(err))) from None
+    elif isinstance(value, str):
         expr = parse_expression(value, what=what)
     elif isinstance(value, sp.Expr) and not isinstance(value, (sp.Rational, sp.Float)):
         expr = value
@@ -513,6 +524,7 @@ def as_expr(
     text: bool = True,
     finite: bool = True,
     error: type[Exception] = InputError,
+    unit: str | None = None,
 ) -> sp.Expr:
     """A SymPy scalar from a number, a SymPy expression, or text parsed by :func:`parse_expression`.
 
@@ -532,6 +544,10 @@ def as_expr(
         Refuse NaN, infinities and complex numbers.
     error : exception class
         Raised on a bad value (a :class:`~symkin.errors.SymkinError` subclass).
+    unit : str, optional
+        The unit of the value (pint's spelling, e.g. ``"rad/s"``): a pint quantity, or text
+        with a unit (``"300 rpm"``), is converted to it exactly (:func:`parse_quantity`); a
+        bare number is taken to be in it already.
 
     >>> as_expr("pi/6", what="angle")
     pi/6
@@ -539,7 +555,14 @@ def as_expr(
     Traceback (most recent call last):
     ...
     symkin.errors.InputError: speed must be a finite real number, got nan
+    >>> as_expr("300 rpm", what="speed", unit="rad/s")
+    10*pi
     """
+    if unit is not None and (is_quantity(value) or (text and isinstance(value, str))):
+        try:
+            return parse_quantity(value, unit, what=what, names=names)
+        except InputError as err:
+            raise (err if error is InputError else error(str(err))) from None
     if isinstance(value, str):
         if not text:
             raise error(
@@ -612,6 +635,137 @@ def _constant_parts(
         bounds.check(e, what, memo=memo, error=error)
         return True
     return False
+
+
+#: The text of a unit: a name and products, quotients and integer powers of names.
+_UNIT_TEXT = re.compile(r"^[A-Za-z_°µ][A-Za-z0-9_°µ]*(\s*(\*\*|[*/^])?\s*[A-Za-z0-9_°µ.-]+)*$")
+#: Where a unit may start: a letter after a digit, a closing parenthesis or a space.
+_UNIT_START = re.compile(r"(?<=[0-9.)\s])\s*(?=[A-Za-z_°µ])")
+MAX_UNIT_LENGTH = 40
+
+
+def is_quantity(value: Any) -> bool:
+    """Whether ``value`` is a pint quantity (without importing pint when it is not one).
+
+    >>> import sympy as sp
+    >>> is_quantity(3), is_quantity("3 rpm"), is_quantity(sp.Function("Theta")(1))  # an undefined function's class has no module
+    (False, False, False)
+    """
+    module = getattr(type(value), "__module__", None)
+    return isinstance(module, str) and module.split(".")[0] == "pint" and hasattr(value, "units") \
+        and hasattr(value, "magnitude")
+
+
+def _registry(value: Any = None) -> Any:
+    try:
+        import pint
+    except ImportError:  # pragma: no cover - pint is a dependency
+        raise InputError("values with units need pint: pip install pint") from None
+    if value is not None and getattr(value, "_REGISTRY", None) is not None:
+        return value._REGISTRY
+    return pint.get_application_registry()
+
+
+def unit_factor(unit_from: Any, unit_to: str, *, what: str = "value") -> sp.Expr:
+    """The exact factor that turns a value in ``unit_from`` into one in ``unit_to``.
+
+    pint gives the factor as a float; it is made exact when it is a rational, or a rational
+    times pi (angles: degrees, revolutions), with a denominator up to 10^6 that reproduces
+    the float to 14 digits, and taken as the float's exact value otherwise.
+
+    >>> unit_factor("rpm", "rad/s"), unit_factor("deg", "rad"), unit_factor("mm", "m")
+    (pi/30, pi/180, 1/1000)
+    >>> unit_factor("s", "rad/s")
+    Traceback (most recent call last):
+    ...
+    symkin.errors.InputError: value: s is not a unit of rad/s (it is a [time], rad/s is 1 / [time])
+    """
+    import pint
+
+    reg = _registry(unit_from if not isinstance(unit_from, str) else None)
+    src = _parse_unit(reg, unit_from, what) if isinstance(unit_from, str) else unit_from
+    dst = _parse_unit(reg, unit_to, what)
+    try:
+        f = float(reg.Quantity(1.0, src).to(dst).magnitude)
+    except pint.DimensionalityError:
+        raise InputError(
+            f"{what}: {src:~} is not a unit of {unit_to} (it is a {reg.get_dimensionality(src)}, "
+            f"{unit_to} is {reg.get_dimensionality(dst)})".replace("dimensionless", "pure number")
+        ) from None
+    if not math.isfinite(f) or f == 0:
+        raise InputError(f"{what}: the unit {src:~} is out of range in {unit_to}")
+    for power in (0, 1, -1):
+        r = Fraction(f / math.pi**power).limit_denominator(10**6)
+        if r and abs(float(r) * math.pi**power - f) <= 1e-14 * abs(f):
+            return sp.Rational(r.numerator, r.denominator) * sp.pi**power
+    return sp.Rational(*Fraction(f).as_integer_ratio())
+
+
+def _parse_unit(reg: Any, text: str, what: str) -> Any:
+    text = text.strip()
+    if len(text) > MAX_UNIT_LENGTH or not _UNIT_TEXT.match(text):
+        raise InputError(f"{what}: {text[:60]!r} is not a unit; write a number and a unit such as 300 rpm, 10 deg, 5 mm")
+    try:
+        unit = reg.parse_units(text)
+    except Exception:  # pint raises several classes for an unknown or malformed unit
+        raise InputError(f"{what}: unknown unit {text!r}; write a unit such as rpm, rad/s, deg/s, deg, mm, m, s, ms") from None
+    return unit
+
+
+def parse_quantity(value: Any, unit: str, *, what: str = "value", names: Iterable[str] = ()) -> sp.Expr:
+    """An exact value in ``unit`` from a pint quantity, or from text: a number or constant
+    expression followed by a unit (``"300 rpm"``, ``"10deg"``, ``"2*pi rad/s"``, ``"5 mm"``).
+
+    Text without a unit is a value in ``unit`` already.  The number is parsed by
+    :func:`parse_expression` (exact, from the allow-list); the unit by pint's own parser after
+    an allow-list check (letters, digits, ``* / ^ **``; never Python), so a quantity's text
+    is as safe as a number's.
+
+    >>> parse_quantity("300 rpm", "rad/s"), parse_quantity("90deg", "rad"), parse_quantity("5 mm", "m")
+    (10*pi, pi/2, 1/200)
+    >>> parse_quantity("2", "rad/s")
+    2
+    >>> parse_quantity("3 kg", "m", what="--length")
+    Traceback (most recent call last):
+    ...
+    symkin.errors.InputError: --length: kg is not a unit of m (it is a [mass], m is [length])
+    """
+    if is_quantity(value):
+        magnitude = value.magnitude
+        if not isinstance(magnitude, numbers.Real) or isinstance(magnitude, bool):
+            raise InputError(f"{what} must be a single real quantity, got {value!r}")
+        return as_rational(magnitude, what=what) * unit_factor(value.units, unit, what=what)
+    s = _check_text(value, what)
+    try:
+        return parse_expression(s, names=names, what=what)
+    except InputError as plain:
+        error = plain
+    if _well_formed(s):  # a well-formed expression that was refused (out of range, a name not allowed) has no unit
+        raise error
+    refused: InputError | None = None
+    for m in _UNIT_START.finditer(s):  # the unit starts at the first place where both halves parse
+        number, unit_text = s[: m.start()].strip(), s[m.end():].strip()
+        if not number:
+            continue
+        try:
+            magnitude = parse_expression(number, names=names, what=what)
+        except InputError as err:
+            if _well_formed(number):  # a number refused (out of range, ...): say that, not "unknown unit"
+                refused = err
+            continue
+        try:  # a number, then what must be a unit (_parse_unit checks its allow-list first)
+            return magnitude * unit_factor(unit_text, unit, what=what)
+        except InputError as err:
+            error = err
+    raise refused or error
+
+
+def _well_formed(text: str) -> bool:
+    try:
+        ast.parse(text.replace("^", "**"), mode="eval")
+    except SyntaxError:
+        return False
+    return True
 
 
 def as_values(values: Any, *, what: str = "values") -> dict[str, sp.Expr]:

@@ -43,6 +43,7 @@ class ArgumentParser(argparse.ArgumentParser):
     """argparse with a one-line error message."""
 
     def error(self, message: str) -> NoReturn:
+        """Print ``message`` as one line on stderr, pointing at ``--help``, and exit with status 2 (:class:`UsageExit`)."""
         message = f"{message} (see {self.prog} --help)"
         sys.stderr.write(f"{self.prog}: error: {message}\n")
         raise UsageExit(message)
@@ -50,7 +51,11 @@ class ArgumentParser(argparse.ArgumentParser):
 
 def build_parser(command: str | None = None) -> ArgumentParser:
     """The parser of every command, or (``command`` given) one whose other commands have
-    their names and help only: ``symkin --help`` and ``symkin ratio ...`` need no more."""
+    their names and help only: ``symkin --help`` and ``symkin ratio ...`` need no more.
+
+    >>> build_parser().parse_args(["ratio", "AA", "--teeth", "1,2,3,4", "--driver", "H", "--driven", "1", "--fixed", "4"]).scheme
+    'AA'
+    """
     from symkin._version import __version__
 
     parser = ArgumentParser(
@@ -156,7 +161,7 @@ def _note(w: warnings.WarningMessage) -> str:
     return one_line(f"{w.category.__name__}: {w.message}")
 
 
-#: The version of the layouts of every ``--json`` output (symkin/cli/schemas/*.schema.json).
+#: The version of the layouts of every ``--json`` output (``symkin/cli/schemas/*.schema.json``).
 JSON_SCHEMA_VERSION = "1.0"
 
 

@@ -36,19 +36,20 @@ DESCRIPTION = (
 
 
 def register(sub: Any) -> None:
+    """Add the ``cardan`` command to the ``symkin`` subparsers ``sub`` (called by :func:`symkin.cli.build_parser`)."""
     p = add_command(sub, "cardan", help="slider displacement, velocity, acceleration of the Cardan-circle mechanism",
                     description=DESCRIPTION, run=run_cardan)
-    p.add_argument("--length", required=True, metavar="L", help="carrier length l_H (= planet pitch radius for 1:2)")
+    p.add_argument("--length", required=True, metavar="L", help="carrier length l_H (= planet pitch radius for 1:2), in m or with a unit (20mm)")
     p.add_argument("--speed", metavar="W",
-                   help="carrier speed (constant drive) or input gear speed (elliptical), in rad/s")
+                   help="carrier speed (constant drive) or input gear speed (elliptical), in rad/s or with a unit (24rpm)")
     p.add_argument("--omega", dest="omega_deprecated", metavar="W", help=argparse.SUPPRESS)  # the former name of --speed
-    p.add_argument("--guide-angle", default="0", metavar="RAD", help="guide angle theta_2, in radians (default 0)")
-    p.add_argument("--carrier-angle", default="0", metavar="RAD", help="carrier angle at t = 0, in radians (default 0)")
+    p.add_argument("--guide-angle", default="0", metavar="RAD", help="guide angle theta_2, in radians or with a unit (30deg) (default 0)")
+    p.add_argument("--carrier-angle", default="0", metavar="RAD", help="carrier angle at t = 0, in radians or with a unit (default 0)")
     add_teeth_argument(p, "20,40", required=False, default="20,40", metavar="Z1,Z3",
                        help="planet and ring tooth numbers (default 20,40)")
-    p.add_argument("--pin-radius", metavar="L1", help="pin distance from the planet axis (default: on the pitch circle)")
+    p.add_argument("--pin-radius", metavar="L1", help="pin distance from the planet axis, in m or with a unit (default: on the pitch circle)")
     p.add_argument("--pin-angle", metavar="RAD",
-                   help="pin angle on the planet from the carrier at t = 0, in radians (default: the installation "
+                   help="pin angle on the planet from the carrier at t = 0, in radians or with a unit (default: the installation "
                    "angle the guide needs)")
     p.add_argument("--drive", choices=("constant", "elliptical", "law"),
                    help="carrier drive (default: elliptical if -e is given, law if --angle-law is given, else constant)")
@@ -56,8 +57,8 @@ def register(sub: Any) -> None:
     p.add_argument("--order", metavar="M", help="order of the elliptical gears (default 1)")
     p.add_argument("--angle-law", metavar="EXPR",
                    help="carrier angle law theta_H(t) in radians, in t (seconds), e.g. '0.8*pi*t + 0.2*sin(t)'")
-    p.add_argument("--t-start", default="0", metavar="T0", help="first time, in seconds (default 0)")
-    p.add_argument("--t-end", metavar="T1", help="last time, in seconds (default: one period of the motion)")
+    p.add_argument("--t-start", default="0", metavar="T0", help="first time, in seconds or with a unit (default 0)")
+    p.add_argument("--t-end", metavar="T1", help="last time, in seconds or with a unit (500ms) (default: one period of the motion)")
     p.add_argument("--samples", default="9", metavar="N", help="number of equally spaced times (default 9)")
     p.add_argument("--times", metavar="T,T,...", help="explicit increasing times instead of --t-start/--t-end/--samples")
 
@@ -80,7 +81,7 @@ def _drive(args: Any) -> Drive:
     if args.speed is None:
         raise InputError(f"the {kind} drive needs --speed W, the {'carrier' if kind == 'constant' else 'input gear'} "
                          "speed in rad/s")
-    omega = as_real(args.speed, what="--speed", positive=True)
+    omega = as_real(args.speed, what="--speed", positive=True, unit="rad/s")
     if kind == "constant":
         return ConstantSpeed(omega)
     if args.eccentricity is None:
@@ -104,17 +105,18 @@ def _times(args: Any, slider: CardanSlider) -> Any:
         parts = [p for p in args.times.split(",") if p.strip()]
         if not parts:
             raise InputError("--times is empty; give at least one time, e.g. --times 0,0.5,1")
-        return as_times([float(as_real(p, what=f"time {i} in --times")) for i, p in enumerate(parts, 1)])
+        return as_times([float(as_real(p, what=f"time {i} in --times", unit="s")) for i, p in enumerate(parts, 1)])
     n = parse_integer(args.samples, what="--samples")
     if n < 1:
         raise InputError(f"--samples must be at least 1, got {n}")
     if n > MAX_SAMPLES:
         raise InputError(f"--samples is at most {MAX_SAMPLES}, got {n}")
-    end = as_real(args.t_end, what="--t-end") if args.t_end is not None else None
-    return slider.times(t_start=as_real(args.t_start, what="--t-start"), t_end=end, samples=int(n))
+    end = as_real(args.t_end, what="--t-end", unit="s") if args.t_end is not None else None
+    return slider.times(t_start=as_real(args.t_start, what="--t-start", unit="s"), t_end=end, samples=int(n))
 
 
 def run_cardan(args: Any) -> int:
+    """Run ``symkin cardan`` with the parsed ``args``: the Cardan slider's table s, v, a on a time grid; hands text and JSON to :func:`symkin.cli.common.emit` and returns 0 (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
     from symkin.mechanisms.cardan import CardanSlider
 
     if args.omega_deprecated is not None:
@@ -123,16 +125,20 @@ def run_cardan(args: Any) -> int:
         warnings.warn("symkin cardan --omega W is deprecated: it is now --speed W (--omega LINK=VALUE names a link's "
                       "speed in the other commands)", SymkinWarning, stacklevel=1)
         args.speed = args.omega_deprecated
-    length = as_real(args.length, what="--length", positive=True)
+    length = as_real(args.length, what="--length", positive=True, unit="m")
     z1, z3 = teeth_list(args.teeth, (2,))
     if z3 <= z1:
         raise InputError(f"the ring needs more teeth than the planet: got z1 = {z1}, z3 = {z3}")
     drive = _drive(args)
-    pin_radius = as_real(args.pin_radius, what="--pin-radius", positive=True) if args.pin_radius is not None else None
-    pin_angle = as_real(args.pin_angle, what="--pin-angle") if args.pin_angle is not None else None
+    pin_radius = as_real(args.pin_radius, what="--pin-radius", positive=True, unit="m") if args.pin_radius is not None else None
+    pin_angle = as_real(args.pin_angle, what="--pin-angle", unit="rad") if args.pin_angle is not None else None
     slider = CardanSlider.build(length, drive=drive, teeth=(z1, z3), pin_radius=pin_radius, pin_angle=pin_angle,
-                                guide_angle=as_real(args.guide_angle, what="--guide-angle"),
-                                carrier_angle=as_real(args.carrier_angle, what="--carrier-angle"))
+                                guide_angle=as_real(args.guide_angle, what="--guide-angle", unit="rad"),
+                                carrier_angle=as_real(args.carrier_angle, what="--carrier-angle", unit="rad"))
     table = slider.table(_times(args, slider))
-    emit(args, table.text(), table.to_json())
+    data = table.to_json()
+    data["units"] = {"length": "m", "pin_radius": "m", "period_s": "s", "pin_angle_rad": "rad", "guide_angle_rad": "rad",
+                     "carrier_angle_rad": "rad", "columns": {"t": "s", "s": "m", "v": "m/s", "a": "m/s^2", "x": "m", "y": "m",
+                                                             "deviation": "m"}}
+    emit(args, table.text(), data)
     return 0

@@ -7,8 +7,13 @@ Conventions every command follows:
   every exact number in it is ``{"exact": text, "float": number or null}``
   (:func:`symkin._util.jsonout.exact_json`).  A failure with ``--json`` prints
   ``{"error": message, "exit": status}`` on stdout besides the one-line message on stderr.
-- ``--omega LINK=VALUE`` is a known angular velocity of a named link (rad/s);
-  a plain speed has another name (``symkin cardan --speed``).
+- ``--omega LINK=VALUE`` is a known angular velocity of a named link: a bare number is in
+  rad/s, and a value may carry a unit (``1=300rpm``, ``H=90deg/s``); a plain speed has
+  another name (``symkin cardan --speed``).
+- Values with a unit are accepted wherever a quantity is meant (speeds, lengths, angles of
+  motion, times; parsed by :func:`symkin._util.parsing.parse_quantity` through pint); bare
+  numbers keep the unit each option states.  With ``--json``, ``"units"`` gives the unit of
+  every dimensional key of the output.
 - ``--out`` names what a command writes: a folder (``--out DIR``, reproduce) or a file
   whose suffix chooses the format (``--out FILE``); an extra figure beside a command's
   printed result is ``--plot FILE`` (split).  Files appear whole or not at all.
@@ -48,6 +53,7 @@ float_text = _on_first_call("symkin._util.jsonout", "float_text")
 parse_expression = _on_first_call("symkin._util.parsing", "parse_expression")
 parse_integer = _on_first_call("symkin._util.parsing", "parse_integer")
 parse_number = _on_first_call("symkin._util.parsing", "parse_number")
+parse_quantity = _on_first_call("symkin._util.parsing", "parse_quantity")
 as_integer = _on_first_call("symkin._util.parsing", "as_integer")
 as_real = _on_first_call("symkin._util.parsing", "as_real")
 sign_of = _on_first_call("symkin._util.parsing", "sign_of")
@@ -86,11 +92,13 @@ def add_command(sub: Any, name: str, *, help: str, description: str, run: Callab
 
 
 def add_json_flag(parser: Any) -> None:
+    """Add ``--json`` (print one JSON object instead of text) to ``parser``."""
     parser.add_argument("--json", action="store_true",
                         help="print machine-readable JSON instead of text (errors too, as {\"error\": ..., \"exit\": 2})")
 
 
 def add_quiet_flag(parser: Any) -> None:
+    """Add ``--quiet`` (no progress display) to ``parser``."""
     parser.add_argument("--quiet", action="store_true", help="no progress display")
 
 
@@ -104,17 +112,21 @@ def add_scheme_argument(parser: Any, *, train: bool = False) -> None:
 
 
 def add_train_argument(parser: Any, *, required: bool = False) -> None:
+    """Add ``--train FILE`` (a train file, or a ready-made train by name) to ``parser``."""
     parser.add_argument("--train", required=required, metavar="FILE",
                         help="a train file (TOML), or a ready-made train by name (symkin trains lists them)")
 
 
 def add_teeth_argument(parser: Any, example: str, *, required: bool = True, default: str | None = None,
                        metavar: str | None = None, help: str | None = None) -> None:
+    """Add ``--teeth Z1,Z2,...`` to ``parser``; ``example`` shows a valid value in the help."""
     parser.add_argument("--teeth", required=required, default=default, metavar=metavar,
                         help=help or f"comma-separated tooth numbers, e.g. {example}")
 
 
-def add_omega_argument(parser: Any, help: str = "a known angular velocity LINK=VALUE in rad/s (repeat)") -> None:
+def add_omega_argument(parser: Any, help: str = "a known angular velocity LINK=VALUE, in rad/s or with a unit "
+                       "(1=300rpm, H=90deg/s; repeat)") -> None:
+    """Add the repeatable ``--omega LINK=VALUE`` (a known angular velocity, rad/s or with a unit) to ``parser``."""
     parser.add_argument("--omega", action="append", default=[], metavar="LINK=VALUE", help=help)
 
 
@@ -203,14 +215,19 @@ def teeth_list(text: str, counts: tuple[int, ...], what: str = "--teeth") -> lis
 
 
 def link_value(text: str, what: str = "--omega") -> tuple[str, Any]:
-    """``LINK=VALUE``; VALUE is a number or a constant expression such as 2*pi."""
+    """``LINK=VALUE``; VALUE is a number or a constant expression such as 2*pi (rad/s), or a
+    speed with a unit such as 300rpm (converted to rad/s, exactly).
+
+    >>> link_value("1=300rpm")
+    ('1', 10*pi)
+    """
     if not isinstance(text, str) or "=" not in text:
         raise InputError(f"{what} takes LINK=VALUE (for example 1=100), got {text!r}")
     link, _, value = text.partition("=")
     link = link.strip()
     if not link:
         raise InputError(f"{what} {text!r} names no link; write LINK=VALUE, for example 1=100")
-    return link, parse_expression(value, what=f"{what} value for link {link}")
+    return link, parse_quantity(value, "rad/s", what=f"{what} value for link {link}")
 
 
 def emit(args: Any, text: str, data: dict[str, Any]) -> None:

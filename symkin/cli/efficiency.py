@@ -11,6 +11,7 @@ __all__ = ["register"]
 
 
 def register(sub: Any) -> None:
+    """Add the ``efficiency`` command to the ``symkin`` subparsers ``sub`` (called by :func:`symkin.cli.build_parser`)."""
     p = add_command(
         sub, "efficiency",
         help="efficiency (both ways), torques, tooth forces and power flow, in closed form",
@@ -35,6 +36,7 @@ def register(sub: Any) -> None:
 
 
 def run_efficiency(args: Any) -> int:
+    """Run ``symkin efficiency`` with the parsed ``args``: torques, power flow and efficiency of a train both ways; hands text and JSON to :func:`symkin.cli.common.emit` and returns 0 (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
     from symkin._util.parsing import parse_number
     from symkin.printing import latex
     from symkin.statics import statics

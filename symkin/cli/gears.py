@@ -21,6 +21,7 @@ __all__ = ["register", "SCHEME_HELP"]
 
 
 def register(sub: Any) -> None:
+    """Add the ``ratio`` and ``speeds`` commands to the ``symkin`` subparsers ``sub`` (called by :func:`symkin.cli.build_parser`)."""
     p = add_command(
         sub, "ratio",
         help="ratio i_ab^(c) = omega_a/omega_b of a scheme with link c fixed",
@@ -39,7 +40,8 @@ def register(sub: Any) -> None:
         sub, "speeds",
         help="angular velocity of every link of a scheme from known speeds",
         description="Every link's angular velocity from the known ones (give as many as the scheme's "
-        "degrees of freedom; a fixed link has speed 0). Values are exact: 100, 0.5, 3/4, 2*pi.",
+        "degrees of freedom; a fixed link has speed 0). Values are exact, in rad/s: 100, 0.5, 3/4, 2*pi; "
+        "or with a unit: 300rpm, 90deg/s.",
         run=run_speeds,
     )
     add_scheme_argument(q, train=True)
@@ -48,6 +50,7 @@ def register(sub: Any) -> None:
 
 
 def run_ratio(args: Any) -> int:
+    """Run ``symkin ratio`` with the parsed ``args``: the exact ratio i_ab^(c) of a scheme or a train; hands text and JSON to :func:`symkin.cli.common.emit` and returns 0 (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
     from symkin.printing import latex
 
     mech, about, title = mechanism_of(args)
@@ -72,6 +75,7 @@ def run_ratio(args: Any) -> int:
 
 
 def run_speeds(args: Any) -> int:
+    """Run ``symkin speeds`` with the parsed ``args``: every link's angular velocity from the known ones; hands text and JSON to :func:`symkin.cli.common.emit` and returns 0 (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
     known: dict[str, Any] = {}
     for item in args.omega:
         link, value = link_value(item)
@@ -91,6 +95,7 @@ def run_speeds(args: Any) -> int:
         **about,
         "speeds": data_links,
         "coaxial": not mech.coaxiality_defects(),
+        "units": {"speeds": "rad/s"},
     }
     emit(args, f"{title}\n" + "\n".join(rows), data)
     return 0

@@ -15,6 +15,7 @@ FORCE_TOLERANCE = 1e-12
 
 
 def register(sub: Any) -> None:
+    """Add the ``helical`` command to the ``symkin`` subparsers ``sub`` (called by :func:`symkin.cli.build_parser`)."""
     p = add_command(
         sub, "helical",
         help="synthesise a two-row train whose helical stepped planet carries no axial force",
@@ -70,6 +71,7 @@ def _request(args: Any) -> SynthesisRequest:
 
 
 def run_helical(args: Any) -> int:
+    """Run ``symkin helical`` with the parsed ``args``: the synthesis of helical stepped-planet trains with balanced axial forces; hands text and JSON to :func:`symkin.cli.common.emit` and returns 0 (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
     from symkin.mechanisms.helical.synthesis import synthesise
     from symkin.statics import planet_forces
 

@@ -23,6 +23,7 @@ MAX_STAGES = 8
 
 
 def register(sub: Any) -> None:
+    """Add the ``stages`` and ``split`` commands to the ``symkin`` subparsers ``sub`` (called by :func:`symkin.cli.build_parser`)."""
     p = add_command(
         sub, "stages",
         help="every feasible single-row AI stage for a ring (exact ratios)",
@@ -106,6 +107,7 @@ def _stage_table(found: Any) -> str:
 
 
 def run_stages(args: Any) -> int:
+    """Run ``symkin stages`` with the parsed ``args``: every feasible single-row AI stage of a ring; hands text and JSON to :func:`symkin.cli.common.emit` and returns 0 (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
     found = _stage_set(args)
     emit(args, _stage_table(found), found.to_json())
     return 0
@@ -132,6 +134,7 @@ def _model(args: Any):
 
 
 def run_split(args: Any) -> int:
+    """Run ``symkin split`` with the parsed ``args``: the split of a total ratio over a common-ring train for the least lost motion; hands text and JSON to :func:`symkin.cli.common.emit` and returns 0 (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
     from symkin.mechanisms.multistage.split import (
         SplitProblem,
         best_designs,

@@ -49,11 +49,12 @@ def _common(p: Any, out_help: str) -> None:
     p.add_argument("--module", default=None, help="gear module of a scheme: pitch radius = module * teeth / 2 (default 1)")
     span = p.add_mutually_exclusive_group()
     span.add_argument("--turns", default=None, help="time span: turns of the carrier H (or of the fastest link), default 1")
-    span.add_argument("--t-end", default=None, help="time span in seconds")
+    span.add_argument("--t-end", default=None, help="time span in seconds, or with a unit (500ms, 2min)")
     add_out_argument(p, out_help)
 
 
 def register(sub: Any) -> None:
+    """Add the ``trajectory``, ``curves`` and ``animate`` commands to the ``symkin`` subparsers ``sub`` (called by :func:`symkin.cli.build_parser`)."""
     p = add_command(
         sub, "trajectory",
         help="plot the paths of chosen particles of a scheme (PNG, PDF, SVG or EPS)",
@@ -123,7 +124,9 @@ def _setup(args: Any) -> tuple[Any, Any, list, float, list[str], dict[str, Any],
 
     points = [_point(p, mech) for p in args.point] or default_particles(mech)
     if args.t_end is not None:
-        t_end = parse_number(args.t_end, what="--t-end")
+        from symkin._util.parsing import as_real
+
+        t_end = as_real(args.t_end, what="--t-end", unit="s")
         if t_end <= 0:
             raise InputError(f"--t-end must be positive, got {args.t_end}")
         t_end = float(t_end)
@@ -173,6 +176,7 @@ def _report(args: Any, kind: str, out: Path, mech: Any, points: list, t_end: flo
         **about,
         "file": str(out),
         "t_end": t_end,
+        "units": {"t_end": "s"},
         "particles": [{"link": mech.link(name).name, **{k: float(c) for k, c in zip("abc", xy)}} for name, xy in points],
         **(extra or {}),
     }
@@ -181,6 +185,7 @@ def _report(args: Any, kind: str, out: Path, mech: Any, points: list, t_end: flo
 
 # --------------------------------------------------------------------------- commands
 def run_trajectory(args: Any) -> int:
+    """Run ``symkin trajectory`` with the parsed ``args``: writes the particles' paths to ``--out``; hands text and JSON to :func:`symkin.cli.common.emit` and returns 0 (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
     from symkin.viz import style
     from symkin.viz.figures import draw_pitch_circles, draw_trajectories, label_plane
 
@@ -208,6 +213,7 @@ def run_trajectory(args: Any) -> int:
 
 
 def run_curves(args: Any) -> int:
+    """Run ``symkin curves`` with the parsed ``args``: writes the particles' speed and acceleration against time to ``--out``; hands text and JSON to :func:`symkin.cli.common.emit` and returns 0 (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
     from symkin.viz.figures import kinematics_figure
 
     out = figure_file(args.out)
@@ -220,6 +226,7 @@ def run_curves(args: Any) -> int:
 
 
 def run_animate(args: Any) -> int:
+    """Run ``symkin animate`` with the parsed ``args``: writes the mechanism's animation (GIF, or MP4 with ffmpeg) to ``--out``; hands text and JSON to :func:`symkin.cli.common.emit` and returns 0 (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
     from symkin.viz.animation import MAX_DPI, MAX_FPS, WRITERS, Frames, animate
 
     out = Path(args.out)

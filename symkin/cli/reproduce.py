@@ -29,6 +29,7 @@ class _PapersHelp(argparse.HelpFormatter):
 
 
 def register(sub: Any) -> None:
+    """Add the ``reproduce`` command to the ``symkin`` subparsers ``sub`` (called by :func:`symkin.cli.build_parser`)."""
     p = add_command(
         sub, "reproduce",
         help="derive every result of the papers and compare with the published ones",
@@ -68,6 +69,7 @@ def _terminate_as_interrupt() -> Iterator[None]:
 
 
 def run_reproduce(args: Any) -> int:
+    """Run ``symkin reproduce`` with the parsed ``args``: derive and check the papers named, print the table and write the report folder; returns 0, or 1 when some check differs."""
     from symkin.papers.registry import paper_names
     from symkin.papers.reproduce import format_table, run
     from symkin.papers.texbuild import MISSING, find_pdflatex

@@ -11,6 +11,7 @@ __all__ = ["register"]
 
 
 def register(sub: Any) -> None:
+    """Add the ``synthesize`` command to the ``symkin`` subparsers ``sub`` (called by :func:`symkin.cli.build_parser`)."""
     p = add_command(
         sub, "synthesize",
         help="tooth numbers of any train for a target ratio (k planets assembled, clear and coaxial)",
@@ -71,6 +72,7 @@ def _ratio_range(text: str) -> tuple[Any, Any]:
 
 
 def run_synthesize(args: Any) -> int:
+    """Run ``symkin synthesize`` with the parsed ``args``: tooth numbers of a train file for a target ratio; hands text and JSON to :func:`symkin.cli.common.emit` and returns 0 (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
     from symkin._util.jsonout import exact_json
     from symkin._util.parsing import parse_integer, parse_number
     from symkin.synthesis import synthesize

@@ -10,6 +10,7 @@ __all__ = ["register"]
 
 
 def register(sub: Any) -> None:
+    """Add the ``states`` and ``trains`` commands to the ``symkin`` subparsers ``sub`` (called by :func:`symkin.cli.build_parser`)."""
     p = add_command(
         sub, "states",
         help="the shift table of a train: every gear state's exact ratio",
@@ -33,6 +34,7 @@ def register(sub: Any) -> None:
 
 
 def run_states(args: Any) -> int:
+    """Run ``symkin states`` with the parsed ``args``: the shift table of a train's gear states; hands text and JSON to :func:`symkin.cli.common.emit` and returns 0 (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
     from symkin.trains import ShiftTable, load_train
 
     train = load_train(args.train)
@@ -47,6 +49,7 @@ def run_states(args: Any) -> int:
 
 
 def run_trains(args: Any) -> int:
+    """Run ``symkin trains`` with the parsed ``args``: the ready-made train files and what each is; hands text and JSON to :func:`symkin.cli.common.emit` and returns 0 (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
     from symkin.trains import ready_made
 
     found = ready_made()

@@ -43,7 +43,16 @@ from symkin import schemes
 from symkin import symbols as S
 from symkin._util.budget import simplify_within
 from symkin._util.jsonout import exact_json
-from symkin._util.parsing import as_expr, as_rational, as_real, as_values, sign_of, substitute
+from symkin._util.parsing import (
+    as_expr,
+    as_rational,
+    as_real,
+    as_values,
+    is_quantity,
+    parse_quantity,
+    sign_of,
+    substitute,
+)
 from symkin.drives import AngleLaw, ConstantSpeed, Drive, EllipticalGears, as_drive
 from symkin.errors import InputError, ModelError, UnsupportedError
 from symkin.laws import Law
@@ -257,6 +266,11 @@ def _is_multiple(expr: sp.Expr, period: sp.Expr, what: str = "a condition") -> b
     return None
 
 
+def _in(value: Any, unit: str, what: str) -> Any:
+    """A quantity (text with a unit, or a pint quantity) in ``unit``; anything else as it is."""
+    return parse_quantity(value, unit, what=what) if isinstance(value, str) or is_quantity(value) else value
+
+
 @dataclass(frozen=True)
 class CardanSlider:
     """A slider pinned to the planet of a Cardan mechanism, under a carrier drive.
@@ -318,9 +332,21 @@ class CardanSlider:
         guide_angle, carrier_angle :
             ``theta_2`` and ``theta_H(0)``.
 
+        Notes
+        -----
+        Lengths are in m and angles in rad, or quantities with a unit (``"20 mm"``, ``"30 deg"``,
+        pint quantities: :mod:`symkin.units`); the drive's speed in rad/s, or with a unit.
+
+        Examples
+        --------
         >>> CardanSlider.build(20, teeth=(20, 60)).path().kind
         'hypocycloid'
+        >>> CardanSlider.build("20 mm", drive="24 rpm", carrier_angle="30 deg").laws()[0].rhs
+        cos(4*pi*t/5 + pi/6)/25
         """
+        length, pin_radius = _in(length, "m", "carrier length l_H"), _in(pin_radius, "m", "pin radius l_1")
+        carrier_angle, guide_angle = _in(carrier_angle, "rad", "carrier angle"), _in(guide_angle, "rad", "guide angle")
+        pin_angle = _in(pin_angle, "rad", "pin angle")
         arm = as_length(length, "carrier length l_H")
         if teeth is None:
             z1, z3 = sp.Integer(1), sp.Integer(2)
@@ -361,6 +387,7 @@ class CardanSlider:
     # ---- angles in time
     @cached_property
     def motion(self) -> Any:
+        """The mechanism's motion with the carrier H turned by the slider's drive (for particle laws beside the slider's)."""
         return self.mechanism.motion({"H": self.drive})
 
     @cached_property
@@ -521,9 +548,9 @@ class CardanSlider:
         >>> CardanSlider.build(1, drive=sp.pi).times(samples=3)
         array([0., 1., 2.])
         """
-        start = as_real(t_start, what="the start time")
+        start = as_real(t_start, what="the start time", unit="s")
         if t_end is not None:
-            end = as_real(t_end, what="the end time")
+            end = as_real(t_end, what="the end time", unit="s")
         else:
             period = self.period()
             if period is None:
@@ -668,6 +695,7 @@ class SliderTable:
         return ["t", "s", "v", "a"] + ([] if self.path.on_guide else ["x", "y", "deviation"])
 
     def to_json(self) -> dict[str, Any]:
+        """The table as JSON: the mechanism, the drive, the path, period, stroke times, the laws s, v, a and the sampled columns."""
         sl = self.slider
         return {
             "mechanism": {
@@ -708,6 +736,7 @@ class SliderTable:
         return html_table(head, rows, caption=caption)
 
     def text(self) -> str:
+        """The table as ``symkin cardan`` prints it: the mechanism, drive, path, period, stroke times, s(t) and the columns."""
         sl = self.slider
         z1, z3 = sl.teeth
         drive = drive_description(sl.drive)

@@ -71,6 +71,7 @@ class Plan:
 
     @property
     def dtype(self) -> Any:
+        """The NumPy float type of the plan's precision (float32 or float64)."""
         return np.float32 if self.precision == "float32" else np.float64
 
 
@@ -390,6 +391,7 @@ class NumpyBackend:
         return False
 
     def run(self, floats: Sequence[Any], ints: Sequence[Any]) -> list[Any]:
+        """Call the generated function on float and integer arguments with NumPy's floating-point warnings off (non-finite results are flagged by the caller)."""
         with np.errstate(all="ignore"):
             out = self.func(*floats, *ints)
         return list(out)
@@ -607,6 +609,7 @@ class NumbaBackend(NumpyBackend):
 
     @property
     def source(self) -> str:
+        """The generated kernel source (the first kernel compiled), or a note that it is compiled on first call."""
         return next(iter(self.kernel_sources.values()), "(compiled on first call)")
 
     @source.setter
@@ -616,6 +619,7 @@ class NumbaBackend(NumpyBackend):
     def evaluate(
         self, values: Sequence[Any], outs: Sequence[np.ndarray] | None = None
     ) -> tuple[tuple[int, ...], list[np.ndarray], bool]:
+        """Evaluate the laws at ``values`` in one fused loop; returns the broadcast shape, the outputs and whether any is not finite."""
         plan = self.plan
         arrays = [as_array(v, s.name) for v, s in zip(values, plan.args)]
         conv = [
@@ -727,12 +731,14 @@ class MpmathBackend:
     def evaluate(
         self, values: Sequence[Any], outs: Sequence[np.ndarray] | None = None
     ) -> tuple[tuple[int, ...], list[np.ndarray], bool]:
+        """Evaluate the laws at ``values`` point by point with mpmath at the plan's digits; returns the shape, the outputs (object arrays of mpf) and whether any is not finite."""
         import mpmath
 
         with mpmath.workdps(self.plan.digits or 50):
             return _pointwise(self.plan, self.func, values, _to_mpf, lambda v: v)
 
     def evaluate_scalar(self, values: Sequence[Any]) -> list[Any]:
+        """Evaluate the laws at one point of scalars with mpmath."""
         import mpmath
 
         with mpmath.workdps(self.plan.digits or 50):
@@ -788,9 +794,11 @@ class ExactBackend:
     def evaluate(
         self, values: Sequence[Any], outs: Sequence[np.ndarray] | None = None
     ) -> tuple[tuple[int, ...], list[np.ndarray], bool]:
+        """Evaluate the laws at ``values`` point by point in exact rationals (:class:`fractions.Fraction`)."""
         return _pointwise(self.plan, self.func, values, _to_fraction, Fraction)
 
     def evaluate_scalar(self, values: Sequence[Any]) -> list[Any]:
+        """Evaluate the laws at one point of scalars in exact rationals."""
         return _point(self.plan, self.func, values, _to_fraction, Fraction)
 
 
@@ -837,6 +845,7 @@ BACKENDS: dict[str, type[NumpyBackend] | type[MpmathBackend] | type[ExactBackend
 
 
 def warn_no_numba() -> None:
+    """Warn (a :class:`~symkin.errors.PrecisionWarning`) that numba is missing and NumPy is used instead."""
     warnings.warn(
         "numba is not installed (pip install 'symkin[numba]'); compiling with NumPy instead",
         PrecisionWarning,

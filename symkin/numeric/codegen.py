@@ -99,7 +99,7 @@ FLOAT_TWIN = "_f_"
 
 
 def abs_bound(poly: sp.Expr) -> sp.Expr:
-    """sum |c| prod |z|^d over the terms of an integer polynomial, in the float twins of
+    """``sum |c| prod |z|^d`` over the terms of an integer polynomial, in the float twins of
     its symbols: an upper bound of every partial sum met while evaluating it."""
     terms = []
     for term in sp.Add.make_args(sp.expand(poly)):

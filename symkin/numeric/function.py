@@ -99,6 +99,7 @@ class NumericFunction:
 
     @property
     def source(self) -> str:
+        """The generated source of the function's backend (for reading; it states the argument order)."""
         return self._evaluator.source
 
     @property

@@ -147,7 +147,7 @@ def reduced_phase(p: int, q: int, x1: Any, x2: Any, x3: Any) -> Any:
     """``p/q x1 x2 x3`` modulo 2 pi, in [-pi, pi], from double-double arithmetic.
 
     The error is about 2^-52 pi for any number of turns below 2^27 (the plain product
-    loses |p/q x1 x2 x3| 2^-53 radians).
+    loses ``|p/q x1 x2 x3| 2^-53`` radians).
     """
     f = np.float64
     return _reduced_phase_core(f(p), f(q), np.asarray(x1, f), np.asarray(x2, f), np.asarray(x3, f))

@@ -84,9 +84,11 @@ class Group(sp.Function):
 
     @classmethod
     def eval(cls, arg: sp.Expr) -> sp.Expr | None:
+        """An atom needs no grouping: return it as it is (SymPy's automatic evaluation)."""
         return arg if arg.is_Atom else None
 
     def doit(self, **hints: Any) -> sp.Expr:
+        """The grouped expression itself."""
         return self.args[0]
 
     def _eval_evalf(self, prec: int) -> sp.Expr:
@@ -128,11 +130,13 @@ class ExactRatio(_Deferred):
 
     @classmethod
     def eval(cls, num: sp.Expr, den: sp.Expr) -> sp.Expr | None:
+        """Two numbers divide at once (SymPy's automatic evaluation)."""
         if num.is_Number and den.is_Number:
             return num / den
         return None
 
     def doit(self, **hints: Any) -> sp.Expr:
+        """The plain quotient ``num / den``."""
         return self.args[0] / self.args[1]
 
     def _eval_evalf(self, prec: int) -> sp.Expr:
@@ -150,12 +154,13 @@ class ReducedPhase(sp.Function):
 
     Arguments: the integers ``p``, ``q`` and up to three factors.  Equal to the product
     modulo 2 pi; its error is about 2^-52 pi whatever the number of turns, where the
-    plain product loses |x1 x2 x3| 2^-53 radians.
+    plain product loses ``|x1 x2 x3| 2^-53`` radians.
     """
 
     is_real = True
 
     def doit(self, **hints: Any) -> sp.Expr:
+        """The plain phase ``p/q x1 x2 ...`` without reduction."""
         p, q, *xs = self.args
         return sp.Rational(p, q) * sp.Mul(*xs)
 
@@ -179,11 +184,13 @@ class ProductDifference(_Deferred):
 
     @classmethod
     def eval(cls, a: sp.Expr, b: sp.Expr, c: sp.Expr, d: sp.Expr) -> sp.Expr | None:
+        """Numbers evaluate at once to ``a b - c d`` (SymPy's automatic evaluation)."""
         if all(x.is_Number for x in (a, b, c, d)):
             return a * b - c * d
         return None
 
     def doit(self, **hints: Any) -> sp.Expr:
+        """The plain difference ``a b - c d``."""
         a, b, c, d = self.args
         return a * b - c * d
 

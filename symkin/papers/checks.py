@@ -91,6 +91,16 @@ class Kind(str, enum.Enum):
 
 
 class Verdict(str, enum.Enum):
+    """The verdict of a check, computed by :func:`judge` from the comparison and its evidence.
+
+    ``MATCH`` and ``ROUNDED``: derived and published agree (exactly, or the published decimal is
+    the derived value rounded); ``SLIP``: they disagree and an :class:`Alternative` reproduces the
+    published item; ``ERROR``: they disagree, nothing reproduces it, and a :class:`Confirmation`
+    confirms the derived value; ``DIFFERS``: anything else.
+
+    >>> Verdict.SLIP.value, Verdict.DIFFERS.ok
+    ('paper slip (explained)', False)
+    """
     MATCH = "match"
     ROUNDED = "match (published value rounded)"
     SLIP = "paper slip (explained)"
@@ -125,6 +135,7 @@ class Alternative:
 
     @property
     def matches_published(self) -> bool:
+        """Whether the derivation under the alternative assumption reproduces the published item."""
         return self.comparison.verdict.agrees
 
 
@@ -141,6 +152,7 @@ class Confirmation:
 
     @property
     def agrees_with_derived(self) -> bool:
+        """Whether the independent route gives the derived value."""
         return self.comparison.verdict.agrees
 
 
@@ -551,11 +563,13 @@ class Check:
         source: str = "printed",
         **extra: Any,
     ) -> Check:
+        """A check from its parts, with the LaTeX of the derived and the published objects printed once here."""
         return cls(paper, label, description, derived, published, comparison, _tex(derived), _tex(published), extra,
                    Kind(kind), item, source)
 
     @property
     def verdict(self) -> Verdict:
+        """The computed verdict of the check's comparison."""
         return self.comparison.verdict
 
     def _repr_markdown_(self) -> str:
@@ -640,6 +654,7 @@ class ItemResult:
     verdict: Verdict | None
 
     def to_json(self) -> dict[str, Any]:
+        """The printed item as JSON: the item and what it is, the labels of the checks that compare it, its verdict (the worst of theirs, or "not checked") and why none does."""
         return {
             "item": self.item.item,
             "what": self.item.what,

@@ -92,6 +92,7 @@ class Summary:
         return html_table(["", "count"], rows, caption=self.line())
 
     def to_json(self) -> dict[str, Any]:
+        """The summary as JSON: the counts of items by verdict and of checks by kind, and the summary line."""
         return {
             "line": self.line(),
             "paper_items": {"total": self.items, "reproduced": self.reproduced, "slips": self.slips,

@@ -129,6 +129,7 @@ class MeshPower:
     driver: str | None
 
     def to_json(self) -> dict[str, Any]:
+        """The mesh as JSON: its tangential, per-planet and radial forces, the power relative to the carrier, the power, and which gear drives."""
         return {"mesh": [self.mesh.a, self.mesh.b], "tangential": exact_json(self.tangential),
                 "per_planet": exact_json(self.per_planet), "radial": exact_json(self.radial),
                 "relative_power": exact_json(self.relative_power), "power": exact_json(self.power), "driver": self.driver}
@@ -195,6 +196,7 @@ class Statics:
         return bool(condition) if condition in (sp.true, sp.false) else condition
 
     def to_json(self) -> dict[str, Any]:
+        """The result as JSON: torques, tooth forces, the power through each mesh and the efficiency both ways."""
         backward = self.backward
         locks = self.self_locking
         return {
@@ -238,6 +240,7 @@ class Statics:
         return summary + meshes
 
     def text(self) -> str:
+        """The result as ``symkin efficiency`` prints it."""
         name = self.mechanism.name or "train"
         held = f", {', '.join(self.fixed)} held" if self.fixed else ""
         lines = [f"{name}: {self.input} drives {self.output}{held}; per unit input torque and speed"]

@@ -120,7 +120,7 @@ class Options:
     clearance : number
         Least gap between the tip circles of neighbouring planets, in modules, default 0.
     shift : number
-        Profile shift allowed: the largest |a_w - a| / m of a mesh (centre-distance
+        Profile shift allowed: the largest ``|a_w - a| / m`` of a mesh (centre-distance
         modification coefficient y), default 0 (meshes on their pitch circles).
     ring_difference : int
         Least tooth difference of an internal gear and a gear meshing it, default 8.
@@ -230,6 +230,7 @@ class Condition:
         return f"{self.kind} ({self.subject}): {self.text()}" if self.subject else f"{self.kind}: {self.text()}"
 
     def to_json(self) -> dict[str, Any]:
+        """The condition as JSON: its kind, subject, text, LaTeX and description."""
         return {"kind": self.kind, "subject": self.subject, "text": self.text(), "latex": self.latex(),
                 "description": self.description}
 
@@ -300,6 +301,7 @@ class CoaxialRow:
 
     @property
     def expr(self) -> sp.Expr:
+        """The coaxiality condition as one expression that must vanish, ``lhs - rhs`` expanded."""
         return sp.expand(self.lhs - self.rhs)
 
 
@@ -319,6 +321,7 @@ class AssemblyRow:
     kind: str
 
     def rhs(self, k: Any = K) -> sp.Expr:
+        """The right-hand side of the assembly condition, ``numerator / (denominator k)`` for ``k`` planets."""
         return self.numerator / (self.denominator * k)
 
 
@@ -332,6 +335,7 @@ class AssemblyGroup:
 
     @property
     def integers(self) -> tuple[sp.Symbol, ...]:
+        """The integer unknowns of the group's rows, each once, in order of appearance."""
         seen: dict[sp.Symbol, None] = {}
         for row in self.rows:
             for n, _ in row.coefficients:
@@ -420,9 +424,11 @@ class Problem:
         return dict(self.counts)
 
     def gears_of(self, z: sp.Symbol) -> tuple[str, ...]:
+        """The names of the gears whose tooth number is the unknown ``z``."""
         return dict(self.gears)[z]
 
     def arm_of(self, planet: str) -> PlanetArm:
+        """The arm of the planet named ``planet`` (a ``KeyError`` when the problem has none)."""
         for a in self.arms:
             if a.planet == planet:
                 return a

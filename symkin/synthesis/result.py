@@ -62,6 +62,7 @@ class DesignCheck:
     assembles: bool = True
 
     def to_json(self) -> dict[str, Any]:
+        """The independent check as JSON: the ratio and whether it is in the window, coaxiality, placement, assembly, the least gap in modules, and the verdict."""
         return {"ratio": exact_json(self.ratio), "ratio_ok": self.ratio_ok, "coaxial": self.coaxial, "placed": self.placed,
                 "assembles": self.assembles,
                 "gap_modules": None if self.gap is None else round(self.gap, 9), "passed": self.passed,
@@ -105,6 +106,7 @@ class Design:
 
     @classmethod
     def from_record(cls, plan: Plan, record: Record) -> Design:
+        """A design from a search record: every gear's tooth number, the exact ratio and its error, the size, the planets' arms and the profile shifts."""
         problem = plan.problem
         values = dict(zip(problem.unknowns, record.teeth))
         gear_teeth = []
@@ -133,6 +135,7 @@ class Design:
 
     @property
     def values(self) -> dict[str, int]:
+        """The unknowns' tooth numbers, by name."""
         return dict(self.teeth)
 
     def train(self) -> Mechanism:
@@ -220,6 +223,7 @@ class Design:
         return DesignCheck(ratio, ratio_ok, coaxial, placed, gap, passed, ", ".join(failed), assembles)
 
     def to_json(self) -> dict[str, Any]:
+        """The design as JSON: teeth by gear and by unknown, the exact ratio, error and size, the arms, the shifts and the planets."""
         return {
             "teeth": dict(self.gear_teeth),
             "unknowns": dict(self.teeth),
@@ -404,9 +408,11 @@ class SynthesisResult:
 
     @property
     def conditions(self) -> tuple[Condition, ...]:
+        """The conditions of the problem the designs satisfy (ratio window, coaxiality, assembly, neighbours)."""
         return self.problem.conditions()
 
     def to_json(self) -> dict[str, Any]:
+        """The result as JSON: the train, the ratio law, the target, the options, the conditions and the designs."""
         o = self.problem.options
         return {
             "train": self.problem.train.name,

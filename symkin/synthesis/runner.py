@@ -48,6 +48,7 @@ class Execution:
     chunk_seconds: float
 
     def to_json(self) -> dict[str, Any]:
+        """How the search ran, as JSON: the scheduler, workers, chunks and times."""
         return {"scheduler": self.scheduler, "workers": self.workers, "chunks": self.chunks,
                 "seconds": round(self.seconds, 4), "chunk_seconds": round(self.chunk_seconds, 4)}
 

@@ -81,6 +81,11 @@ class Target:
 
     @classmethod
     def of(cls, ratio: Any, tolerance: Any = "0.01") -> Target:
+        """A target ratio with a relative tolerance (``0.01`` is 1 %), exact.
+
+        >>> Target.of(4, "0.01").window
+        (Fraction(99, 25), Fraction(101, 25))
+        """
         r = as_fraction(ratio, what="the target ratio")
         t = as_fraction(tolerance, what="the ratio tolerance")
         if r == 0:
@@ -92,6 +97,7 @@ class Target:
 
     @classmethod
     def range(cls, lo: Any, hi: Any) -> Target:
+        """A target range ``lo <= i <= hi`` of ratios, exact."""
         a = as_fraction(lo, what="the least ratio")
         b = as_fraction(hi, what="the largest ratio")
         if a > b:
@@ -100,6 +106,7 @@ class Target:
 
     @property
     def window(self) -> tuple[Fraction, Fraction]:
+        """The admissible ratios, ``(lo, hi)``."""
         return self.lo, self.hi
 
     def error(self, value: Fraction) -> Fraction:
@@ -109,6 +116,7 @@ class Target:
         return abs(value - self.ratio) / abs(self.ratio)
 
     def text(self) -> str:
+        """The target in words: ``i = R +- T %`` or ``lo <= i <= hi``."""
         if self.ratio is None:
             return f"{self.lo} <= i <= {self.hi}"
         return f"i = {self.ratio} +- {float(self.tolerance or 0) * 100:g} %"
@@ -126,6 +134,7 @@ class Record:
 
     @property
     def key(self) -> tuple:
+        """The ranking key of a found design: ratio error, then size, then the sum of teeth."""
         return (self.error, self.size, sum(self.teeth), self.teeth, self.slacks)
 
 
@@ -361,6 +370,7 @@ class Plan:
         return [(s, min(s + self.chunk, self.size)) for s in range(0, self.size, self.chunk)] or [(0, 0)]
 
     def describe(self) -> str:
+        """The search space in one line: the outer tuples and the unknowns solved from the ratio window and coaxiality."""
         dims = " x ".join(f"{n} {lo}..{hi}" for n, lo, hi in zip(self.outer + self.slack_names, self.lows, self.highs))
         tail = f", {self.last} from the ratio window" if self.last else ""
         dep = f", {', '.join(self.dependents)} from coaxiality" if self.dependents else ""

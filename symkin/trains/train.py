@@ -63,6 +63,7 @@ class Shift:
     speeds: Speeds
 
     def to_json(self) -> dict[str, Any]:
+        """The gear state as JSON: input, output, brakes, clutches and the exact ratio."""
         return {
             "state": self.state.name,
             "input": self.state.input,
@@ -91,6 +92,7 @@ class ShiftTable:
         return self.shifts[k]
 
     def text(self) -> str:
+        """The shift table as ``symkin states`` prints it, one row per state."""
         rows = [("state", "input", "output", "brakes", "clutches", "ratio", "float")]
         for s in self.shifts:
             st = s.state
@@ -106,6 +108,7 @@ class ShiftTable:
             "\n".join(lines)
 
     def to_json(self) -> dict[str, Any]:
+        """The shift table as JSON: the train's name and each state."""
         return {"train": self.train.name, "states": [s.to_json() for s in self.shifts]}
 
     def _repr_html_(self) -> str:
@@ -175,6 +178,12 @@ class Train(Mechanism):
 
     @property
     def state_names(self) -> tuple[str, ...]:
+        """The names of the train's gear states, in file order.
+
+        >>> from symkin.trains import load_train
+        >>> load_train("simple").state_names
+        ('low', 'reverse', 'overdrive')
+        """
         return tuple(s.name for s in self.states)
 
     def state(self, name: str) -> State:

@@ -352,6 +352,7 @@ class HelicalMesh:
     # ---- lengths
     @property
     def transverse_module(self) -> float:
+        """The transverse module ``m_n / cos(beta)`` (mm)."""
         return self.normal_module / math.cos(self.beta)
 
     def pitch_radius(self, which: str) -> float:

@@ -116,10 +116,12 @@ class LostMotion:
 
     @property
     def backlash(self) -> tuple[sp.Symbol, ...]:
+        """The symbols of each stage's backlash, stage 1 first."""
         return tuple(backlash_symbol(i) for i in range(1, self.stages + 1))
 
     @property
     def diameters(self) -> tuple[sp.Symbol, ...]:
+        """The symbols of each stage's sun diameter, stage 1 first."""
         return tuple(diameter_symbol(i) for i in range(1, self.stages + 1))
 
     @property

@@ -282,6 +282,7 @@ class Stage:
         return sp.Rational(value.numerator, value.denominator)
 
     def to_json(self) -> dict[str, Any]:
+        """The stage as JSON: sun, planet and ring teeth, satellites, the exact ratio and the centre distance in modules."""
         return {
             "sun": self.sun,
             "planet": self.planet,
@@ -326,6 +327,12 @@ class StageSet:
 
     @property
     def ratios(self) -> tuple[sp.Rational, ...]:
+        """The stages' exact ratios, in the order of the stages.
+
+        >>> from symkin.mechanisms.multistage.stages import enumerate_stages
+        >>> enumerate_stages(180, 3, zmin=18, zmax=180).ratios[:2]
+        (9/4, 53/23)
+        """
         return tuple(s.ratio for s in self.stages)
 
     def by_ratio(self, ratio: Any) -> Stage:
@@ -341,6 +348,7 @@ class StageSet:
         raise InputError(f"no feasible stage has ratio {r}; the feasible ratios are {', '.join(map(str, self.ratios))}")
 
     def to_json(self) -> dict[str, Any]:
+        """The stages as JSON, with the ring, satellites and limits they were found for."""
         return {
             "ring": self.ring,
             "satellites": self.satellites,

@@ -30,7 +30,7 @@ class SynthesisRequest:
     ratio : number
         Target i_1H^(4) = omega_1 / omega_H with gear 4 fixed (exact: "1/50" is 1/50).
     tolerance : number
-        Admissible relative ratio error |i - target| / |target| (0.02 = 2 %).
+        Admissible relative ratio error ``|i - target| / |target|`` (0.02 = 2 %).
     satellites : int
         Number k of equally spaced planets.
     normal_modules : (number, number)
@@ -128,11 +128,12 @@ class SynthesisRequest:
 
     @property
     def ratio_window(self) -> tuple[Fraction, Fraction]:
-        """The admissible ratios, exact: target -+ tolerance |target|."""
+        """The admissible ratios, exact: ``target -+ tolerance |target|``."""
         half = self.tolerance * abs(self.ratio)
         return self.ratio - half, self.ratio + half
 
     def to_json(self) -> dict[str, Any]:
+        """The request as JSON (scheme, ratio window, modules, angles, limits)."""
         return {
             "scheme": self.scheme,
             "ratio": exact_json(self.ratio),
@@ -160,7 +161,7 @@ class HelicalDesign:
     ratio : Fraction
         i_1H^(4), exact.
     relative_error : Fraction
-        |ratio - target| / |target|, exact.
+        ``|ratio - target| / |target|``, exact.
     assembly : (int, int)
         The integers (P, Q) of the assembly condition.
     helix_free : bool
@@ -176,21 +177,26 @@ class HelicalDesign:
 
     @property
     def teeth(self) -> tuple[int, int, int, int]:
+        """The tooth numbers (Z1, Z2, Z3, Z4)."""
         return self.train.teeth
 
     @property
     def betas_deg(self) -> tuple[float, float]:
+        """The helix angles (beta12, beta34) in degrees."""
         return math.degrees(self.train.betas[0]), math.degrees(self.train.betas[1])
 
     @property
     def centre_distance(self) -> float:
+        """The common centre distance of both meshes (mm)."""
         return self.train.centre_distances[0]
 
     @property
     def envelope_diameter(self) -> float:
+        """The diameter of the circle that encloses the train (mm)."""
         return self.train.envelope_diameter
 
     def to_json(self) -> dict[str, Any]:
+        """The design as JSON: teeth, exact ratio and its error, helix angles and hands, P, Q, centre distance, and the independent force check."""
         t = self.train
         assert t.hands is not None  # HelicalTrain.__post_init__ sets the balancing hands when none are given
         return {
@@ -225,6 +231,7 @@ class SynthesisResult:
     seconds: float
 
     def to_json(self) -> dict[str, Any]:
+        """The result as JSON: the request, the designs, and what removed the last candidates when none is left."""
         return {
             "request": self.request.to_json(),
             "found": self.found,

@@ -57,7 +57,7 @@ class ContinuousSplit:
         Per stage: nu - g_j on an upper bound, g_j - nu on a lower bound, 0 if free;
         d objective* / d ln(bound) is minus this (upper) or plus this (lower).
     kkt_residual : float
-        The largest violation of stationarity or multiplier sign, relative to |g|.
+        The largest violation of stationarity or multiplier sign, relative to ``|g|``.
     global_optimum : bool
         True when the objective is a posynomial (convex in ln u).
     starts, method : int, str
@@ -112,6 +112,7 @@ class ContinuousSplit:
         return lines
 
     def to_json(self) -> dict[str, Any]:
+        """The optimum as JSON: ratios (exact where known), objective, active bounds, multipliers and the KKT residual."""
         return {
             "ratios": list(self.ratios),
             "exact_ratios": exact_json_list(self.exact_ratios),

@@ -53,9 +53,11 @@ class Design:
 
     @property
     def ratios(self) -> tuple[sp.Rational, ...]:
+        """The stage ratios, stage 1 first (exact)."""
         return tuple(s.ratio for s in self.stages)
 
     def to_json(self) -> dict[str, Any]:
+        """The design as JSON: each stage's teeth and ratio, the total, its deviation and the objective."""
         return {
             "stages": [s.to_json() for s in self.stages],
             "teeth": [[s.sun, s.planet, s.ring] for s in self.stages],
@@ -76,7 +78,7 @@ class DiscreteSplit:
     tolerance : sympy.Rational
         The relative tolerance on the total ratio.
     designs : tuple of Design
-        Ranked by objective (within tolerance) or by |deviation| then objective (nearest).
+        Ranked by objective (within tolerance) or by ``|deviation|`` then objective (nearest).
     meets_tolerance : bool
     nodes : int
         Search nodes visited (a measure of the work done).
@@ -92,6 +94,7 @@ class DiscreteSplit:
     distinct: bool
 
     def message(self) -> str:
+        """One line that says whether the designs meet the tolerance, or which is nearest when none does."""
         if self.meets_tolerance:
             return f"{len(self.designs)} best design(s) with the total ratio within {float(self.tolerance):.4g} (relative)"
         best = self.designs[0] if self.designs else None
@@ -104,6 +107,7 @@ class DiscreteSplit:
         )
 
     def to_json(self) -> dict[str, Any]:
+        """The search as JSON: the designs, whether they meet the tolerance, and the nodes searched."""
         return {
             "tolerance": exact_json(self.tolerance),
             "meets_tolerance": self.meets_tolerance,
@@ -397,7 +401,7 @@ def best_designs(total: Any, stage_set: Any, stages: int, *, model: Any, toleran
         Number of stages n.
     model : StageErrorModel or sequence
     tolerance : number
-        Relative tolerance on the total: |total - U| <= tolerance * U.
+        Relative tolerance on the total: ``|total - U| <= tolerance * U``.
     top : int
         How many designs to return.
     lower, upper : number, optional

@@ -113,6 +113,7 @@ class SplitProblem:
     # ---- derived, compiled once
     @cached_property
     def lost_motion(self) -> LostMotion:
+        """The lost-motion laws of a train with this many stages (derived from the engine, cached)."""
         return lost_motion(self.stages)
 
     @cached_property
