@@ -70,8 +70,8 @@ def float_text(value: Any) -> str:
     """The float beside an exact number, as text for a reader (10 significant digits);
     empty for a value that is not a number.
 
-    >>> float_text(sp.Rational(101, 2)), float_text(sp.Symbol("x"))
-    ('50.5', '')
+    >>> float_text(sp.Rational(7, 2)), float_text(sp.Symbol("x"))
+    ('3.5', '')
     """
     expr = sp.sympify(value, strict=True)
     if not expr.is_number:

@@ -207,10 +207,10 @@ def _exact(value: Any) -> sp.Expr:
 def as_float(value: Any) -> float | None:
     """The value as a float when it is one real number, else None.
 
-    Text is read as a decimal (``"100.52e-3"``); an expression must be a real number.
+    Text is read as a decimal (``"12.34e-3"``); an expression must be a real number.
 
-    >>> as_float("100.52e-3"), as_float(sp.pi / 2), as_float("?00"), as_float(sp.Symbol("x"))
-    (0.10052, 1.5707963267948966, None, None)
+    >>> as_float("12.34e-3"), as_float(sp.pi / 2), as_float("?00"), as_float(sp.Symbol("x"))
+    (0.01234, 1.5707963267948966, None, None)
     """
     if isinstance(value, bool) or value is None:
         return None
@@ -316,7 +316,7 @@ def compare_exact(derived: Any, published: Any) -> Comparison:
 def compare_rounded(derived: Any, published: str) -> Comparison:
     """Match when the published decimal is the derived value rounded half up to its printed digits.
 
-    Exact equality is reported as a plain match; a published ``"100.52e-3"`` is read
+    Exact equality is reported as a plain match; a published ``"12.34e-3"`` is read
     with its exponent (its printed digits are those of the mantissa).
 
     >>> compare_rounded(sp.Rational(5, 2), "3").verdict.value
