@@ -325,8 +325,30 @@ class Motion:
 
 
 
+class _Letters:
+    """The 2009 paper's letters and the usual ones for a particle's laws: ``V`` and ``v`` are
+    its velocity, ``w`` and ``a`` its acceleration (the same cached laws)."""
+
+    velocity: sp.ImmutableMatrix
+    acceleration: sp.ImmutableMatrix
+
+    @property
+    def V(self) -> sp.ImmutableMatrix:
+        """The velocity (the 2009 paper's V)."""
+        return self.velocity
+
+    v = V
+
+    @property
+    def w(self) -> sp.ImmutableMatrix:
+        """The acceleration (the 2009 paper's w)."""
+        return self.acceleration
+
+    a = w
+
+
 @dataclass(frozen=True)
-class Particle:
+class Particle(_Letters):
     """A particle of a link: its position, velocity and acceleration laws in t.
 
     Each is derived on first use by eqs. (4), (5), (6) and cached.  ``V`` (or ``v``) and
@@ -377,20 +399,6 @@ class Particle:
             self._pole_state(0),
         )
 
-    # the 2009 paper's letters and the usual ones, one law each
-    @property
-    def V(self) -> sp.ImmutableMatrix:
-        """The velocity (the 2009 paper's V)."""
-        return self.velocity
-
-    v = V
-
-    @property
-    def w(self) -> sp.ImmutableMatrix:
-        """The acceleration (the 2009 paper's w)."""
-        return self.acceleration
-
-    a = w
     def trajectory(
         self, t_end: Any, *, t_start: Any = 0.0, samples: int = 721, values: Mapping[Any, Any] | None = None
     ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -431,7 +439,7 @@ class Particle:
 
 
 @dataclass(frozen=True)
-class SpaceParticle:
+class SpaceParticle(_Letters):
     """A particle in space: its position, velocity and acceleration, 3 x 1 laws in t.
 
     Its motion in the mechanism's frame is planar (eqs. 4-6, at its height along the main
@@ -497,20 +505,6 @@ class SpaceParticle:
         """(w_x, w_y, w_z) in t."""
         return self._absolute[2]
 
-    # the 2009 paper's letters and the usual ones, one law each
-    @property
-    def V(self) -> sp.ImmutableMatrix:
-        """The velocity (the 2009 paper's V)."""
-        return self.velocity
-
-    v = V
-
-    @property
-    def w(self) -> sp.ImmutableMatrix:
-        """The acceleration (the 2009 paper's w)."""
-        return self.acceleration
-
-    a = w
     def trajectory(
         self, t_end: Any, *, t_start: Any = 0.0, samples: int = 721, values: Mapping[Any, Any] | None = None
     ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
