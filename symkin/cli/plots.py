@@ -124,10 +124,10 @@ def _setup(args: Any) -> tuple[Any, Any, list, float, list[str], dict[str, Any],
 
     points = [_point(p, mech) for p in args.point] or default_particles(mech)
     if args.t_end is not None:
-        from symkin._util.parsing import as_real
+        from symkin._util.parsing import as_real, sign_of
 
         t_end = as_real(args.t_end, what="--t-end", unit="s")
-        if t_end <= 0:
+        if sign_of(t_end, what="--t-end") != 1:  # on intervals: a 0 in disguise is not positive
             raise InputError(f"--t-end must be positive, got {args.t_end}")
         t_end = float(t_end)
     else:
