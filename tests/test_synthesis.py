@@ -426,3 +426,11 @@ def test_a_train_without_tooth_numbers_or_with_given_radii_is_refused():
     res = synthesize(read_train(fixed), driver="S", driven="H", ratio=10, planets=3, zmax=180)
     assert res.notes and "every one is searched" in res.notes[0]
     assert [str(z) for z in res.problem.unknowns] == ["z_s", "z_p", "z_r"] and res.designs[0].ratio == 10
+
+
+@pytest.mark.parametrize("alpha", ["1e-300", "0", "4.9", "45.1", "89"])
+def test_a_pressure_angle_outside_involute_practice_is_one_clear_error(alpha):
+    from symkin.synthesis import undercut_minimum
+
+    with pytest.raises(InputError, match="between 5 and 45 degrees"):
+        undercut_minimum(alpha)

@@ -84,6 +84,11 @@ class gcd(sp.Function):
 
 
 # --------------------------------------------------------------------------- options
+#: Pressure angles of involute gears, degrees: below 5 the undercut-free minimum runs to hundreds of
+#: teeth and beyond (1e-300 degrees: about 10^604), above 45 the teeth are pointed.
+PRESSURE_ANGLES = (5, 45)
+
+
 def undercut_minimum(pressure_angle_deg: Any = 20, addendum: Any = 1) -> int:
     """The least tooth number cut without undercut by a rack: ``z sin^2(alpha) >= 2 h_a*``.
 
@@ -92,8 +97,9 @@ def undercut_minimum(pressure_angle_deg: Any = 20, addendum: Any = 1) -> int:
     """
     alpha = as_rational(pressure_angle_deg, what="the pressure angle")
     h = as_rational(addendum, what="the addendum coefficient h_a*")
-    if not 0 < alpha < 90:
-        raise InputError(f"the pressure angle must be between 0 and 90 degrees, got {alpha}")
+    if not PRESSURE_ANGLES[0] <= alpha <= PRESSURE_ANGLES[1]:
+        raise InputError(f"the pressure angle must be between {PRESSURE_ANGLES[0]} and {PRESSURE_ANGLES[1]} degrees "
+                         f"(usual: 20), got {alpha}")
     if not 0 < h <= 2:
         raise InputError(f"the addendum coefficient h_a* must be positive and at most 2, got {h}; the usual value is 1")
     bound = 2 * h / sp.sin(alpha * sp.pi / 180) ** 2
