@@ -70,7 +70,7 @@ K = sp.Symbol("k", positive=True, integer=True)
 #: The largest tooth number a search accepts.
 MAX_TEETH = 10_000
 #: The link that holds the frame's gears while the assembly is derived (they turn back like any central gear).
-_FREED = "frame gears"
+_FREED = "frame-gears"  # a valid link name (names go into LaTeX: symkin.model checks them)
 
 
 class gcd(sp.Function):
