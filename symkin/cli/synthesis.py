@@ -22,7 +22,8 @@ def register(sub: Any) -> None:
             "planet kind that can be assembled and clear each other, every planet's meshes coaxial (or within --shift "
             "of one working centre distance), and every tooth number within the limits (--zmin defaults to the least "
             "number cut without undercut at the pressure angle). The conditions are derived from the train's model "
-            "and printed (--latex as LaTeX). Designs are ranked by ratio error, then size, then tooth sum; each is "
+            "and printed (--latex as LaTeX). Designs are ranked by ratio error, then size, then tooth sum (--rank "
+            "changes the order, efficiency included); each is "
             "re-checked by building its train and deriving its ratio and planet positions again. --scheduler runs "
             "the search on Dask; the result is the same."
         ),
@@ -58,6 +59,11 @@ def register(sub: Any) -> None:
     p.add_argument("--efficiency", nargs="?", const="default", metavar="ETA",
                    help="also give each listed design's efficiency (its statics, driver driving driven): every mesh "
                         "ETA, or without ETA 0.98 per external and 0.99 per internal mesh (or the file's values)")
+    p.add_argument("--rank", metavar="KEYS",
+                   help="order of the designs: keys among error, efficiency (largest first), size, teeth (tooth sum), "
+                        "separated by commas; the rest of error,size,teeth follow (default error,size,teeth). "
+                        "Ranking by efficiency evaluates the train's efficiency law exactly at every design, with the "
+                        "mesh efficiencies of --efficiency")
     p.add_argument("--latex", action="store_true", help="also print the derived conditions in LaTeX")
     add_quiet_flag(p)
 
@@ -88,6 +94,9 @@ def run_synthesize(args: Any) -> int:
         raise InputError("--fixed names a link, e.g. --fixed C")
     planets = None if args.planets.strip().lower() == "file" else int(parse_integer(args.planets, what="--planets"))
     top = None if args.top.strip().lower() == "all" else int(parse_integer(args.top, what="--top"))
+    mesh = "default"
+    if args.efficiency is not None and args.efficiency != "default":
+        mesh = parse_number(args.efficiency, what="--efficiency")
     bar = Progress(enabled=not args.quiet)
     try:
         result = synthesize(
@@ -109,13 +118,13 @@ def run_synthesize(args: Any) -> int:
             workers=None if args.workers is None else int(parse_integer(args.workers, what="--workers")),
             time_limit=float(parse_number(args.time_limit, what="--time-limit")),
             progress=lambda done, total, found: bar.show(f"searching: {done}/{total} chunks, {found} designs"),
+            rank=args.rank, mesh_efficiency=mesh,
         )
     finally:
         bar.close()
     checks = [d.check() for d in result.designs]
-    etas = None
-    if args.efficiency is not None:
-        mesh = "default" if args.efficiency == "default" else parse_number(args.efficiency, what="--efficiency")
+    etas = None  # a column of efficiencies that do not rank (ranked ones are in the table and each check)
+    if args.efficiency is not None and "efficiency" not in result.rank:
         etas = [d.efficiency(mesh) for d in result.designs]
     data = result.to_json()
     for i, (design, check) in enumerate(zip(data["designs"], checks)):
@@ -148,8 +157,7 @@ def _text(result: Any, checks: list[Any], latex: bool, etas: list[Any] | None = 
     width = max(len(str(n)) for _, n in result.funnel)
     lines += [f"  {n:>{width}}  {name}" for name, n in result.funnel]
     shown = len(result.designs)
-    lines.append(f"{result.found} designs; {'all' if shown == result.found else f'the best {shown}'} by ratio error, "
-                 "then size (envelope diameter), then tooth sum:")
+    lines.append(f"{result.found} designs; {'all' if shown == result.found else f'the best {shown}'} by {result.order}:")
     table = describe_designs(result.designs)
     for i, (row, check) in enumerate(zip(table, [None, *checks])):
         mark = "check" if check is None else ("ok" if check.passed else f"FAILED {check.problem}")
@@ -158,5 +166,7 @@ def _text(result: Any, checks: list[Any], latex: bool, etas: list[Any] | None = 
         lines.append(f"  {row}  {mark}")
     lines.append("check: each train built with its teeth; ratio derived again, coaxiality and planet positions from "
                  "the model, the least gap between planet copies measured" +
-                 ("; efficiency from each train's statics (basic-train method), not a ranking key" if etas else ""))
+                 ("; efficiency from each train's statics (basic-train method), not a ranking key" if etas else "") +
+                 ("; efficiency ranked by the train's law, evaluated exactly, and derived again from each train's "
+                  "statics (basic-train method)" if "efficiency" in result.rank else ""))
     return "\n".join(lines)

@@ -11,6 +11,7 @@ from typing import Any
 from symkin._util.parsing import as_integer, as_rational
 from symkin.errors import InputError
 from symkin.model import Mechanism
+from symkin.synthesis.efficiency import DEFAULT_RANK, rank_order
 from symkin.synthesis.problem import Options, derive
 from symkin.synthesis.result import Design, SynthesisResult, empty_reason, funnel_of
 from symkin.synthesis.runner import Execution, run
@@ -49,12 +50,15 @@ def synthesize(
     time_limit: float | None = None,
     progress: Callable[[int, int, int], None] | None = None,
     allow_empty: bool = False,
+    rank: str | Sequence[str] | None = None,
+    mesh_efficiency: Any = "default",
 ) -> SynthesisResult:
     """Tooth numbers that give a train a target ratio, with k planets assembled, clear and coaxial.
 
     The conditions are derived from the train's model (:func:`symkin.synthesis.problem.derive`);
     the search (:mod:`symkin.synthesis.search`) makes only tuples with the ratio and checks
-    them exactly; designs are ranked by ratio error, then size, then tooth sum.
+    them exactly; designs are ranked by ratio error, then size, then tooth sum (or by the
+    ``rank`` asked for, efficiency included).
 
     Parameters
     ----------
@@ -85,6 +89,16 @@ def synthesize(
     progress : callable(done, total, found), optional
     allow_empty : bool
         Return a result without designs instead of raising when nothing is found.
+    rank : str or sequence of str, optional
+        The order of the designs: keys among ``"error"``, ``"efficiency"`` (largest first),
+        ``"size"`` and ``"teeth"`` (tooth sum), the rest of error, size, teeth following
+        (:func:`symkin.synthesis.efficiency.rank_order`); ties go by the tooth numbers.
+        Ranking by efficiency evaluates the train's efficiency law, derived from its statics,
+        exactly at every design found.
+    mesh_efficiency : str, number or dict
+        The meshes' efficiencies when ranking by efficiency (:func:`symkin.statics.statics`'
+        ``efficiency``): ``"default"`` (0.98 external, 0.99 internal, or the file's), one
+        number, or ``{"a-b": value}``.
 
     Raises
     ------
@@ -97,6 +111,10 @@ def synthesize(
     >>> res = synthesize("simple", driver="S", driven="C", fixed="R", ratio=4, planets=3, zmax=100)
     >>> [d.gear_teeth for d in res.designs[:2]], res.found
     ([(('s', 18), ('p', 18), ('r', 54)), (('s', 21), ('p', 21), ('r', 63))], 6)
+    >>> eff = synthesize("simple", driver="S", driven="C", fixed="R", ratio_range=(3, 6), zmax=100, top=2,
+    ...                  rank="efficiency")   # the least ratio loses least: (1 + 0.98*0.99*2)/3
+    >>> [(d.ratio, d.ranked_efficiency, d.gear_teeth) for d in eff.designs]
+    [(3, 7351/7500, (('s', 36), ('p', 18), ('r', 72))), (3, 7351/7500, (('s', 38), ('p', 19), ('r', 76)))]
     >>> synthesize("simple", driver="S", driven="C", fixed="R", ratio=40, zmax=100)
     Traceback (most recent call last):
     ...
@@ -130,12 +148,13 @@ def synthesize(
     options = Options(planets=planets, zmin=zmin, zmax=zmax, pressure_angle=pressure_angle, addendum=addendum,
                       clearance=clearance, shift=shift, ring_difference=ring_difference)
     problem = derive(train, driver=driver, driven=driven, fixed=fixed, state=state, options=options)
-    plan0 = _plan(problem, target, top_n, CHUNK)
+    order = rank_order(rank)
+    plan0 = _plan(problem, target, top_n, CHUNK, order, mesh_efficiency)
     if chunk is None:
         per = max(256, min(CHUNK, math.ceil(plan0.size / 64)))
     else:
         per = int(as_integer(chunk, what="the chunk size", text=False, minimum=1, maximum=1 << 24))
-    plan = plan0 if per == plan0.chunk else _plan(problem, target, top_n, per)
+    plan = plan0 if per == plan0.chunk else _plan(problem, target, top_n, per, order, mesh_efficiency)
     runs: list[Execution] = []
     merged = run(plan, scheduler=scheduler, workers=workers, time_limit=time_limit, progress=progress, execution=runs,
                  spent=time.perf_counter() - began)
@@ -145,20 +164,21 @@ def synthesize(
         raise InputError(reason)
     return SynthesisResult(problem, target, designs, merged.found, funnel_of(plan, merged), merged.reach,
                            time.perf_counter() - began, plan.describe(), runs[0].to_json() if runs else {},
-                           plan.notes, reason, merged.made)
+                           plan.notes, reason, merged.made, plan.rank)
 
 
 _PLANS: dict[Any, Plan] = {}
 
 
-def _plan(problem: Any, target: Target, top: int | None, chunk: int) -> Plan:
-    """Plans are compiled once per problem, target and chunking (a command run again reuses them)."""
-    key = (problem, target, top, chunk)
+def _plan(problem: Any, target: Target, top: int | None, chunk: int, rank: tuple[str, ...] = DEFAULT_RANK,
+          mesh_efficiency: Any = "default") -> Plan:
+    """Plans are compiled once per problem, target, chunking and ranking (a command run again reuses them)."""
+    key = (problem, target, top, chunk, rank, repr(mesh_efficiency))
     try:
         return _PLANS[key]
     except (KeyError, TypeError):
         pass
-    plan = Plan.build(problem, target, top=top, chunk=chunk)
+    plan = Plan.build(problem, target, top=top, chunk=chunk, rank=rank, mesh_efficiency=mesh_efficiency)
     try:
         if len(_PLANS) > 8:
             _PLANS.pop(next(iter(_PLANS)))

@@ -23,6 +23,7 @@ import sympy as sp
 from symkin._util.jsonout import exact_json, float_text
 from symkin.errors import CoaxialityWarning, ModelError
 from symkin.model import Gear, LinkKind, Mechanism
+from symkin.synthesis.efficiency import DEFAULT_RANK
 from symkin.synthesis.problem import Condition, Problem
 from symkin.synthesis.search import STAGES, ChunkResult, Plan, Record, Target
 
@@ -50,6 +51,9 @@ class DesignCheck:
         The least gap between tip circles of planet copies that could touch, in modules
         (positive: clear), after the tip clearance asked for; None with one planet.
     passed : bool
+    efficiency : sympy.Rational or None
+        The efficiency from the statics of the design's own train, when the search ranked by
+        efficiency; ``efficiency_ok`` says whether it equals the ranked one.
     """
 
     ratio: sp.Rational | None
@@ -60,13 +64,18 @@ class DesignCheck:
     passed: bool
     problem: str = ""
     assembles: bool = True
+    efficiency: sp.Rational | None = None
+    efficiency_ok: bool = True
 
     def to_json(self) -> dict[str, Any]:
-        """The independent check as JSON: the ratio and whether it is in the window, coaxiality, placement, assembly, the least gap in modules, and the verdict."""
-        return {"ratio": exact_json(self.ratio), "ratio_ok": self.ratio_ok, "coaxial": self.coaxial, "placed": self.placed,
-                "assembles": self.assembles,
-                "gap_modules": None if self.gap is None else round(self.gap, 9), "passed": self.passed,
-                "problem": self.problem}
+        """The independent check as JSON: the ratio and whether it is in the window, coaxiality, placement, assembly, the least gap in modules, the efficiency when ranked by it, and the verdict."""
+        out = {"ratio": exact_json(self.ratio), "ratio_ok": self.ratio_ok, "coaxial": self.coaxial, "placed": self.placed,
+               "assembles": self.assembles,
+               "gap_modules": None if self.gap is None else round(self.gap, 9), "passed": self.passed,
+               "problem": self.problem}
+        if self.efficiency is not None:
+            out |= {"efficiency": exact_json(self.efficiency), "efficiency_ok": self.efficiency_ok}
+        return out
 
 
 @dataclass(frozen=True)
@@ -92,6 +101,12 @@ class Design:
         y = (a_w - a) / m.
     planets : tuple of (str, int)
         Copies of each planet kind.
+    ranked_efficiency : sympy.Rational or None
+        The exact efficiency the search ranked the design by (None unless it ranked by
+        efficiency), from the train's efficiency law (:mod:`symkin.synthesis.efficiency`);
+        :meth:`check` derives it again from the statics of the design's own train.
+    mesh_efficiency : str, number or dict
+        The mesh efficiencies that efficiency was worked with.
     """
 
     problem: Problem
@@ -103,6 +118,8 @@ class Design:
     arms: tuple[tuple[str, sp.Rational], ...]
     shifts: tuple[tuple[str, sp.Rational], ...]
     planets: tuple[tuple[str, int], ...]
+    ranked_efficiency: sp.Rational | None = None
+    mesh_efficiency: Any = "default"
 
     @classmethod
     def from_record(cls, plan: Plan, record: Record) -> Design:
@@ -129,9 +146,11 @@ class Design:
             for r, m in zip(refs, arm.meshes):
                 if r != a_w:
                     shifts.append((f"{m.mesh.a}-{m.mesh.b}", (a_w - r) / m.module))
+        eta = None if record.efficiency is None else _rational(record.efficiency)
+        mesh = plan.efficiency.mesh_efficiency if plan.efficiency is not None else "default"
         return cls(problem, tuple((str(z), v) for z, v in values.items()), tuple(gear_teeth), _rational(record.ratio),
                    _rational(record.error), sp.Rational(record.size, plan.scale), tuple(arms), tuple(shifts),
-                   tuple(problem.counts))
+                   tuple(problem.counts), eta, mesh)
 
     @property
     def values(self) -> dict[str, int]:
@@ -217,10 +236,14 @@ class Design:
         gap = _least_gap(problem, train, angles)
         count = problem.count
         assembles = all(assembles_tooth_by_tooth(train, g.planets, count[g.planets[0]]) for g in problem.assembly)
-        passed = ratio_ok and coaxial and placed and assembles and (gap is None or gap > 0)
+        eta, eta_ok = None, True
+        if self.ranked_efficiency is not None:
+            eta = sp.sympify(self.efficiency(self.mesh_efficiency))
+            eta_ok = eta == self.ranked_efficiency
+        passed = ratio_ok and coaxial and placed and assembles and (gap is None or gap > 0) and eta_ok
         failed = [name for name, ok in (("ratio", ratio_ok), ("coaxiality", coaxial), ("assembly", assembles),
-                                        ("clearance", gap is None or gap > 0)) if not ok]
-        return DesignCheck(ratio, ratio_ok, coaxial, placed, gap, passed, ", ".join(failed), assembles)
+                                        ("clearance", gap is None or gap > 0), ("efficiency", eta_ok)) if not ok]
+        return DesignCheck(ratio, ratio_ok, coaxial, placed, gap, passed, ", ".join(failed), assembles, eta, eta_ok)
 
     def to_json(self) -> dict[str, Any]:
         """The design as JSON: teeth by gear and by unknown, the exact ratio, error and size, the arms, the shifts and the planets."""
@@ -233,7 +256,7 @@ class Design:
             "arms": {p: exact_json(a) for p, a in self.arms},
             "shifts": {m: exact_json(y) for m, y in self.shifts},
             "planets": dict(self.planets),
-        }
+        } | ({"efficiency": exact_json(self.ranked_efficiency)} if self.ranked_efficiency is not None else {})
 
 
 def assembles_tooth_by_tooth(train: Mechanism, planets: Sequence[str], k: int) -> bool:
@@ -405,6 +428,14 @@ class SynthesisResult:
     notes: tuple[str, ...] = ()
     reason: str = ""
     made: int = 0
+    rank: tuple[str, ...] = DEFAULT_RANK
+
+    @property
+    def order(self) -> str:
+        """The ranking in words: "ratio error, then size (envelope diameter), then tooth sum"."""
+        words = {"error": "ratio error", "efficiency": "efficiency (largest first)",
+                 "size": "size (envelope diameter)", "teeth": "tooth sum"}
+        return ", then ".join(words[k] for k in self.rank)
 
     @property
     def conditions(self) -> tuple[Condition, ...]:
@@ -433,6 +464,7 @@ class SynthesisResult:
             "seconds": round(self.seconds, 4),
             "execution": self.execution,
             "notes": list(self.notes),
+            "rank": list(self.rank),
             "designs": [d.to_json() for d in self.designs],
         }
 
@@ -507,13 +539,15 @@ def describe_designs(designs: Sequence[Design]) -> list[str]:
         return []
     problem = designs[0].problem
     names = [str(z) for z in problem.unknowns]
-    header = ["#", *names, "ratio", "error %", "size", "shift"]
+    ranked = designs[0].ranked_efficiency is not None
+    header = ["#", *names, "ratio", "error %", "size", "shift"] + (["efficiency"] if ranked else [])
     rows = [header]
     for n, d in enumerate(designs, 1):
         values = d.values
         ratio = str(d.ratio) if len(str(d.ratio)) <= 12 else float_text(d.ratio)
         shift = ", ".join(f"{m} {float(y):+.3g}" for m, y in d.shifts) or "-"
         rows.append([str(n), *(str(values[z]) for z in names), ratio, f"{float(d.error) * 100:.4f}",
-                     float_text(d.size), shift])
+                     float_text(d.size), shift]
+                    + ([f"{float(d.ranked_efficiency):.5f}" if d.ranked_efficiency is not None else "-"] if ranked else []))
     widths = [max(len(r[i]) for r in rows) for i in range(len(header))]
     return ["  ".join(c.rjust(w) for c, w in zip(r, widths)).rstrip() for r in rows]

@@ -49,6 +49,7 @@ from symkin._util.parsing import as_fraction
 from symkin.errors import InputError
 from symkin.model import LinkKind
 from symkin.numeric import compile
+from symkin.synthesis.efficiency import DEFAULT_RANK, EfficiencyLaw, rank_order
 from symkin.synthesis.integers import solvable
 from symkin.synthesis.problem import Problem
 
@@ -131,11 +132,24 @@ class Record:
     teeth: tuple[int, ...]
     slacks: tuple[int, ...]
     ratio: Fraction
+    efficiency: Fraction | None = None  # when ranking by it
+    rank: tuple[str, ...] = DEFAULT_RANK
 
     @property
     def key(self) -> tuple:
-        """The ranking key of a found design: ratio error, then size, then the sum of teeth."""
-        return (self.error, self.size, sum(self.teeth), self.teeth, self.slacks)
+        """The ranking key of a found design: its plan's rank (by default ratio error, then size,
+        then the sum of teeth), then the tooth numbers; an undefined efficiency comes last."""
+        parts: list[Any] = []
+        for name in self.rank:
+            if name == "error":
+                parts.append(self.error)
+            elif name == "size":
+                parts.append(self.size)
+            elif name == "teeth":
+                parts.append(sum(self.teeth))
+            else:
+                parts.append((0, -self.efficiency) if self.efficiency is not None else (1, 0))
+        return (*parts, self.teeth, self.slacks)
 
 
 @dataclass
@@ -198,11 +212,21 @@ class Plan:
     dependent_alpha: tuple[Fraction, ...] = ()
     dependent_limits: tuple[tuple[int, int], ...] = ()
     stages: tuple[str, ...] = field(default=STAGES)
+    rank: tuple[str, ...] = DEFAULT_RANK
+    efficiency: EfficiencyLaw | None = None
 
     # ------------------------------------------------------------------ build
     @classmethod
-    def build(cls, problem: Problem, target: Target, *, top: int | None = 10, chunk: int = 1 << 15) -> Plan:
-        """Solve the coaxiality for the dependents, choose ``x``, compile (see the module docstring)."""
+    def build(cls, problem: Problem, target: Target, *, top: int | None = 10, chunk: int = 1 << 15,
+              rank: str | Sequence[str] | None = None, mesh_efficiency: Any = "default") -> Plan:
+        """Solve the coaxiality for the dependents, choose ``x``, compile (see the module docstring).
+
+        ``rank`` orders the designs (:func:`symkin.synthesis.efficiency.rank_order`); ranking by
+        ``"efficiency"`` derives the efficiency law with ``mesh_efficiency``
+        (:class:`~symkin.synthesis.efficiency.EfficiencyLaw`).
+        """
+        order = rank_order(rank)
+        eff = EfficiencyLaw.derive(problem, mesh_efficiency) if "efficiency" in order else None
         o = problem.options
         unknowns = problem.unknowns
         zlo = {z: o.zmin for z in unknowns}
@@ -361,7 +385,8 @@ class Plan:
             slack_names=tuple(str(s) for s, _ in slacks), slack_bounds=tuple(w for _, w in slacks),
             planets=planets, k=k, geometry=geometry, internal_pairs=tuple(internal_pairs),  # type: ignore[arg-type]
             filter_bounds=tuple(w for _, w in filters), assembly=tuple(assembly), f_sin=f_sin, f_cross=f_cross,
-            notes=tuple(notes), dependent_alpha=tuple(alphas), dependent_limits=tuple(limits),
+            notes=tuple(notes), dependent_alpha=tuple(alphas), dependent_limits=tuple(limits), rank=order,
+            efficiency=eff,
         )
 
     @property
@@ -740,12 +765,19 @@ def _check(plan: Plan, batch: tuple, exact_calls: list[int]) -> tuple[int, list[
             size = np.maximum(size, arms[pi] + ints(ti))
     size = 2 * size
     tsum = Z.sum(axis=1)
-    keys = [Z[sel, j] for j in reversed(range(Z.shape[1]))] + [tsum[sel], size[sel], rank[which[sel]]]
-    order_sel = sel[np.lexsort(keys)]
+    columns = {"error": rank[which[sel]], "size": size[sel], "teeth": tsum[sel]}
+    eta: list[Fraction | None] = [None] * len(sel)
+    if plan.efficiency is not None:  # exact values, ranked exactly (largest first, undefined last)
+        eta = plan.efficiency.values(plan.problem, Z[sel])
+        distinct = sorted({v for v in eta if v is not None}, reverse=True)
+        place = {v: i for i, v in enumerate(distinct)}
+        columns["efficiency"] = np.array([place[v] if v is not None else len(distinct) for v in eta], dtype=np.int64)
+    keys = [Z[sel, j] for j in reversed(range(Z.shape[1]))] + [columns[name] for name in reversed(plan.rank)]
+    order = np.lexsort(keys)
     if plan.top is not None:
-        order_sel = order_sel[: plan.top]
+        order = order[: plan.top]
     records = [Record(errors[which[i]], int(size[i]), tuple(int(v) for v in Z[i]), tuple(int(v) for v in sig[i]),
-                      fr[which[i]]) for i in order_sel]
+                      fr[which[i]], eta[j], plan.rank) for j, i in zip(order.tolist(), sel[order].tolist())]
     return found, records, counts, reach
 
 
