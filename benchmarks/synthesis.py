@@ -12,6 +12,10 @@ Run: python benchmarks/synthesis.py [repeats]
    workers rebuild the compiled plan on their first chunk, so a warm-up run comes first).
    Runs are interleaved; medians of ``repeats`` and the ratio 1 worker / 2 workers.
 3. The same at 200 teeth (the largest that fits a sensible time here).
+4. Ranking by efficiency: the second-gear request (its efficiency law is a Piecewise in the
+   teeth) ranked by error and by efficiency, interleaved; medians and the ratio.
+
+``python benchmarks/synthesis.py [repeats] [rank]``: only part 4 with ``rank``.
 """
 
 from __future__ import annotations
@@ -114,14 +118,38 @@ def scaling(zmax: int, request: dict, repeats: int, label: str) -> None:
             c.close()
 
 
-def main(repeats: int = 3) -> None:
+def ranking(zmax: int, request: dict, repeats: int, label: str) -> None:
+    kw = dict(zmax=zmax, top=10, **request)
+    plain = synthesize("ravigneaux", **kw)  # derive and compile both plans once
+    ranked = synthesize("ravigneaux", rank="efficiency", **kw)
+    assert plain.found == ranked.found
+    times: dict[str, list[float]] = {"by error": [], "by efficiency": []}
+    for _ in range(repeats):
+        for name, rank in (("by error", None), ("by efficiency", "efficiency")):
+            t, _ = timed(synthesize, "ravigneaux", rank=rank, **kw)
+            times[name].append(t)
+    med = {k: statistics.median(v) for k, v in times.items()}
+    print(f"{label}, 18 <= z <= {zmax}: {plain.found} designs; seconds, median of {repeats}:")
+    for k, v in med.items():
+        print(f"  {k:14s} {v:8.3f} s   (min {min(times[k]):.3f}, max {max(times[k]):.3f})")
+    per = (med["by efficiency"] - med["by error"]) / plain.found * 1e6
+    print(f"  by efficiency / by error: {med['by efficiency'] / med['by error']:.2f} x  ({per:.1f} us per design)")
+    print(f"  best by efficiency: {ranked.designs[0].gear_teeth} eta = {float(ranked.designs[0].ranked_efficiency):.5f};"
+          f" best by error: {plain.designs[0].gear_teeth} eta = {float(plain.designs[0].efficiency()):.5f}")
+
+
+def main(repeats: int = 3, only: str = "") -> None:
     with open("/proc/loadavg") as f:
         print(f"load average before: {f.read().split()[:3]} on {__import__('os').cpu_count()} cores")
+    if only == "rank":
+        ranking(150, SECOND, repeats, "Ravigneaux second gear, i = 22/15 +- 2 %, k = 3")
+        return
     pruning(repeats)
     scaling(150, FIRST, repeats, "Ravigneaux first gear, i = 12/5 +- 0.5 %, k = 3")
     scaling(150, SECOND, repeats, "Ravigneaux second gear, i = 22/15 +- 2 %, k = 3")
     scaling(200, SECOND, repeats, "Ravigneaux second gear, i = 22/15 +- 2 %, k = 3")
+    ranking(150, SECOND, repeats, "Ravigneaux second gear, i = 22/15 +- 2 %, k = 3")
 
 
 if __name__ == "__main__":
-    main(int(sys.argv[1]) if len(sys.argv) > 1 else 3)
+    main(int(sys.argv[1]) if len(sys.argv) > 1 else 3, sys.argv[2] if len(sys.argv) > 2 else "")

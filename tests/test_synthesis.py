@@ -349,6 +349,18 @@ def test_any_chunking_gives_the_same_result():
         assert r.found == first.found and r.funnel == first.funnel
 
 
+def test_equal_ratio_errors_rank_equal_so_the_best_are_the_same_for_any_chunking():
+    # in a range (error 0) or at +-x about the target, different ratios have equal errors: the size decides,
+    # never the ratio's place among the batch's fractions (a bug that gave each chunking its own "best")
+    for target in (dict(ratio_range=(-120, -30)), dict(ratio=-60, tolerance="0.1")):
+        kw = dict(state="drive", planets=3, zmax=70, **target)
+        every = synthesize("wolfrom", top=None, **kw).designs
+        expected = sorted(every, key=lambda d: (d.error, d.size, sum(d.values.values()), tuple(d.values.values())))
+        for chunk in (None, 41):
+            best = synthesize("wolfrom", top=4, chunk=chunk, **kw).designs
+            assert [d.gear_teeth for d in best] == [d.gear_teeth for d in expected[:4]]
+
+
 def test_dask_on_a_local_cluster_gives_the_same_result():
     pytest.importorskip("distributed")
     from symkin.synthesis.runner import local_cluster
@@ -434,3 +446,94 @@ def test_a_pressure_angle_outside_involute_practice_is_one_clear_error(alpha):
 
     with pytest.raises(InputError, match="between 5 and 45 degrees"):
         undercut_minimum(alpha)
+
+
+# ---------------------------------------------------------------- ranking by efficiency
+def test_rank_keys_are_completed_and_bad_keys_are_one_clear_error():
+    from symkin.synthesis.efficiency import rank_order
+
+    assert rank_order(None) == ("error", "size", "teeth")
+    assert rank_order("efficiency") == ("efficiency", "error", "size", "teeth")
+    assert rank_order(" Size , efficiency") == ("size", "efficiency", "error", "teeth")
+    for bad, words in (("speed", "cannot rank by 'speed'"), ("error,error", "names a key twice"), (",", "one or more")):
+        with pytest.raises(InputError, match=words):
+            rank_order(bad)
+
+
+def test_simple_sets_ranked_by_efficiency_follow_the_textbook_formula():
+    # sun driving the carrier, ring held: eta = (1 + eta_sp eta_pr z_r/z_s) / (1 + z_r/z_s), typed here; the
+    # order by hand: that value (largest first), then ratio error, size (the ring's pitch circle), tooth sum
+    eta_sp, eta_pr = Fraction(97, 100), Fraction(99, 100)
+    res = synthesize("simple", driver="S", driven="C", fixed="R", ratio_range=(3, 7), planets=3, zmax=90, top=None,
+                     rank="efficiency", mesh_efficiency={"s-p": "0.97", "p-r": "0.99"})
+    full = synthesize("simple", driver="S", driven="C", fixed="R", ratio_range=(3, 7), planets=3, zmax=90, top=None)
+    assert res.found == full.found > 20 and res.rank[0] == "efficiency"
+
+    def by_hand(d):
+        u = Fraction(d.values["z_r"], d.values["z_s"])
+        return (1 + eta_sp * eta_pr * u) / (1 + u)
+
+    expected = sorted(full.designs, key=lambda d: (-by_hand(d), d.error, d.size, sum(d.values.values()),
+                                                   tuple(d.values.values())))
+    assert [d.gear_teeth for d in res.designs] == [d.gear_teeth for d in expected]
+    assert all(sp.Rational(by_hand(d).numerator, by_hand(d).denominator) == d.ranked_efficiency for d in res.designs)
+    top = synthesize("simple", driver="S", driven="C", fixed="R", ratio_range=(3, 7), planets=3, zmax=90, top=7,
+                     rank="efficiency", mesh_efficiency={"s-p": "0.97", "p-r": "0.99"}, chunk=3)
+    assert [d.gear_teeth for d in top.designs] == [d.gear_teeth for d in res.designs[:7]]
+
+
+@pytest.mark.parametrize("name, request_, target", [
+    ("wolfrom", dict(state="drive"), dict(ratio_range=(-120, -30), zmax=70)),
+    ("ravigneaux", dict(state="second"), dict(ratio_range=("1.3", "1.8"), zmax=60)),
+])
+def test_designs_ranked_by_efficiency_agree_with_each_train_s_own_statics(name, request_, target):
+    # the law (derived once with symbolic teeth, evaluated exactly over the designs) against the statics of each
+    # design's built train (Design.efficiency, the check's route); any chunking gives the same order
+    kw = dict(planets=3, top=12, rank="error,efficiency", **request_, **target)
+    res = synthesize(name, **kw)
+    again = synthesize(name, chunk=41, **kw)
+    assert [d.gear_teeth for d in again.designs] == [d.gear_teeth for d in res.designs] and len(res.designs) == 12
+    keys = [(d.error, -d.ranked_efficiency) for d in res.designs]
+    assert keys == sorted(keys)
+    for d in res.designs[:6]:
+        check = d.check()
+        assert check.passed and check.efficiency_ok and check.efficiency == d.efficiency() == d.ranked_efficiency
+
+
+def test_the_efficiency_law_is_exact_in_python_integers_too_and_at_its_piece_boundaries():
+    import numpy as np
+
+    from symkin.synthesis.efficiency import EfficiencyLaw
+
+    problem = derive(load_train("wolfrom"), state="drive", zmax=150)
+    fast = EfficiencyLaw.derive(problem, "default")
+    slow = EfficiencyLaw.derive(problem, "0.987654321")  # coefficients beyond 2^53: Python integers
+    assert fast.f_float is not None and slow.f_float is None
+    rng = np.random.default_rng(5)
+    teeth = rng.integers(12, 151, size=(40, 5))
+    for law in (fast, slow):
+        for row, value in zip(teeth, law.exact(teeth)):
+            exact = law.law.subs(dict(zip(problem.unknowns, map(int, row))))
+            if value is None:
+                assert not exact.is_Rational
+            else:
+                assert sp.Rational(value.numerator, value.denominator) == exact
+    # the Ravigneaux's second gear at z_r = z_s1: the basic train carries no relative power, no piece holds, and
+    # the value is the statics of that train (the mesh loses nothing)
+    problem = derive(load_train("ravigneaux"), state="second")
+    law = EfficiencyLaw.derive(problem, "default")
+    assert law.exact([(30, 36, 18, 18, 30)]) == [None]
+    from symkin.statics import statics
+
+    train = numeric_train(problem.train, {"z_s1": 30, "z_s2": 36, "z_p1": 18, "z_p2": 18, "z_r": 30})
+    st = train.state("second")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        eta = statics(train, input=st.input, output=st.output, fixed=st.brakes, efficiency="default").efficiency.rhs
+    assert law.values(problem, [(30, 36, 18, 18, 30)]) == [Fraction(int(eta.p), int(eta.q))]
+
+
+def test_ranking_by_efficiency_needs_numbers_for_the_meshes():
+    with pytest.raises(InputError, match="needs a number for every mesh efficiency"):
+        synthesize("simple", driver="S", driven="C", fixed="R", ratio=4, zmax=60, rank="efficiency",
+                   mesh_efficiency={"s-p": "0.97"})  # the ring mesh left a symbol

@@ -128,3 +128,32 @@ def test_a_state_and_a_driver_are_refused(capsys):
     code, _, err = run(capsys, "synthesize", "--train", "simple", "--state", "low", "--driver", "S", "--ratio", "4",
                        "--planets", "3", "--quiet")
     assert code == 2 and "not both" in err
+
+
+def test_ranking_by_efficiency_from_the_command_line(capsys):
+    # sun driving the carrier, ring held, every mesh 0.97: eta = (1 + 0.97^2 u)/(1 + u), u = z_r/z_s (by hand);
+    # the designs come largest efficiency first, and each check derives it again from its own train's statics
+    code, out, _ = run(capsys, "synthesize", "--train", "simple", "--driver", "S", "--driven", "C", "--fixed", "R",
+                       "--ratio-range", "3,6", "--planets", "3", "--zmax", "60", "--top", "6", "--rank", "efficiency",
+                       "--efficiency", "0.97", "--quiet", "--json")
+    data = json.loads(out)
+    assert code == 0 and data["rank"] == ["efficiency", "error", "size", "teeth"] and len(data["designs"]) == 6
+    values = []
+    for d in data["designs"]:
+        u = Fraction(d["teeth"]["r"], d["teeth"]["s"])
+        eta = Fraction(d["efficiency"]["exact"])
+        assert eta == (1 + Fraction(97, 100) ** 2 * u) / (1 + u) == Fraction(d["check"]["efficiency"]["exact"])
+        assert d["check"]["efficiency_ok"] and d["check"]["passed"]
+        values.append(eta)
+    assert values == sorted(values, reverse=True)
+    code, out, _ = run(capsys, "synthesize", "--train", "simple", "--driver", "S", "--driven", "C", "--fixed", "R",
+                       "--ratio-range", "3,6", "--planets", "3", "--zmax", "60", "--top", "3", "--rank",
+                       "efficiency,size", "--quiet")
+    assert code == 0 and "by efficiency (largest first), then size (envelope diameter), then ratio error" in out
+    rows = table_rows(out)  # z_s z_p z_r ratio error size shift efficiency check; default meshes 0.98 and 0.99
+    expected = [(1 + Fraction(98 * 99, 10000) * Fraction(int(r[3]), int(r[1]))) / (1 + Fraction(int(r[3]), int(r[1])))
+                for r in rows]
+    assert [r[-2] for r in rows] == [f"{float(e):.5f}" for e in expected] and expected == sorted(expected)[::-1]
+    code, _, err = run(capsys, "synthesize", "--train", "simple", "--driver", "S", "--driven", "C", "--fixed", "R",
+                       "--ratio", "4", "--planets", "3", "--rank", "cost", "--quiet")
+    assert code == 2 and "cannot rank by 'cost'" in err and len(err.strip().splitlines()) == 1

@@ -6,6 +6,7 @@
 - :mod:`.search`: the search plan (the coaxiality solved for some tooth numbers, the ratio
   window for one more) and the evaluation of a chunk of the space, exact in integers and
   rationals;
+- :mod:`.efficiency`: the train's efficiency law, for ranking designs by it exactly;
 - :mod:`.runner`: chunks run here or on Dask, with progress and a time limit;
 - :mod:`.result`: the designs, each re-checked by building its train;
 - :func:`synthesize`: all of it in one call.

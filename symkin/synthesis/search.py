@@ -19,7 +19,8 @@ A :class:`Plan` is built once from a :class:`~symkin.synthesis.problem.Problem` 
 The outer tuples are numbered; a chunk is a range of those numbers, and
 :func:`evaluate_chunk` (a pure function of the plan and the range) returns the count of
 tuples that pass each condition and the best designs of the chunk in the one exact order
-(ratio error, then size, then tooth sum, then the tooth numbers), so any split into
+(ratio error, then size, then tooth sum, then the tooth numbers; or the plan's ``rank``,
+efficiency included: :mod:`symkin.synthesis.efficiency`), so any split into
 chunks, run anywhere, merges to the same result.
 
     >>> from symkin.trains import load_train
@@ -691,9 +692,8 @@ def _check(plan: Plan, batch: tuple, exact_calls: list[int]) -> tuple[int, list[
         fr = [Fraction(int(a), int(b)) for a, b in uniq]
         inside = np.array([plan.target.lo <= v <= plan.target.hi for v in fr], dtype=bool)
         errors = [plan.target.error(v) for v in fr]
-        order = sorted(range(len(fr)), key=lambda i: errors[i])
-        rank = np.empty(len(fr), dtype=np.int64)
-        rank[order] = np.arange(len(fr))
+        levels = {e: i for i, e in enumerate(sorted(set(errors)))}  # equal errors rank equal (a range, or +-x)
+        rank = np.array([levels[e] for e in errors], dtype=np.int64)
         ok &= inside[np.maximum(which, 0)]
         values = [float(v) for v in fr]
         reach = (min(values), max(values))
