@@ -157,3 +157,17 @@ def test_ranking_by_efficiency_from_the_command_line(capsys):
     code, _, err = run(capsys, "synthesize", "--train", "simple", "--driver", "S", "--driven", "C", "--fixed", "R",
                        "--ratio", "4", "--planets", "3", "--rank", "cost", "--quiet")
     assert code == 2 and "cannot rank by 'cost'" in err and len(err.strip().splitlines()) == 1
+
+
+def test_hostile_rank_keys_are_one_line_and_exit_2(capsys):
+    # the hostile table's values in place of --rank's (in process: the key is refused before any derivation)
+    import sys
+    from pathlib import Path
+
+    sys.path.insert(0, str(Path(__file__).parent))
+    from hostile import HOSTILE
+
+    for value in HOSTILE:
+        code, _, err = run(capsys, "synthesize", "--train", "simple", "--driver", "S", "--driven", "C", "--fixed",
+                             "R", "--ratio", "4", "--planets", "3", "--zmax", "40", f"--rank={value}", "--quiet")
+        assert code == 2 and len(err.strip().splitlines()) == 1 and "Traceback" not in err, (value, err)

@@ -121,6 +121,7 @@ def synthesize(
     symkin.errors.InputError: the ratio i = 40 +- 1 % is outside what this train gives with 18 <= z <= 100: i_{SC}^{(R)} = z_r/z_s + 1 ranges from 2.5625 to 6.55556 over coaxial tooth numbers; ask for a ratio in that range or widen the limits
     """
     began = time.perf_counter()
+    order = rank_order(rank)  # before any derivation: a bad key is refused at once
     if isinstance(train, (str, Path)):
         from symkin.trains import load_train
 
@@ -148,7 +149,6 @@ def synthesize(
     options = Options(planets=planets, zmin=zmin, zmax=zmax, pressure_angle=pressure_angle, addendum=addendum,
                       clearance=clearance, shift=shift, ring_difference=ring_difference)
     problem = derive(train, driver=driver, driven=driven, fixed=fixed, state=state, options=options)
-    order = rank_order(rank)
     plan0 = _plan(problem, target, top_n, CHUNK, order, mesh_efficiency)
     if chunk is None:
         per = max(256, min(CHUNK, math.ceil(plan0.size / 64)))

@@ -132,7 +132,7 @@ class EfficiencyLaw:
     law: sp.Expr
     args: tuple[sp.Symbol, ...]
     mesh_efficiency: Any
-    polys: tuple[tuple[tuple[int, ...], tuple[int, ...]], ...]  # exponents, coefficients of each polynomial
+    polys: tuple[tuple[tuple[tuple[int, ...], ...], tuple[int, ...]], ...]  # monomials, coefficients of each
     pieces: tuple[tuple[int, int], ...]  # each piece: polynomial numbers of P and Q
     conditions: tuple[tuple, ...]  # each piece's condition, as a tree over (P, Q) pairs
     f_float: Any  # every polynomial in binary64, or None when they do not stay exact
