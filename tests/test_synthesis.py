@@ -368,8 +368,12 @@ def test_dask_on_a_local_cluster_gives_the_same_result():
     kw = dict(driver="S1", driven="R", fixed="C", ratio="12/5", tolerance="0.01", planets=3, zmax=70, top=20,
               chunk=2000)
     here = synthesize("ravigneaux", **kw)
+    second = dict(state="second", ratio="22/15", tolerance="0.02", planets=3, zmax=70, top=20, chunk=500,
+                  rank="efficiency")  # a two-piece efficiency law
+    ranked_here = synthesize("ravigneaux", **second)
     with local_cluster(2) as cluster:
         there = synthesize("ravigneaux", scheduler=cluster.scheduler_address, **kw)
+        ranked_there = synthesize("ravigneaux", scheduler=cluster.scheduler_address, **second)
         start = time.perf_counter()  # the time limit holds on Dask too: the chunks left are cancelled
         with pytest.raises(TimeLimitError, match="more than the time limit of 4 s"):
             synthesize("ravigneaux", scheduler=cluster.scheduler_address, **{**kw, "zmax": 1500, "tolerance": "0.5",
@@ -379,6 +383,8 @@ def test_dask_on_a_local_cluster_gives_the_same_result():
         [(d.gear_teeth, d.ratio, d.error, d.size) for d in here.designs]
     assert there.found == here.found and there.funnel == here.funnel and there.execution["workers"] == 2
     assert there.execution["chunks"] == here.execution["chunks"] > 2
+    assert [(d.gear_teeth, d.ranked_efficiency) for d in ranked_there.designs] == \
+        [(d.gear_teeth, d.ranked_efficiency) for d in ranked_here.designs] and ranked_here.found > 20
 
 
 # ---------------------------------------------------------------- bad requests
