@@ -35,7 +35,7 @@ import sympy as sp
 from symkin._util.parsing import parse_number
 from symkin.errors import InputError, PoleError, PrecisionWarning, UnsupportedError
 from symkin.numeric import runtime
-from symkin.numeric.codegen import ExactPrinter, FloatPrinter, ScalarPrinter, kernel_source
+from symkin.numeric.codegen import ExactPrinter, FloatPrinter, ScalarPrinter, kernel_source, phase_sources
 from symkin.numeric.stable import ExactRatio, plain_form
 
 __all__ = ["Plan", "BACKENDS", "NumpyBackend", "NumbaBackend", "MpmathBackend", "ExactBackend", "numba_available"]
@@ -239,7 +239,8 @@ class NumpyBackend:
         self.twins = {s: sp.Symbol(f"_int_{s.name}", integer=True) for s in self.integer_syms}
         exprs = [self._twin(e) for e in plan.stable]
         printer = FloatPrinter(plan.precision)
-        modules = [runtime.NAMESPACE[plan.precision], "numpy"]
+        self.phases = {name: runtime.dd_function(text, name) for name, text in phase_sources(plan.stable).items()}
+        modules = [{**runtime.NAMESPACE[plan.precision], **self.phases}, "numpy"]
         target = list(exprs)
         self.func = sp.lambdify(
             list(plan.args) + list(self.twins.values()), target, modules=modules, printer=printer, cse=plan.cse, docstring_limit=0
@@ -274,7 +275,7 @@ class NumpyBackend:
             exprs = [self._twin(e) for e in self.plan.stable]
             return sp.lambdify(
                 list(self.plan.args) + list(self.twins.values()), exprs,
-                modules=[{**runtime.SCALAR_NAMESPACE, "math": math}, "math"], printer=ScalarPrinter({"strict": True}),
+                modules=[{**runtime.SCALAR_NAMESPACE, **self.phases, "math": math}, "math"], printer=ScalarPrinter({"strict": True}),
                 cse=self.plan.cse, docstring_limit=0,
             )
         except Exception:  # a function the math module lacks: arrays only
