@@ -21,6 +21,7 @@ import sympy as sp
 from sympy.printing.numpy import NumPyPrinter
 from sympy.printing.pycode import PythonCodePrinter
 
+from symkin.numeric.runtime import LONG_PHASE
 from symkin.numeric.stable import ExactRatio, Group, LongPhase, ProductDifference, ReducedPhase, plain_form
 
 __all__ = ["FloatPrinter", "ScalarPrinter", "ExactPrinter", "kernel_source", "abs_bound", "phase_sources"]
@@ -35,17 +36,17 @@ def phase_sources(exprs: Sequence[sp.Expr]) -> dict[str, str]:
     for e in exprs:
         for node in sp.preorder_traversal(e):
             if isinstance(node, LongPhase) and node.name not in out:
-                _key, coeff, t, *syms = node.args
-                out[node.name] = dd_source(node.name, plain_form(coeff), syms, t)
+                _key, coeff, _t, *syms = node.args
+                out[node.name] = dd_source(node.name, plain_form(coeff), syms)
     return out
 
 
 def _print_long_phase(printer: Any, expr: LongPhase, kernel: bool) -> str:
     _key, coeff, t, *syms = expr.args
     plain = f"({printer._print(coeff)})*{printer._print(t)}"
-    call = f"{expr.name}({', '.join(printer._print(a) for a in (t, *syms))})"
+    call = f"_dd_reduce_pair({expr.name}({', '.join(printer._print(a) for a in syms)}), {printer._print(t)})"
     if kernel:  # one point: the double-double path only where the phase is long (see runtime.LONG_PHASE)
-        return f"(({plain}) if abs({plain}) <= 8.0 else {call})"
+        return f"(({plain}) if abs({plain}) <= {LONG_PHASE!r} else {call})"
     return f"_symkin_long_phase({plain}, {expr.name}, {', '.join(printer._print(a) for a in (t, *syms))})"
 
 

@@ -273,7 +273,7 @@ def _numba_dd_helpers(numba: Any) -> dict[str, Any]:
     import inspect
 
     ns: dict[str, Any] = {"Any": Any, "np": np, "_INV_2PI": _INV_2PI, "_C1": _C1, "_C2": _C2, "_C3": _C3, "_SPLIT": _SPLIT}
-    for fn in (_two_prod, _two_sum, _fast_two_sum, _dd_add, _dd_mul, _dd_div, _dd_reduce):
+    for fn in (_two_prod, _two_sum, _fast_two_sum, _dd_add, _dd_mul, _dd_div, _dd_reduce, _dd_reduce_pair):
         exec(compile(inspect.getsource(fn), f"<symkin {fn.__name__}>", "exec"), ns)
         ns[fn.__name__] = numba.njit(inline="always")(ns[fn.__name__])
     out = {name: ns[name] for name in DD_HELPERS}
@@ -353,25 +353,36 @@ def _dd_reduce(ch: Any, cl: Any, t: Any) -> Any:
     return (((h - k * _C1) - k * _C2) - k * _C3) + e
 
 
+def _dd_reduce_pair(c: Any, t: Any) -> Any:
+    """:func:`_dd_reduce` of a coefficient given as the pair ``(ch, cl)``."""
+    return _dd_reduce(c[0], c[1], t)
+
+
 #: The double-double helpers a generated phase coefficient calls (see :func:`dd_source`).
-DD_HELPERS = {"_dd_add": _dd_add, "_dd_mul": _dd_mul, "_dd_div": _dd_div, "_dd_reduce": _dd_reduce}
+DD_HELPERS = {"_dd_add": _dd_add, "_dd_mul": _dd_mul, "_dd_div": _dd_div, "_dd_reduce_pair": _dd_reduce_pair}
 
 
 def long_phase(x: Any, fn: Any, t: Any, *args: Any) -> Any:
-    """The phase ``x = c t`` (evaluated plainly) where ``|x| <= LONG_PHASE``; elsewhere
-    ``fn(t, *args)``, the same phase from ``c`` in double-double, reduced mod 2 pi."""
+    """The phase ``x = c t`` (evaluated plainly) where ``|x| <= LONG_PHASE``; elsewhere the
+    same phase from ``c = fn(*args)`` in double-double, reduced mod 2 pi.  Where the
+    coefficient's inputs are numbers (an array of times only) ``c`` is computed once, in
+    Python floats."""
     if type(x) is not np.ndarray or x.ndim == 0:
-        x = np.asarray(x, np.float64)
         if not abs(x) > LONG_PHASE:
             return x
-        return fn(*(np.float64(a) for a in (t, *args)))
+        return _dd_reduce_pair(fn(*(float(a) for a in args)), float(t))
+    if x.max() <= LONG_PHASE and x.min() >= -LONG_PHASE:  # (two passes, no temporary)
+        return x
     big = np.abs(x) > LONG_PHASE
-    if np.count_nonzero(big):
-        shape = x.shape
-        parts = [a[big] if a.shape == shape else np.broadcast_to(a, shape)[big]
-                 for a in (np.asarray(v, np.float64) for v in (t, *args))]
-        x = x.astype(np.float64, copy=True)
-        x[big] = fn(*parts)
+    shape = x.shape
+    x = x if x.dtype == np.float64 else x.astype(np.float64)  # (a fresh product c*t: written in place)
+    t = np.asarray(t, np.float64)
+    tb = t[big] if t.shape == shape else np.broadcast_to(t, shape)[big]
+    if all(type(a) is float or np.ndim(a) == 0 for a in args):
+        c = fn(*(float(a) for a in args))
+    else:
+        c = fn(*(a[big] if a.shape == shape else np.broadcast_to(a, shape)[big] for a in (np.asarray(v, np.float64) for v in args)))
+    x[big] = _dd_reduce_pair(c, tb)
     return x
 
 
@@ -383,7 +394,7 @@ def long_phase_f32(x: Any, fn: Any, t: Any, *args: Any) -> Any:
 def _long_phase_scalar(x: float, fn: Any, t: float, *args: float) -> float:
     if not abs(x) > LONG_PHASE:
         return x
-    return float(fn(t, *args))
+    return float(_dd_reduce_pair(fn(*args), t))
 
 
 SCALAR_NAMESPACE["_symkin_long_phase"] = _long_phase_scalar
@@ -391,11 +402,10 @@ NAMESPACE["float64"]["_symkin_long_phase"] = long_phase
 NAMESPACE["float32"]["_symkin_long_phase"] = long_phase_f32
 
 
-def dd_source(name: str, coeff: Any, params: Any, time: Any) -> str:
-    """Python source of ``name(t, *params)``: the phase ``coeff * t`` with the rational
-    function ``coeff`` of ``params`` evaluated in double-double arithmetic and the product
-    reduced mod 2 pi (:func:`_dd_reduce`).  Straight-line arithmetic and calls of
-    :data:`DD_HELPERS`: one source serves NumPy arrays, Python floats and Numba."""
+def dd_source(name: str, coeff: Any, params: Any) -> str:
+    """Python source of ``name(*params)``: the rational function ``coeff`` of ``params``
+    in double-double arithmetic, returned as ``(hi, lo)``.  Straight-line arithmetic and
+    calls of :data:`DD_HELPERS`: one source serves NumPy arrays, Python floats and Numba."""
     import sympy as sp
 
     lines: list[str] = []
@@ -442,13 +452,17 @@ def dd_source(name: str, coeff: Any, params: Any, time: Any) -> str:
         raise ValueError(f"not a rational function of the inputs: {e}")
 
     ch, cl = emit(sp.sympify(coeff))
-    head = [f"def {name}(t, {', '.join(names.values())}):"]
-    head += [f"    {v} = _f64({v})" for v in ["t", *names.values()]]
-    return "\n".join(head + lines + [f"    return _dd_reduce({ch}, {cl}, t)"]) + "\n"
+    head = [f"def {name}({', '.join(names.values())}):"]
+    head += [f"    {v} = _f64({v})" for v in names.values()]
+    return "\n".join(head + lines + [f"    return {ch}, {cl}"]) + "\n"
+
+
+def _same(v: Any) -> Any:
+    return v
 
 
 def dd_function(source: str, name: str) -> Any:
     """The function of :func:`dd_source` for NumPy arrays and Python floats."""
-    ns: dict[str, Any] = {**DD_HELPERS, "_f64": np.float64}
+    ns: dict[str, Any] = {**DD_HELPERS, "_f64": _same}  # the callers give float64 arrays or Python floats
     exec(compile(source, f"<symkin phase {name}>", "exec"), ns)  # generated from SymPy, no user text
     return ns[name]
