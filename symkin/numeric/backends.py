@@ -379,7 +379,10 @@ class NumpyBackend:
             return False
         if any(i.dtype == object for i in ints):
             return True
-        big = [max(abs(int(i.max())), abs(int(i.min()))) if i.size else 0 for i in ints]
+        # one pass of |z| and one reduction per array (max and min took two reductions)
+        big = [int(np.maximum.reduce(np.abs(i), axis=None)) if i.size else 0 for i in ints]
+        if any(b < 0 for b in big):  # |-2^63| wraps to -2^63 in int64
+            return True
         for terms in self.bound_terms:
             bound = 0
             for coeff, powers in terms:
@@ -405,11 +408,19 @@ class NumpyBackend:
         plan = self.plan
         if not self.twins:  # real inputs only
             names, dtype = self.names, self.dtype
-            floats = [
-                v if type(v) is np.ndarray and v.dtype == dtype else _as_floats(as_array(v, nm), nm, dtype)
-                for v, nm in zip(values, names)
-            ]
-            shape = common_shape(floats, names)
+            floats = []
+            shape = None
+            same = True  # every input an array of one shape (the common call): no broadcasting to decide
+            for v, nm in zip(values, names):
+                if type(v) is not np.ndarray or v.dtype != dtype:
+                    v = _as_floats(as_array(v, nm), nm, dtype)
+                floats.append(v)
+                if shape is None:
+                    shape = v.shape
+                elif v.shape != shape:
+                    same = False
+            if not same or shape is None:
+                shape = common_shape(floats, names)
             n = math.prod(shape)
             if outs is None and n <= plan.chunk:
                 # one call on the arrays as given: no copies, no chunks, one finiteness pass

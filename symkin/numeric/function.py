@@ -138,7 +138,9 @@ class NumericFunction:
             raise InputError(f"this function takes {len(self.args)} arguments ({', '.join(self.args)}), got {len(values)}")
         if out is None:
             # (the float backends' scalar path checks the types itself: no loop here)
-            if self._scalar_typed or (self._scalar is not None and not any(isinstance(v, _ARRAYS) for v in values)):
+            if (self._scalar_typed and not (values and type(values[0]) is np.ndarray)) or (
+                self._scalar is not None and not any(isinstance(v, _ARRAYS) for v in values)
+            ):
                 point = self._scalar(values)
                 if point is not None:
                     return point[0] if len(point) == 1 else tuple(point)
