@@ -349,21 +349,34 @@ class NumpyBackend:
         plan = self.plan
         arrays = [as_array(v, s.name) for v, s in zip(values, plan.args)]
         floats, int_list = [], []
+        placeholder = self._placeholder
         for a, s, used in zip(arrays, plan.args, self.float_used):
             if s not in self.twins:
                 floats.append(_as_floats(a, s.name, plan.dtype))
                 continue
             i = a if a.dtype.kind == "f" and a.ndim else _as_integers(a, s.name)
             int_list.append(i)
-            if not used:  # only its exact integer value is needed
-                floats.append(np.zeros((), dtype=plan.dtype))
+            if not used:  # only its exact integer value is needed: a 0-d zero that takes no part in the broadcast
+                floats.append(placeholder)
             elif i.dtype.kind == "f":
                 floats.append(i.astype(plan.dtype, copy=False))
             else:
                 floats.append(np.asarray(i, dtype=np.float64).astype(plan.dtype, copy=False))
-        shape, flat = broadcast_flat(floats + int_list, [s.name for s in plan.args] + [s.name for s in self.twins])
-        k = len(floats)
-        return shape, flat[:k], flat[k:]
+        real = [k for k, f in enumerate(floats) if f is not placeholder]
+        shape, flat = broadcast_flat([floats[k] for k in real] + int_list,
+                                     [plan.args[k].name for k in real] + [s.name for s in self.twins])
+        out = [placeholder] * len(floats)
+        for j, k in enumerate(real):
+            out[k] = flat[j]
+        return shape, out, flat[len(real):]
+
+    @property
+    def _placeholder(self) -> np.ndarray:
+        value = self.__dict__.get("_zero")
+        if value is None:
+            value = self.__dict__["_zero"] = np.zeros((), dtype=self.plan.dtype)
+            value.flags.writeable = False
+        return value
 
     def integer_chunk(self, ints: Sequence[np.ndarray]) -> list[np.ndarray]:
         """Integer inputs of one chunk as int64 (float arrays checked and cast here), or
@@ -436,8 +449,10 @@ class NumpyBackend:
             if outs is None and n <= plan.chunk:
                 ints = self.integer_chunk(ints)
                 flat_shape = (n,) if shape else ()
-                results = [_own(r, flat_shape, plan.dtype, floats + ints) for r in self.run(floats, ints)]
-                return shape, results, not _all_finite(results)
+                with np.errstate(all="ignore"):  # one context for the call and its finiteness pass
+                    out = self.func(*floats, *ints)
+                    results = [_own(r, flat_shape, plan.dtype, floats + ints) for r in out]
+                    return shape, results, not _finite(results)
         results = _allocate(outs, len(plan.stable), n, plan.dtype)
         chunk = max(1, plan.chunk)
         starts = list(range(0, n, chunk))

@@ -173,6 +173,13 @@ def exact_ratio(num: Any, den: Any) -> Any:
         return np.true_divide(num, den)
 
 
+def _exact_ratio_quiet(num: Any, den: Any) -> Any:
+    """:func:`exact_ratio` for generated code, which runs inside ``np.errstate(all="ignore")``."""
+    if type(num) is np.ndarray and type(den) is np.ndarray and num.dtype != object and den.dtype != object:
+        return np.true_divide(num, den)
+    return exact_ratio(num, den)
+
+
 def exact_ratio_f32(num: Any, den: Any) -> Any:
     """:func:`exact_ratio` rounded to float32."""
     return np.asarray(exact_ratio(num, den), dtype=np.float32)
@@ -200,7 +207,7 @@ SCALAR_NAMESPACE = {
 #: Names the generated NumPy code calls, by precision.
 NAMESPACE = {
     "float64": {
-        "_symkin_exact_ratio": exact_ratio, "_symkin_reduced_phase": reduced_phase,
+        "_symkin_exact_ratio": _exact_ratio_quiet, "_symkin_reduced_phase": reduced_phase,
         "_symkin_product_difference": product_difference,
     },
     "float32": {
