@@ -421,19 +421,29 @@ class NumpyBackend:
         plan = self.plan
         if not self.twins:  # real inputs only
             names, dtype = self.names, self.dtype
-            floats = []
+            floats: list[Any] = []
             shape = None
-            same = True  # every input an array of one shape (the common call): no broadcasting to decide
+            same = True  # every array of one shape (the common call): no broadcasting to decide
+            wide = dtype is np.float64
             for v, nm in zip(values, names):
-                if type(v) is not np.ndarray or v.dtype != dtype:
+                kind = type(v)
+                if wide and (kind is float or kind is np.float64):
+                    # a number stays a NumPy number (IEEE: x/0 is inf, not an exception): its arithmetic
+                    # in the generated code is cheaper than a 0-d array's ufunc call per operation
+                    floats.append(np.float64(v))
+                    continue
+                if kind is not np.ndarray or v.dtype != dtype:
                     v = _as_floats(as_array(v, nm), nm, dtype)
                 floats.append(v)
                 if shape is None:
                     shape = v.shape
                 elif v.shape != shape:
                     same = False
-            if not same or shape is None:
-                shape = common_shape(floats, names)
+            if shape is None:
+                shape = ()
+            elif not same:
+                shape = common_shape([f for f in floats if type(f) is np.ndarray],
+                                     [nm for f, nm in zip(floats, names) if type(f) is np.ndarray])
             n = math.prod(shape)
             if outs is None and n <= plan.chunk:
                 # one call on the arrays as given: no copies, no chunks, one finiteness pass
@@ -441,7 +451,7 @@ class NumpyBackend:
                     out = self.func(*floats)
                     results = [_own(r, shape, dtype, floats) for r in out]
                     return shape, results, not _finite(results)
-            shape, floats = broadcast_flat(floats, names)
+            shape, floats = broadcast_flat([np.asarray(f, dtype) for f in floats], names)
             ints: list[np.ndarray] = []
         else:
             shape, floats, ints = self.prepare(values)
