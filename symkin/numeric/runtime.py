@@ -93,7 +93,15 @@ def product_difference(a: Any, b: Any, c: Any, d: Any) -> Any:
     p = a * b
     q = c * d
     out = p - q
-    near = np.abs(out + out) < np.abs(p + q)  # cancels to less than half the sum (nan: False)
+    if out.ndim and type(p) is np.ndarray and type(q) is np.ndarray and p.shape == out.shape == q.shape:
+        # the same test in place (fewer temporaries: at 10^5 points the test is memory bound)
+        np.add(p, q, out=p)
+        np.abs(p, out=p)
+        np.abs(out, out=q)
+        np.add(q, q, out=q)
+        near = np.less(q, p)
+    else:
+        near = np.abs(out + out) < np.abs(p + q)  # cancels to less than half the sum (nan: False)
     if out.ndim == 0:
         if near:
             exact = _product_difference_core(a, b, c, d)
