@@ -381,8 +381,8 @@ def markdown(res: dict) -> str:
         lines.append(f"- Scalar calls: before, {BEFORE['scalar call']}; this run, {text}.")
     lines += [
         "",
-        "The default path's earlier before/after table against commit 513222f (a separate, older run, CPU",
-        "time): [numerics-default-path.md](numerics-default-path.md).",
+        "The default path of this tree against commit 513222f (before issue 18's work), in alternating processes",
+        "and CPU time, is a separate run of `benchmarks/default_path.py`: [numerics-default-path.md](numerics-default-path.md).",
         "",
     ]
     return "\n".join(lines) + "\n" + STATIC
