@@ -6,10 +6,11 @@ before and after a change, side by side in one run.
 
 The tree at REF (``git archive``) and this tree are measured in alternating child processes
 (before, after, before, after, ...), each timing lambdify and symkin on the same inputs, so
-both rows of a law come from the same moments of a shared machine.  Laws: the benchmark set
-of benchmarks/run.py (AA ratio in teeth, II differential with r4 substituted, AI planet
-acceleration, elliptical-drive slider acceleration) and the II differential in radii as the
-README compiles it (unsubstituted: denominator r1 r3 - r2 r4).  Times are CPU time
+both rows of a law come from the same moments of a shared machine.  Laws: the earlier benchmark
+set (AA ratio in teeth, II differential with r4 substituted, AI planet acceleration,
+elliptical-drive slider acceleration) and the II differential in radii as the README compiles it
+(unsubstituted: denominator r1 r3 - r2 r4).  benchmarks/run.py is the one runner of every method
+side by side (docs/numerics.md); this script compares two trees of symkin.  Times are CPU time
 (time.process_time), medians over rounds x repeats; the spread is (max - min) / median.
 """
 

@@ -91,7 +91,9 @@ class _Spec:
 
     def build(self) -> NumericFunction:
         laws = [Law(sp.Symbol(n), e) for n, e in zip(self.names, self.exprs)]
-        return compile(laws, list(self.args), **dict(self.options))
+        options = dict(self.options)
+        options["ranges"] = dict(options.get("ranges") or ())  # kept as pairs (hashable), given as a mapping
+        return compile(laws, list(self.args), **options)
 
 
 def compile(
@@ -119,7 +121,10 @@ def compile(
     backend : {"numpy", "numba", "mpmath", "exact"}
         ``"numba"`` needs the ``numba`` extra; without it symkin warns once and uses NumPy.
     precision : {"float64", "float32"}
-        For the numpy and numba backends.
+        For the numpy and numba backends.  float32 inputs are the inputs; other inputs are
+        rounded to float32, and where that rounding moves a result near a pole or zero by
+        more than 2^-16 of the call's largest value a PrecisionWarning says so (checked by
+        a float64 evaluation, paid only when inputs are not float32 already).
     digits : int
         Significant digits of the mpmath backend.
     cse : bool
@@ -130,8 +135,8 @@ def compile(
         Known ranges of symbols, which let the rewriting decide signs (e.g. an
         eccentricity in (0, 1)).
     reduce_phase : sequence of Symbol, optional
-        Time symbols whose phases (``sin(c omega t)``...) are reduced in double-double
-        arithmetic, for long times.  Default: the arguments named ``t`` (the elliptical
+        Time symbols whose phases (``sin(c omega t)``, ``c`` a rational function of
+        inputs) are reduced mod 2 pi in double-double arithmetic, for long times.  Default: the arguments named ``t`` (the elliptical
         drive's slider at e = 0.999999 keeps 1e-13 normwise at its speed peaks only so);
         ``()`` turns the reduction off.
     chunk : int

@@ -35,7 +35,7 @@ import sympy as sp
 from symkin._util.parsing import parse_number
 from symkin.errors import InputError, PoleError, PrecisionWarning, UnsupportedError
 from symkin.numeric import runtime
-from symkin.numeric.codegen import ExactPrinter, FloatPrinter, ScalarPrinter, kernel_source
+from symkin.numeric.codegen import ExactPrinter, FloatPrinter, ScalarPrinter, kernel_source, phase_sources
 from symkin.numeric.stable import ExactRatio, plain_form
 
 __all__ = ["Plan", "BACKENDS", "NumpyBackend", "NumbaBackend", "MpmathBackend", "ExactBackend", "numba_available"]
@@ -239,7 +239,8 @@ class NumpyBackend:
         self.twins = {s: sp.Symbol(f"_int_{s.name}", integer=True) for s in self.integer_syms}
         exprs = [self._twin(e) for e in plan.stable]
         printer = FloatPrinter(plan.precision)
-        modules = [runtime.NAMESPACE[plan.precision], "numpy"]
+        self.phases = {name: runtime.dd_function(text, name) for name, text in phase_sources(plan.stable).items()}
+        modules = [{**runtime.NAMESPACE[plan.precision], **self.phases}, "numpy"]
         target = list(exprs)
         self.func = sp.lambdify(
             list(plan.args) + list(self.twins.values()), target, modules=modules, printer=printer, cse=plan.cse, docstring_limit=0
@@ -274,7 +275,7 @@ class NumpyBackend:
             exprs = [self._twin(e) for e in self.plan.stable]
             return sp.lambdify(
                 list(self.plan.args) + list(self.twins.values()), exprs,
-                modules=[{**runtime.SCALAR_NAMESPACE, "math": math}, "math"], printer=ScalarPrinter({"strict": True}),
+                modules=[{**runtime.SCALAR_NAMESPACE, **self.phases, "math": math}, "math"], printer=ScalarPrinter({"strict": True}),
                 cse=self.plan.cse, docstring_limit=0,
             )
         except Exception:  # a function the math module lacks: arrays only
@@ -348,21 +349,34 @@ class NumpyBackend:
         plan = self.plan
         arrays = [as_array(v, s.name) for v, s in zip(values, plan.args)]
         floats, int_list = [], []
+        placeholder = self._placeholder
         for a, s, used in zip(arrays, plan.args, self.float_used):
             if s not in self.twins:
                 floats.append(_as_floats(a, s.name, plan.dtype))
                 continue
             i = a if a.dtype.kind == "f" and a.ndim else _as_integers(a, s.name)
             int_list.append(i)
-            if not used:  # only its exact integer value is needed
-                floats.append(np.zeros((), dtype=plan.dtype))
+            if not used:  # only its exact integer value is needed: a 0-d zero that takes no part in the broadcast
+                floats.append(placeholder)
             elif i.dtype.kind == "f":
                 floats.append(i.astype(plan.dtype, copy=False))
             else:
                 floats.append(np.asarray(i, dtype=np.float64).astype(plan.dtype, copy=False))
-        shape, flat = broadcast_flat(floats + int_list, [s.name for s in plan.args] + [s.name for s in self.twins])
-        k = len(floats)
-        return shape, flat[:k], flat[k:]
+        real = [k for k, f in enumerate(floats) if f is not placeholder]
+        shape, flat = broadcast_flat([floats[k] for k in real] + int_list,
+                                     [plan.args[k].name for k in real] + [s.name for s in self.twins])
+        out = [placeholder] * len(floats)
+        for j, k in enumerate(real):
+            out[k] = flat[j]
+        return shape, out, flat[len(real):]
+
+    @property
+    def _placeholder(self) -> np.ndarray:
+        value = self.__dict__.get("_zero")
+        if value is None:
+            value = self.__dict__["_zero"] = np.zeros((), dtype=self.plan.dtype)
+            value.flags.writeable = False
+        return value
 
     def integer_chunk(self, ints: Sequence[np.ndarray]) -> list[np.ndarray]:
         """Integer inputs of one chunk as int64 (float arrays checked and cast here), or
@@ -378,7 +392,10 @@ class NumpyBackend:
             return False
         if any(i.dtype == object for i in ints):
             return True
-        big = [max(abs(int(i.max())), abs(int(i.min()))) if i.size else 0 for i in ints]
+        # one pass of |z| and one reduction per array (max and min took two reductions)
+        big = [int(np.maximum.reduce(np.abs(i), axis=None)) if i.size else 0 for i in ints]
+        if any(b < 0 for b in big):  # |-2^63| wraps to -2^63 in int64
+            return True
         for terms in self.bound_terms:
             bound = 0
             for coeff, powers in terms:
@@ -404,11 +421,29 @@ class NumpyBackend:
         plan = self.plan
         if not self.twins:  # real inputs only
             names, dtype = self.names, self.dtype
-            floats = [
-                v if type(v) is np.ndarray and v.dtype == dtype else _as_floats(as_array(v, nm), nm, dtype)
-                for v, nm in zip(values, names)
-            ]
-            shape = common_shape(floats, names)
+            floats: list[Any] = []
+            shape = None
+            same = True  # every array of one shape (the common call): no broadcasting to decide
+            wide = dtype is np.float64
+            for v, nm in zip(values, names):
+                kind = type(v)
+                if wide and (kind is float or kind is np.float64):
+                    # a number stays a NumPy number (IEEE: x/0 is inf, not an exception): its arithmetic
+                    # in the generated code is cheaper than a 0-d array's ufunc call per operation
+                    floats.append(np.float64(v))
+                    continue
+                if kind is not np.ndarray or v.dtype != dtype:
+                    v = _as_floats(as_array(v, nm), nm, dtype)
+                floats.append(v)
+                if shape is None:
+                    shape = v.shape
+                elif v.shape != shape:
+                    same = False
+            if shape is None:
+                shape = ()
+            elif not same:
+                shape = common_shape([f for f in floats if type(f) is np.ndarray],
+                                     [nm for f, nm in zip(floats, names) if type(f) is np.ndarray])
             n = math.prod(shape)
             if outs is None and n <= plan.chunk:
                 # one call on the arrays as given: no copies, no chunks, one finiteness pass
@@ -416,7 +451,7 @@ class NumpyBackend:
                     out = self.func(*floats)
                     results = [_own(r, shape, dtype, floats) for r in out]
                     return shape, results, not _finite(results)
-            shape, floats = broadcast_flat(floats, names)
+            shape, floats = broadcast_flat([np.asarray(f, dtype) for f in floats], names)
             ints: list[np.ndarray] = []
         else:
             shape, floats, ints = self.prepare(values)
@@ -424,8 +459,10 @@ class NumpyBackend:
             if outs is None and n <= plan.chunk:
                 ints = self.integer_chunk(ints)
                 flat_shape = (n,) if shape else ()
-                results = [_own(r, flat_shape, plan.dtype, floats + ints) for r in self.run(floats, ints)]
-                return shape, results, not _all_finite(results)
+                with np.errstate(all="ignore"):  # one context for the call and its finiteness pass
+                    out = self.func(*floats, *ints)
+                    results = [_own(r, flat_shape, plan.dtype, floats + ints) for r in out]
+                    return shape, results, not _finite(results)
         results = _allocate(outs, len(plan.stable), n, plan.dtype)
         chunk = max(1, plan.chunk)
         starts = list(range(0, n, chunk))

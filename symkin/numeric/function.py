@@ -17,7 +17,14 @@ from typing import Any
 
 import numpy as np
 
-from symkin.errors import FloatOverflowWarning, InputError, NonFiniteInputWarning, PoleError, PoleWarning
+from symkin.errors import (
+    FloatOverflowWarning,
+    InputError,
+    NonFiniteInputWarning,
+    PoleError,
+    PoleWarning,
+    PrecisionWarning,
+)
 
 __all__ = ["NumericFunction", "NonFiniteInputWarning"]  # the warning lives in symkin.errors
 
@@ -75,6 +82,7 @@ class NumericFunction:
         self._plan = plan
         self._spec = spec
         self._token: str | None = None
+        self._float64: NumericFunction | None = None  # the float64 twin that checks float32 results
         self.args: tuple[str, ...] = tuple(s.name for s in plan.args)
         self.outputs: tuple[str, ...] = plan.names
         self.backend = backend
@@ -130,7 +138,9 @@ class NumericFunction:
             raise InputError(f"this function takes {len(self.args)} arguments ({', '.join(self.args)}), got {len(values)}")
         if out is None:
             # (the float backends' scalar path checks the types itself: no loop here)
-            if self._scalar_typed or (self._scalar is not None and not any(isinstance(v, _ARRAYS) for v in values)):
+            if (self._scalar_typed and not (values and type(values[0]) is np.ndarray)) or (
+                self._scalar is not None and not any(isinstance(v, _ARRAYS) for v in values)
+            ):
                 point = self._scalar(values)
                 if point is not None:
                     return point[0] if len(point) == 1 else tuple(point)
@@ -139,6 +149,8 @@ class NumericFunction:
         shape, results, flagged = self._evaluator.evaluate(values, out)
         if flagged and self.on_pole != "return":
             self._check_poles(values, shape, results)
+        if self.precision == "float32":
+            self._check_float32(values, shape, results)
         if out is not None:
             shaped = [o for o in out]
         else:
@@ -189,6 +201,55 @@ class NumericFunction:
                 raise PoleError(msg + "; choose inputs away from it")
             warnings.warn(msg + "; those points hold inf or nan", PoleWarning, stacklevel=3)
 
+
+    #: Relative difference from the float64 evaluation beyond which a float32 result has
+    #: lost its precision (float32 rounds at 2^-24: 8 of its 24 bits gone).
+    F32_TOLERANCE = 2.0**-16
+
+    def _check_float32(self, values: Sequence[Any], shape: tuple[int, ...], results: Sequence[np.ndarray]) -> None:
+        """Warn (PrecisionWarning) where inputs given in more precision than float32 were
+        rounded to float32 and that rounding moved the result by more than
+        :attr:`F32_TOLERANCE` of the largest value of the call (near a pole, a few units
+        of 2^-24 in an input are the whole denominator).  The float64 evaluation this
+        takes is paid only for inputs float32 does not hold; float32 inputs cost nothing here."""
+        try:
+            arrays = [np.asarray(v, dtype=np.float64) for v in values]
+        except (TypeError, ValueError, OverflowError):
+            return
+        if all(np.array_equal(a.astype(np.float32), a, equal_nan=True) for a in arrays):
+            return  # the float32 inputs are the inputs: the stable forms hold
+        if self._float64 is None:
+            import dataclasses
+
+            options = dict(self._spec.options)
+            options.update(precision="float64", backend="numpy", on_pole="return")
+            spec = dataclasses.replace(self._spec, options=tuple(sorted(options.items())))
+            self._float64 = spec.build()
+        wide = self._float64(*arrays)
+        wide = wide if isinstance(wide, tuple) else (wide,)
+        total = math.prod(shape)
+        for name, narrow, w in zip(self.outputs, results, wide):
+            w = np.reshape(w, -1)
+            narrow = np.reshape(narrow, -1).astype(np.float64)
+            finite = np.isfinite(w)
+            if not finite.any():
+                continue
+            scale = float(np.max(np.abs(w[finite])))  # normwise: a zero crossing of an oscillating law is no loss
+            with np.errstate(all="ignore"):
+                lost = finite & (w != 0) & ~(np.abs(narrow - w) <= self.F32_TOLERANCE * scale)
+            count = int(np.count_nonzero(lost))
+            if not count:
+                continue
+            i = int(np.flatnonzero(lost)[0])
+            flat = [np.broadcast_to(a, shape).reshape(-1) for a in arrays]
+            warnings.warn(
+                f"{name} in float32 differs from its float64 value by up to "
+                f"{float(np.max(np.abs(narrow[lost] - w[lost]) / np.abs(w[lost]))):.2g} (relative) at {count} of {total} "
+                f"points (first at {_point(self.args, flat, i)}): rounding the inputs to float32 moved them "
+                "near a pole or a zero of the law, where float32 cannot hold the result; give float32 inputs, "
+                "or compile with precision='float64'",
+                PrecisionWarning, stacklevel=3,
+            )
 
     def _overflow(self, name: str, arrays: Sequence[np.ndarray], i: int) -> float | None:
         """log10 of the size of output ``name`` at point ``i`` if the law is finite there and it,

@@ -24,9 +24,13 @@ pattern-based on SymPy expressions:
   :class:`ProductDifference`, evaluated in double-double arithmetic: its relative error
   is about 2^-53 however close ``a b`` and ``c d`` are, so a denominator near its zero
   keeps its digits (the AA ratio ``r1 r3/(r1 r3 - r2 r4)`` near its pole).
-* :func:`reduce_phases` (on request) -- ``sin``/``cos``/``tan`` of ``c * x * y * t + b``
-  evaluate the product in double-double arithmetic and reduce it modulo 2 pi before
-  the call (:class:`ReducedPhase`), so ``omega t`` of 10^6 turns keeps its digits.
+* :func:`reduce_phases` (for the arguments named ``t`` unless told otherwise) --
+  ``sin``/``cos``/``tan`` of ``c * x * y * t + b`` evaluate the product in double-double
+  arithmetic and reduce it modulo 2 pi before the call (:class:`ReducedPhase`), so
+  ``omega t`` of 10^6 turns keeps its digits; a phase ``c t`` with ``c`` any rational
+  function of inputs (``omega_1 r1 r3/(r1 r3 + r2 r4) t``) becomes :class:`LongPhase`:
+  where it exceeds 8 rad, ``c`` is evaluated in double-double from the inputs and the
+  product reduced, so the rounding of ``c`` is not multiplied by ``t``.
 
 Signs are decided from SymPy's assumptions, helped by ``ranges`` ({symbol: (lo, hi)}):
 an eccentricity declared in (0, 1) makes ``(1 + e)/(1 - e)`` positive.
@@ -54,6 +58,7 @@ __all__ = [
     "Group",
     "ExactRatio",
     "ReducedPhase",
+    "LongPhase",
     "ProductDifference",
     "stable_form",
     "relative_form",
@@ -165,6 +170,47 @@ class ReducedPhase(sp.Function):
         return sp.Rational(p, q) * sp.Mul(*xs)
 
 
+class LongPhase(sp.Function):
+    """``c * t`` for a rational function ``c`` of inputs, reduced mod 2 pi where it is long.
+
+    Arguments: a key (an integer digest of ``c``, naming the generated double-double code),
+    ``c``, ``t``, and the symbols of ``c`` in order.  Float backends evaluate ``c t`` as
+    written where ``|c t| <= 8`` rad, and elsewhere ``c`` in double-double arithmetic
+    from the inputs (so the rounding of ``c`` to a float is not multiplied by ``t``),
+    the product reduced modulo 2 pi: the phase keeps about 2^-52 pi at any number of
+    turns below 2^27 (the plain product loses ``|c t| 2^-53`` radians and more).
+    """
+
+    is_real = True
+
+    def doit(self, **hints: Any) -> sp.Expr:
+        """The plain phase ``c t``."""
+        return self.args[1] * self.args[2]
+
+    def _eval_evalf(self, prec: int) -> sp.Expr:
+        return self.doit()._eval_evalf(prec)
+
+    def _eval_derivative(self, s: sp.Symbol) -> sp.Expr:
+        return sp.diff(self.doit(), s)
+
+    def _latex(self, printer: Any) -> str:
+        return printer._print(self.doit())
+
+    @property
+    def name(self) -> str:
+        """The name of the generated double-double function."""
+        return f"_symkin_phase_{int(self.args[0]):016x}"
+
+
+def long_phase(coeff: sp.Expr, t: sp.Symbol) -> LongPhase:
+    """The :class:`LongPhase` of ``coeff * t`` (its key a digest of ``coeff``)."""
+    import hashlib
+
+    key = int(hashlib.sha256(sp.srepr(coeff).encode()).hexdigest()[:15], 16)
+    syms = sorted(coeff.free_symbols, key=lambda s: s.name)
+    return LongPhase(sp.Integer(key), coeff, t, *syms)
+
+
 class ProductDifference(_Deferred):
     """``a*b - c*d``, evaluated in double-double arithmetic by the float backends where
     the two products cancel.
@@ -202,7 +248,7 @@ def plain_form(expr: sp.Expr) -> sp.Expr:
     >>> plain_form(ExactRatio(z - 1, z))
     (z - 1)/z
     """
-    return expr.replace(lambda e: isinstance(e, (Group, ExactRatio, ReducedPhase, ProductDifference)), lambda e: e.doit())
+    return expr.replace(lambda e: isinstance(e, (Group, ExactRatio, ReducedPhase, ProductDifference, LongPhase)), lambda e: e.doit())
 
 
 # --------------------------------------------------------------------------- signs
@@ -561,7 +607,9 @@ def reduce_phases(expr: sp.Expr, times: Iterable[sp.Symbol]) -> sp.Expr:
     """Reduce the phase of ``sin``, ``cos``, ``tan`` whose argument is ``c x y t + b``.
 
     ``c`` is a rational constant, at most three symbol factors, ``t`` one of ``times``;
-    the product is evaluated in double-double arithmetic and reduced modulo 2 pi.
+    the product is evaluated in double-double arithmetic and reduced modulo 2 pi.  Other
+    terms ``c t`` with ``c`` a rational function of inputs with rational coefficients
+    become :class:`LongPhase` (``c`` in double-double where the phase is long).
 
     >>> t, w = sp.symbols("t omega", real=True)
     >>> reduce_phases(sp.sin(w*t/2 + 1), [t])
@@ -579,12 +627,31 @@ def reduce_phases(expr: sp.Expr, times: Iterable[sp.Symbol]) -> sp.Expr:
                 new_terms.append(term)
                 continue
             coeff, factors = term.as_coeff_mul()
-            if not coeff.is_Rational or len(factors) > 3 or not all(f.is_Symbol for f in factors):
+            if coeff.is_Rational and len(factors) <= 3 and all(f.is_Symbol for f in factors):
+                new_terms.append(ReducedPhase(coeff.p, coeff.q, *factors))
+                continue
+            long = _long_phase(term, times)
+            if long is None:
                 return node
-            new_terms.append(ReducedPhase(coeff.p, coeff.q, *factors))
+            new_terms.append(long)
         return node.func(sp.Add(*new_terms))
 
     return expr.replace(lambda n: isinstance(n, (sin, cos, tan)), rewrite)
+
+
+def _long_phase(term: sp.Expr, times: set[sp.Symbol]) -> sp.Expr | None:
+    """``term`` as :class:`LongPhase` ``c t`` when it is one time symbol times a rational
+    function ``c`` of other symbols with rational coefficients, else None."""
+    ts = term.free_symbols & times
+    if len(ts) != 1:
+        return None
+    (t,) = ts
+    coeff = term / t
+    if coeff.has(t) or not coeff.free_symbols or not _rational_function(plain_form(coeff)):
+        return None
+    if any(n.is_Atom and n.is_number and not n.is_Rational for n in sp.preorder_traversal(plain_form(coeff))):
+        return None  # pi, a float: not held exactly in double-double
+    return long_phase(coeff, t)
 
 
 # --------------------------------------------------------------------------- all

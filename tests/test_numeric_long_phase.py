@@ -1,0 +1,93 @@
+"""Long times by default: the planet laws at t = 1e6 s keep 1e-13 normwise, because the phase
+c t is reduced mod 2 pi with c = omega_1 r1 r3/(r1 r3 + r2 r4) evaluated in double-double from
+the inputs (not rounded to a float first); and a float32 request whose rounded inputs land
+near a pole says so.  References: the mpmath backend at 50 digits on the same binary inputs."""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+import pytest
+import sympy as sp
+
+import symkin
+from symkin import schemes
+from symkin import symbols as S
+from symkin.numeric import stable as st
+from symkin.numeric.backends import numba_available
+
+FLOAT_BACKENDS = ["numpy"] + (["numba"] if numba_available() else [])
+W1, T = S.omega("1"), S.t
+R = [S.radius(i) for i in "1234"]
+ARGS = [W1, *R, S.t]
+
+
+def planet_laws():
+    """AI, gear 4 fixed: the planet particle's velocity and acceleration (x and y)."""
+    motion = schemes.two_row("AI").motion({"1": W1, "4": 0})
+    particle = motion.particle("23", (R[0], 0))
+    return [*particle.velocity, *particle.acceleration]
+
+
+def normwise(got, ref):
+    return float(np.max(np.abs(got - ref)) / np.max(np.abs(ref)))
+
+
+@pytest.fixture(scope="module")
+def reference():
+    laws = planet_laws()
+    rng = np.random.default_rng(41)
+    t = 1e6 + rng.uniform(0, 20, 60)
+    values = [2.0, 2.0, 1.5, 1.0, 4.5, t]
+    ref = symkin.compile(laws, ARGS, backend="mpmath", digits=50)(*values)
+    return laws, values, [np.array([float(x) for x in r]) for r in ref]
+
+
+@pytest.mark.parametrize("backend", FLOAT_BACKENDS)
+def test_planet_laws_at_a_million_seconds_keep_1e13_by_default(reference, backend):
+    laws, values, ref = reference
+    got = symkin.compile(laws, ARGS, backend=backend)(*values)
+    for g, r in zip(got, ref):
+        assert normwise(g, r) <= 1e-13
+    plain = symkin.compile(laws, ARGS, backend=backend, reduce_phase=())(*values)
+    assert max(normwise(g, r) for g, r in zip(plain, ref)) > 1e-11  # what the reduction avoids (1.6e-10)
+
+
+def test_the_scalar_path_reduces_the_phase_too(reference):
+    laws, values, ref = reference
+    f = symkin.compile(laws, ARGS)
+    for i in range(5):
+        point = [*values[:5], float(values[5][i])]
+        got = f(*point)
+        assert all(isinstance(g, np.float64) for g in got)  # the scalar path, not the arrays
+        for g, r in zip(got, ref):
+            assert abs(g - r[i]) <= 1e-13 * np.max(np.abs(r))
+
+
+def test_short_phases_are_the_plain_product_and_long_ones_are_reduced():
+    w, t = sp.Symbol("w", positive=True), sp.Symbol("t", real=True)
+    r1, r2 = sp.symbols("r1 r2", positive=True)
+    law = sp.sin(w * r1 * t / (r1 + r2))
+    f = symkin.compile(law, [w, r1, r2, t])
+    assert any(isinstance(n, st.LongPhase) for n in sp.preorder_traversal(f.stable_exprs[0]))
+    assert sp.simplify(st.plain_form(f.stable_exprs[0]) - law) == 0
+    ref = symkin.compile(law, [w, r1, r2, t], backend="mpmath", digits=50)
+    ts = np.array([0.0, 1.0, 3.0, 1e3, 1e6, 1e8])
+    got = f(0.7, 0.3, 0.1, ts)
+    exact = np.array([float(x) for x in ref(0.7, 0.3, 0.1, ts)])
+    assert np.max(np.abs(got - exact)) <= 4e-16
+    # a coefficient holding pi is not exact in double-double: left as it is
+    assert not any(isinstance(n, st.LongPhase) for n in sp.preorder_traversal(st.reduce_phases(sp.sin(sp.pi * w * t / (r1 + r2)), [t])))
+
+
+@pytest.mark.parametrize("backend", FLOAT_BACKENDS)
+def test_float32_near_a_pole_from_float64_inputs_warns(backend):
+    aa = schemes.two_row("AA").ratio("H", "1", fixed="4")  # r1 r3/(r1 r3 - r2 r4)
+    f = symkin.compile(aa, backend=backend, precision="float32")
+    with pytest.warns(symkin.PrecisionWarning, match="float32 cannot hold"):
+        f(0.7, 0.1, 0.3, 2.1)  # r1 r3 - r2 r4 = -4.2e-17 in float64, its float32 rounding is another point
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        f(np.float32(0.7), np.float32(0.1), np.float32(0.3), np.float32(2.1))  # the float32 point itself: exact
+        f(0.5, 0.25, 1.0, 1.0)  # far from the pole: float32 holds it
