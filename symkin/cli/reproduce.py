@@ -48,6 +48,19 @@ def register(sub: Any) -> None:
                      default="symkin-out")
     add_quiet_flag(p)
     p.add_argument("--no-pdf", action="store_true", help="do not compile equations.tex to equations.pdf")
+    p.add_argument("--jobs", type=_jobs, default=None, metavar="N",
+                   help="N: worker processes for the papers' checks and figures (default: one per core; 1: none)")
+
+
+def _jobs(text: str) -> int:
+    """The --jobs value: a whole number of at least 1."""
+    try:
+        n = int(text)
+    except ValueError:
+        n = 0
+    if n < 1:
+        raise argparse.ArgumentTypeError(f"--jobs takes a whole number of at least 1, not {text!r}")
+    return n
 
 
 @contextmanager
@@ -85,7 +98,7 @@ def run_reproduce(args: Any) -> int:
     out = Path(args.out)
     pdf = not args.no_pdf
     with _terminate_as_interrupt():
-        results = run(names, out, quiet=args.quiet, pdf=pdf)
+        results = run(names, out, quiet=args.quiet, pdf=pdf, jobs=args.jobs)
     pdf_note = MISSING if pdf and find_pdflatex() is None else ""
     # the report as written (its figure paths are relative to the folder it was built in)
     data = json.loads((out / "report.json").read_text()) if args.json else {}

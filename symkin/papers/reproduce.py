@@ -11,7 +11,6 @@ only when complete, so an interrupted or failing run leaves the previous report 
 from __future__ import annotations
 
 import json
-import time
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from functools import cache
@@ -109,6 +108,7 @@ def run(
     progress: TextIO | None = None,
     quiet: bool = False,
     pdf: bool = True,
+    jobs: int | None = None,
 ) -> list[PaperResult]:
     """Derive and check each paper and write the report folder ``out``.
 
@@ -117,6 +117,9 @@ def run(
     and pdflatex is installed; see :data:`symkin.papers.texbuild.MISSING`) and ``figures/``
     (PNG and PDF); see :func:`write_atomically` for the guarantee on ``out``.
 
+    The papers' checks and figures run in ``jobs`` worker processes (default: one per
+    core; 1 runs everything in this process); the results do not depend on ``jobs``.
+
     Raises
     ------
     InputError
@@ -124,25 +127,32 @@ def run(
     ToolError
         pdflatex is installed but fails on the document (``out`` is left as it was).
     """
+    from symkin.papers import _pool
+
     names = list(names)
-    modules = [load(n) for n in names]
+    modules = {n: load(n) for n in names}
     check_target(out)
     pdflatex = find_pdflatex() if pdf else None
     results: list[PaperResult] = []
+    jobs = _pool.cores() if jobs is None else max(1, int(jobs))
 
     def build(tmp: Path) -> None:
         bar = Progress(2 * len(modules) + 1 + (pdflatex is not None), stream=progress, enabled=not quiet, lines=True)
         figures_dir = tmp / "figures"
         figures_dir.mkdir()
-        for name, mod in zip(names, modules):
-            start = time.perf_counter()
-            bar.step(f"{name}: deriving and comparing")
-            checks = list(mod.checks())
-            bar.step(f"{name}: drawing figures")
-            figures = list(mod.figures(figures_dir))
-            notes = list(getattr(mod, "notes", lambda: [])())
+        found: dict[tuple[str, str], tuple[Any, float]] = {}
+
+        def done(task: tuple[str, str], value: Any, seconds: float) -> None:
+            found[task] = (value, seconds)
+            bar.step(f"{task[0]}: {'derived and compared' if task[1] == 'checks' else 'figures drawn'}")
+
+        tasks = [(n, "checks") for n in names] + [(n, "figures") for n in names]
+        _pool.run_tasks(modules, tasks, figures_dir, jobs=jobs, done=done)
+        for name, mod in modules.items():
+            (checks, notes), checks_seconds = found[(name, "checks")]
+            figures, figures_seconds = found[(name, "figures")]
             results.append(
-                PaperResult(name, mod.CITATION, checks, figures, notes, time.perf_counter() - start,
+                PaperResult(name, mod.CITATION, checks, figures, notes, checks_seconds + figures_seconds,
                             list(getattr(mod, "PRINTED_ITEMS", ())), dict(getattr(mod, "REPORT_FIGURES", {})))
             )
         bar.step("writing report.json, report.txt, equations.tex")
