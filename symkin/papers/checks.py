@@ -326,9 +326,9 @@ def vanishes(expr: Any) -> bool:
     e = sp.sympify(expr)
     if not isinstance(e, sp.Expr):
         return bool(sp.simplify(e) == 0)
-    if proven_zero(e):
-        return True
     cancelled = sp.cancel(sp.together(e))
+    if cancelled == 0:
+        return True
     # functions of distinct symbols found nowhere else (cos(beta_1), cos(beta_2)) are
     # independent variables: the expression is then a rational function of them too
     calls = cancelled.atoms(sp.Function)
@@ -340,6 +340,8 @@ def vanishes(expr: Any) -> bool:
              and all(p.exp.is_Integer for p in rational.atoms(sp.Pow)))
     if plain:
         return False
+    if proven_zero(e):
+        return True
     return bool(sp.simplify(e) == 0)
 
 

@@ -135,6 +135,7 @@ def run(
     pdflatex = find_pdflatex() if pdf else None
     results: list[PaperResult] = []
     jobs = _pool.cores() if jobs is None else max(1, int(jobs))
+    previous = _previous_seconds(out)
 
     def build(tmp: Path) -> None:
         bar = Progress(2 * len(modules) + 1 + (pdflatex is not None), stream=progress, enabled=not quiet, lines=True)
@@ -146,7 +147,9 @@ def run(
             found[task] = (value, seconds)
             bar.step(f"{task[0]}: {'derived and compared' if task[1] == 'checks' else 'figures drawn'}")
 
-        tasks = [(n, "checks") for n in names] + [(n, "figures") for n in names]
+        # the slowest paper of the last report first, so no worker is left with it at the end
+        order = sorted(names, key=lambda n: -previous.get(n, 0.0))
+        tasks = [(n, "checks") for n in order] + [(n, "figures") for n in order]
         _pool.run_tasks(modules, tasks, figures_dir, jobs=jobs, done=done)
         for name, mod in modules.items():
             (checks, notes), checks_seconds = found[(name, "checks")]
@@ -170,6 +173,15 @@ def run(
 
     write_atomically(out, build, version=__version__)
     return results
+
+
+def _previous_seconds(out: Path) -> dict[str, float]:
+    """The seconds each paper took in the report already in ``out`` (empty when there is none)."""
+    try:
+        papers = json.loads((Path(out) / "report.json").read_text(encoding="utf-8"))["papers"]
+        return {str(k): float(v["seconds"]) for k, v in papers.items()}
+    except (OSError, ValueError, KeyError, TypeError, AttributeError):
+        return {}
 
 
 #: Functions called with (folder, results) after the report files are written, before
