@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import json
 from collections.abc import Callable, Iterable
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from functools import cache
 from importlib import resources
@@ -159,14 +160,17 @@ def run(
                             list(getattr(mod, "PRINTED_ITEMS", ())), dict(getattr(mod, "REPORT_FIGURES", {})))
             )
         bar.step("writing report.json, report.txt, equations.tex")
-        data = report_json(results, tmp)
-        data["equations"] = {"tex": "equations.tex", "pdf": "equations.pdf" if pdflatex else None}
-        (tmp / "report.json").write_text(json.dumps(data, indent=2, ensure_ascii=False))
-        (tmp / "report.txt").write_text(format_table(results))
         (tmp / "equations.tex").write_text(equations_document(results, root=tmp))
-        if pdflatex is not None:
-            bar.step("compiling equations.pdf with pdflatex")
-            compile_pdf(tmp / "equations.tex", pdflatex=pdflatex)
+        # pdflatex is another process: it compiles while report.json and report.txt are written
+        with ThreadPoolExecutor(1) as latex:
+            compiled = latex.submit(compile_pdf, tmp / "equations.tex", pdflatex=pdflatex) if pdflatex else None
+            data = report_json(results, tmp)
+            data["equations"] = {"tex": "equations.tex", "pdf": "equations.pdf" if pdflatex else None}
+            (tmp / "report.json").write_text(json.dumps(data, indent=2, ensure_ascii=False))
+            (tmp / "report.txt").write_text(format_table(results))
+            if compiled is not None:
+                bar.step("compiling equations.pdf with pdflatex")
+                compiled.result()
         for hook in _POST_BUILD:
             hook(tmp, results)
         bar.close()
