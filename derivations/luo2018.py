@@ -459,10 +459,16 @@ def _branch_comparison(angle: sp.Expr) -> Comparison:
 _E, _THETA0 = sp.Symbol("e", nonnegative=True), sp.Symbol("theta_H0", real=True)
 
 
-@functools.cache
 def _family(order) -> Any:
     """s, v, a, theta_H and omega_H of Table 1's mechanism through elliptical gears of one order,
     compiled once (symkin.numeric) with the eccentricity and theta_H(0) as arguments."""
+    # one key per order: functools.cache tells the int 3 from SymPy's 3 (the curves of fig. 7
+    # give the order as an int, the drives as SymPy's), which compiled every law twice
+    return _compiled_family(sp.sympify(order))
+
+
+@functools.cache
+def _compiled_family(order: sp.Expr) -> Any:
     slider = elliptical_slider(_E, order, _THETA0)
     angle = slider.carrier_angle
     return compile([slider.displacement, slider.velocity, slider.acceleration, angle, sp.diff(angle, t)], [t, _E, _THETA0])
