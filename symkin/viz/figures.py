@@ -316,15 +316,7 @@ def save(fig: Figure, path: Path, formats: Sequence[str] | None = None) -> list[
     # a figure laid out by matplotlib's constrained layout already fits its page: no second
     # draw to find a tight box (which doubles the time of saving)
     tight = None if fig.get_layout_engine() is not None else "tight"
-    engine = fig.get_layout_engine()
-    try:
-        with replacing(*targets) as temps:
-            for n, (tmp, target) in enumerate(zip(temps, targets)):
-                fig.savefig(tmp, dpi=200 if target.suffix == ".png" else 150, bbox_inches=tight, format=target.suffix[1:])
-                if n == 0 and tight is None and len(targets) > 1:
-                    # laid out once: the other formats keep the positions (the layout is in inches)
-                    fig.set_layout_engine("none")
-    finally:
-        if engine is not None and fig.get_layout_engine() is not engine:
-            fig.set_layout_engine(engine)
+    with replacing(*targets) as temps:
+        for tmp, target in zip(temps, targets):
+            fig.savefig(tmp, dpi=200 if target.suffix == ".png" else 150, bbox_inches=tight, format=target.suffix[1:])
     return targets
