@@ -148,8 +148,9 @@ def run(
             found[task] = (value, seconds)
             bar.step(f"{task[0]}: {'derived and compared' if task[1] == 'checks' else 'figures drawn'}")
 
-        # the slowest paper of the last report first, so no worker is left with it at the end
-        order = sorted(names, key=lambda n: -previous.get(n, 0.0))
+        # the slowest paper first, so that no worker is left alone with it at the end: slowest
+        # in the report already in ``out``, else the one with the most figures (the longest tasks)
+        order = sorted(names, key=lambda n: (-previous.get(n, 0.0), -len(getattr(modules[n], "REPORT_FIGURES", {}))))
         tasks = [(n, "checks") for n in order] + [(n, "figures") for n in order]
         _pool.run_tasks(modules, tasks, figures_dir, jobs=jobs, done=done)
         for name, mod in modules.items():
