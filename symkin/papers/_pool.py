@@ -27,6 +27,8 @@ from symkin.errors import ToolError
 
 #: A task: (paper, "checks" or "figures").
 Task = tuple[str, str]
+#: The signals that stop a run.
+_STOP = {signal.SIGINT, signal.SIGTERM}
 
 
 def cores() -> int:
@@ -71,6 +73,7 @@ def _worker(conn: Connection, parent: int, modules: dict[str, Any], figures_dir:
     _die_with_parent(parent)
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # the parent handles Ctrl-C and ends its workers
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    signal.pthread_sigmask(signal.SIG_UNBLOCK, _STOP)  # held by the parent while it forked
     while True:
         task = conn.recv()
         if task is None:
@@ -109,13 +112,19 @@ def run_tasks(
     pending = list(tasks)
     papers_of: dict[Connection, set[str]] = {}
     try:
-        for _ in range(jobs):
-            here, there = ctx.Pipe()
-            proc = ctx.Process(target=_worker, args=(there, parent, modules, figures_dir), daemon=True)
-            proc.start()
-            there.close()
-            workers.append((proc, here))
-            papers_of[here] = set()
+        # Ctrl-C or SIGTERM during a fork would raise in the fork's own callbacks, where Python
+        # ignores it: held until the workers are started, then raised here
+        held = signal.pthread_sigmask(signal.SIG_BLOCK, _STOP)
+        try:
+            for _ in range(jobs):
+                here, there = ctx.Pipe()
+                proc = ctx.Process(target=_worker, args=(there, parent, modules, figures_dir), daemon=True)
+                proc.start()
+                there.close()
+                workers.append((proc, here))
+                papers_of[here] = set()
+        finally:
+            signal.pthread_sigmask(signal.SIG_SETMASK, held)
         busy: dict[Connection, Task] = {}
 
         def give(conn: Connection) -> None:
