@@ -5,8 +5,8 @@ derived a paper's checks is given that paper's figures next when it is free, so 
 derivation module caches (curves, compiled laws) is computed once; another worker takes
 them only when it would otherwise wait.  Workers are forked from the calling process (so
 they see its state, patches included) and die with it; a task's exception is raised again
-in the calling process.  Where ``fork`` is not available the tasks run in the calling
-process, one after the other.
+in the calling process.  Where ``fork`` is not available or not safe (:func:`can_fork`) the
+tasks run in the calling process, one after the other.
 """
 
 from __future__ import annotations
@@ -40,8 +40,13 @@ def cores() -> int:
 
 
 def can_fork() -> bool:
-    """Whether worker processes can be forked here (Linux; macOS forks are unsafe with GUI libraries)."""
-    return sys.platform.startswith("linux") and "fork" in multiprocessing.get_all_start_methods()
+    """Whether worker processes can be forked here: on Linux (macOS forks are unsafe with GUI
+    libraries), from a process running one thread (a fork copies the locks other threads hold,
+    as in a Jupyter kernel, and can deadlock)."""
+    import threading
+
+    return (sys.platform.startswith("linux") and "fork" in multiprocessing.get_all_start_methods()
+            and threading.active_count() == 1)
 
 
 def run_task(modules: dict[str, Any], task: Task, figures_dir: Path) -> tuple[Any, float]:
