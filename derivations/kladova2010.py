@@ -40,6 +40,7 @@ from symkin.papers.checks import (
     compare_symbolic,
     confirmation,
     judge,
+    vanishes,
 )
 from symkin.statics import balancing_hands, planet_forces, planet_statics
 
@@ -302,7 +303,7 @@ def _line_sources() -> list[tuple[str, str]]:
         if z4_value is None:
             continue
         result = sp.expand((a_eq.lhs - a_eq.rhs).subs(z4, z4_value))
-        if sp.simplify(result - target) == 0:
+        if vanishes(result - target):  # exact; a rational function is decided by cancelling
             found.append((first, second))
     return found
 

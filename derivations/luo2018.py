@@ -53,6 +53,8 @@ from symkin.papers.checks import (
     compare_symbolic,
     confirmation,
     judge,
+    nonzero_somewhere,
+    proven_zero,
 )
 
 KEY = "luo2018"
@@ -256,7 +258,10 @@ def pin_deviation_by_hand(theta_10, guide, carrier0) -> sp.Expr:
     th_H = carrier0 + omega_H * tt
     th_1 = theta_10 - 2 * omega_H * tt
     pin = l * sp.exp(sp.I * th_H) + l * sp.exp(sp.I * (th_H + th_1))
-    return sp.simplify(sp.im(sp.expand(pin * sp.exp(-sp.I * guide))).subs(tt, S.t))
+    deviation = sp.im(sp.expand(pin * sp.exp(-sp.I * guide))).subs(tt, S.t)
+    if proven_zero(deviation):
+        return sp.Integer(0)
+    return deviation if nonzero_somewhere(deviation) else sp.simplify(deviation)
 
 
 def _continuity() -> list[Check]:
@@ -435,8 +440,8 @@ def _branch_comparison(angle: sp.Expr) -> Comparison:
     Equal derivatives and equal values at t = 0 make two functions equal on the interval
     around 0 where both are smooth; beyond it the principal arctan jumps by -2 pi/m.
     """
-    slope = sp.simplify(sp.diff(PUBLISHED_27 - angle, t))
-    at_zero = sp.simplify((PUBLISHED_27 - angle).subs(t, 0))
+    slope, at_zero = (sp.Integer(0) if proven_zero(x) else sp.simplify(x)
+                      for x in (sp.diff(PUBLISHED_27 - angle, t), (PUBLISHED_27 - angle).subs(t, 0)))
     values = {omega: 1, e: sp.Rational(1, 2), m: 2, theta_H0: 0}
     f = compile([PUBLISHED_27.subs(values), angle.subs(values)], [t])
     branch = np.pi / 2  # m omega t = pi
@@ -454,10 +459,16 @@ def _branch_comparison(angle: sp.Expr) -> Comparison:
 _E, _THETA0 = sp.Symbol("e", nonnegative=True), sp.Symbol("theta_H0", real=True)
 
 
-@functools.cache
 def _family(order) -> Any:
     """s, v, a, theta_H and omega_H of Table 1's mechanism through elliptical gears of one order,
     compiled once (symkin.numeric) with the eccentricity and theta_H(0) as arguments."""
+    # one key per order: functools.cache tells the int 3 from SymPy's 3 (the curves of fig. 7
+    # give the order as an int, the drives as SymPy's), which compiled every law twice
+    return _compiled_family(sp.sympify(order))
+
+
+@functools.cache
+def _compiled_family(order: sp.Expr) -> Any:
     slider = elliptical_slider(_E, order, _THETA0)
     angle = slider.carrier_angle
     return compile([slider.displacement, slider.velocity, slider.acceleration, angle, sp.diff(angle, t)], [t, _E, _THETA0])

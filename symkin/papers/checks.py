@@ -72,6 +72,8 @@ __all__ = [
     "judge",
     "item_results",
     "nonzero_somewhere",
+    "vanishes",
+    "proven_zero",
     "as_float",
 ]
 
@@ -239,7 +241,7 @@ def _difference(derived: Any, published: Any, under: Mapping[Any, Any] | None) -
         d, p = d.subs(under), p.subs(under)
     diff = sp.cancel(sp.together(d - p))
     if diff != 0 and diff.has(sp.sin, sp.cos, sp.tan, sp.exp, sp.atan, sp.sqrt, sp.log) and not nonzero_somewhere(diff):
-        diff = sp.simplify(diff)
+        diff = sp.Integer(0) if proven_zero(diff) else sp.simplify(diff)
     return diff
 
 
@@ -270,6 +272,77 @@ def nonzero_somewhere(expr: Any, tries: int = 2) -> bool:
         if math.isfinite(abs(value)) and abs(value) > 1e-15:
             return True
     return False
+
+
+def proven_zero(expr: Any) -> bool:
+    """True when ``expr`` is shown identically zero by rewriting alone: cancelled as a rational
+    function of its atoms, after expanding the trigonometric functions (sums of angles,
+    multiples; sin(a)**2 written 1 - cos(a)**2) or writing them with the tangent of the half
+    angle.  Every step is an identity,
+    so True is a proof; False decides nothing (see :func:`vanishes`).
+
+    >>> x, y = sp.symbols("x y")
+    >>> proven_zero(sp.sin(x + y) - sp.sin(x) * sp.cos(y) - sp.cos(x) * sp.sin(y))
+    True
+    >>> proven_zero(sp.sqrt(x**2) - x)  # x may be negative: not zero
+    False
+    """
+    e = sp.sympify(expr)
+    if not isinstance(e, sp.Expr):
+        return False
+    if sp.cancel(sp.together(e)) == 0:
+        return True
+    if not e.has(sp.sin, sp.cos, sp.tan):
+        return False
+    numerator = sp.fraction(sp.cancel(sp.together(sp.expand_trig(e))))[0]
+    if numerator == 0 or _pythagoras(sp.expand(numerator)) == 0:
+        return True
+    return bool(sp.cancel(sp.together(e.rewrite(sp.tan))) == 0)
+
+
+def _pythagoras(poly: sp.Expr) -> sp.Expr:
+    """``poly`` with every sin(a)**n, n >= 2, written with 1 - cos(a)**2, expanded (an identity)."""
+    def lower(p: sp.Pow) -> sp.Expr:
+        a, n = p.base.args[0], int(p.exp)
+        return (1 - sp.cos(a) ** 2) ** (n // 2) * sp.sin(a) ** (n % 2)
+
+    even = poly.replace(lambda x: x.is_Pow and isinstance(x.base, sp.sin) and x.exp.is_Integer and x.exp >= 2, lower)
+    return sp.expand(even)
+
+
+def vanishes(expr: Any) -> bool:
+    """Whether ``expr`` is identically zero, decided by the cheapest exact means that decide it.
+
+    A rational function with rational coefficients of symbols and of functions of further
+    symbols (each its own, as ``cos(beta)``) is decided by cancelling it (exact both ways,
+    the functions being independent variables); an expression that rewriting alone cancels is zero
+    (:func:`proven_zero`); anything else is left to :func:`sympy.simplify`, which the
+    answer then equals.
+
+    >>> x, y = sp.symbols("x y")
+    >>> vanishes((x**2 - y**2) / (x - y) - x - y), vanishes(x / sp.cos(y) - 1), vanishes(sp.sin(x)**2 + sp.cos(x)**2 - 1)
+    (True, False, True)
+    """
+    e = sp.sympify(expr)
+    if not isinstance(e, sp.Expr):
+        return bool(sp.simplify(e) == 0)
+    cancelled = sp.cancel(sp.together(e))
+    if cancelled == 0:
+        return True
+    # functions of distinct symbols found nowhere else (cos(beta_1), cos(beta_2)) are
+    # independent variables: the expression is then a rational function of them too
+    calls = cancelled.atoms(sp.Function)
+    inner = [f.args[0] for f in calls if len(f.args) == 1 and f.args[0].is_Symbol]
+    rational = cancelled.xreplace({f: sp.Dummy() for f in calls})
+    independent = len(inner) == len(calls) == len(set(inner)) and not set(inner) & rational.free_symbols
+    plain = (independent and rational.free_symbols and rational.is_rational_function()
+             and not rational.atoms(sp.NumberSymbol, sp.Float) and not rational.has(sp.I)
+             and all(p.exp.is_Integer for p in rational.atoms(sp.Pow)))
+    if plain:
+        return False
+    if proven_zero(e):
+        return True
+    return bool(sp.simplify(e) == 0)
 
 
 # ---------------------------------------------------------------------------- comparators

@@ -11,8 +11,8 @@ only when complete, so an interrupted or failing run leaves the previous report 
 from __future__ import annotations
 
 import json
-import time
 from collections.abc import Callable, Iterable
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from functools import cache
 from importlib import resources
@@ -109,6 +109,7 @@ def run(
     progress: TextIO | None = None,
     quiet: bool = False,
     pdf: bool = True,
+    jobs: int | None = None,
 ) -> list[PaperResult]:
     """Derive and check each paper and write the report folder ``out``.
 
@@ -117,6 +118,9 @@ def run(
     and pdflatex is installed; see :data:`symkin.papers.texbuild.MISSING`) and ``figures/``
     (PNG and PDF); see :func:`write_atomically` for the guarantee on ``out``.
 
+    The papers' checks and figures run in ``jobs`` worker processes (default: one per
+    core; 1 runs everything in this process); the results do not depend on ``jobs``.
+
     Raises
     ------
     InputError
@@ -124,42 +128,65 @@ def run(
     ToolError
         pdflatex is installed but fails on the document (``out`` is left as it was).
     """
+    from symkin.papers import _pool
+
     names = list(names)
-    modules = [load(n) for n in names]
+    modules = {n: load(n) for n in names}
     check_target(out)
     pdflatex = find_pdflatex() if pdf else None
     results: list[PaperResult] = []
+    jobs = _pool.cores() if jobs is None else max(1, int(jobs))
+    previous = _previous_seconds(out)
 
     def build(tmp: Path) -> None:
         bar = Progress(2 * len(modules) + 1 + (pdflatex is not None), stream=progress, enabled=not quiet, lines=True)
         figures_dir = tmp / "figures"
         figures_dir.mkdir()
-        for name, mod in zip(names, modules):
-            start = time.perf_counter()
-            bar.step(f"{name}: deriving and comparing")
-            checks = list(mod.checks())
-            bar.step(f"{name}: drawing figures")
-            figures = list(mod.figures(figures_dir))
-            notes = list(getattr(mod, "notes", lambda: [])())
+        found: dict[tuple[str, str], tuple[Any, float]] = {}
+
+        def done(task: tuple[str, str], value: Any, seconds: float) -> None:
+            found[task] = (value, seconds)
+            bar.step(f"{task[0]}: {'derived and compared' if task[1] == 'checks' else 'figures drawn'}")
+
+        # the slowest paper first, so that no worker is left alone with it at the end: slowest
+        # in the report already in ``out``, else the one with the most figures (the longest tasks)
+        order = sorted(names, key=lambda n: (-previous.get(n, 0.0), -len(getattr(modules[n], "REPORT_FIGURES", {}))))
+        tasks = [(n, "checks") for n in order] + [(n, "figures") for n in order]
+        _pool.run_tasks(modules, tasks, figures_dir, jobs=jobs, done=done)
+        for name, mod in modules.items():
+            (checks, notes), checks_seconds = found[(name, "checks")]
+            figures, figures_seconds = found[(name, "figures")]
             results.append(
-                PaperResult(name, mod.CITATION, checks, figures, notes, time.perf_counter() - start,
+                PaperResult(name, mod.CITATION, checks, figures, notes, checks_seconds + figures_seconds,
                             list(getattr(mod, "PRINTED_ITEMS", ())), dict(getattr(mod, "REPORT_FIGURES", {})))
             )
         bar.step("writing report.json, report.txt, equations.tex")
-        data = report_json(results, tmp)
-        data["equations"] = {"tex": "equations.tex", "pdf": "equations.pdf" if pdflatex else None}
-        (tmp / "report.json").write_text(json.dumps(data, indent=2, ensure_ascii=False))
-        (tmp / "report.txt").write_text(format_table(results))
         (tmp / "equations.tex").write_text(equations_document(results, root=tmp))
-        if pdflatex is not None:
-            bar.step("compiling equations.pdf with pdflatex")
-            compile_pdf(tmp / "equations.tex", pdflatex=pdflatex)
+        # pdflatex is another process: it compiles while report.json and report.txt are written
+        with ThreadPoolExecutor(1) as latex:
+            compiled = latex.submit(compile_pdf, tmp / "equations.tex", pdflatex=pdflatex) if pdflatex else None
+            data = report_json(results, tmp)
+            data["equations"] = {"tex": "equations.tex", "pdf": "equations.pdf" if pdflatex else None}
+            (tmp / "report.json").write_text(json.dumps(data, indent=2, ensure_ascii=False))
+            (tmp / "report.txt").write_text(format_table(results))
+            if compiled is not None:
+                bar.step("compiling equations.pdf with pdflatex")
+                compiled.result()
         for hook in _POST_BUILD:
             hook(tmp, results)
         bar.close()
 
     write_atomically(out, build, version=__version__)
     return results
+
+
+def _previous_seconds(out: Path) -> dict[str, float]:
+    """The seconds each paper took in the report already in ``out`` (empty when there is none)."""
+    try:
+        papers = json.loads((Path(out) / "report.json").read_text(encoding="utf-8"))["papers"]
+        return {str(k): float(v["seconds"]) for k, v in papers.items()}
+    except (OSError, ValueError, KeyError, TypeError, AttributeError):
+        return {}
 
 
 #: Functions called with (folder, results) after the report files are written, before

@@ -1,0 +1,168 @@
+"""Run the papers' checks and figures in worker processes, one per core.
+
+Each paper gives two tasks: its checks (with its notes) and its figures.  A worker that
+derived a paper's checks is given that paper's figures next when it is free, so what the
+derivation module caches (curves, compiled laws) is computed once; another worker takes
+them only when it would otherwise wait.  Workers are forked from the calling process (so
+they see its state, patches included) and die with it; a task's exception is raised again
+in the calling process.  Where ``fork`` is not available or not safe (:func:`can_fork`) the
+tasks run in the calling process, one after the other.
+"""
+
+from __future__ import annotations
+
+import multiprocessing
+import os
+import pickle
+import signal
+import sys
+import time
+import traceback
+from collections.abc import Callable, Sequence
+from multiprocessing.connection import Connection, wait
+from pathlib import Path
+from typing import Any, cast
+
+from symkin.errors import ToolError
+
+#: A task: (paper, "checks" or "figures").
+Task = tuple[str, str]
+#: The signals that stop a run.
+_STOP = {signal.SIGINT, signal.SIGTERM}
+
+
+def cores() -> int:
+    """The number of cores this process may run on (at least 1)."""
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except AttributeError:  # not on Linux
+        return max(1, os.cpu_count() or 1)
+
+
+def can_fork() -> bool:
+    """Whether worker processes can be forked here: on Linux (macOS forks are unsafe with GUI
+    libraries), from a process running one thread (a fork copies the locks other threads hold,
+    as in a Jupyter kernel, and can deadlock)."""
+    import threading
+
+    return (sys.platform.startswith("linux") and "fork" in multiprocessing.get_all_start_methods()
+            and threading.active_count() == 1)
+
+
+def run_task(modules: dict[str, Any], task: Task, figures_dir: Path) -> tuple[Any, float]:
+    """Run one task in this process; returns its value and the seconds it took."""
+    name, part = task
+    mod = modules[name]
+    start = time.perf_counter()
+    if part == "checks":
+        value: Any = (list(mod.checks()), list(getattr(mod, "notes", lambda: [])()))
+    else:
+        value = list(mod.figures(figures_dir))
+    return value, time.perf_counter() - start
+
+
+def _die_with_parent(parent: int) -> None:
+    """Ask Linux to kill this worker when the process that forked it ends (PR_SET_PDEATHSIG)."""
+    try:
+        import ctypes
+
+        libc = ctypes.CDLL(None, use_errno=True)
+        libc.prctl(1, signal.SIGKILL, 0, 0, 0)
+    except (OSError, AttributeError):
+        pass
+    if os.getppid() != parent:  # the parent ended before the request was made
+        os._exit(1)
+
+
+def _worker(conn: Connection, parent: int, modules: dict[str, Any], figures_dir: Path) -> None:
+    _die_with_parent(parent)
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # the parent handles Ctrl-C and ends its workers
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    signal.pthread_sigmask(signal.SIG_UNBLOCK, _STOP)  # held by the parent while it forked
+    while True:
+        task = conn.recv()
+        if task is None:
+            return
+        try:
+            value, seconds = run_task(modules, task, figures_dir)
+            message = pickle.dumps(("ok", task, value, seconds))
+        except BaseException as err:  # sent to the parent, which raises it
+            try:
+                message = pickle.dumps(("error", task, err, traceback.format_exc()))
+            except Exception:  # an exception that cannot be pickled: its text
+                message = pickle.dumps(("error", task, ToolError(f"{type(err).__name__}: {err}"), traceback.format_exc()))
+        conn.send_bytes(message)
+
+
+def run_tasks(
+    modules: dict[str, Any],
+    tasks: Sequence[Task],
+    figures_dir: Path,
+    *,
+    jobs: int,
+    done: Callable[[Task, Any, float], None],
+) -> None:
+    """Run ``tasks`` on ``jobs`` worker processes (in this process when ``jobs`` is 1 or
+    forking is not possible), calling ``done(task, value, seconds)`` in this process as each
+    one ends.  The first task to fail stops the others and its exception is raised here."""
+    jobs = min(jobs, len(tasks))
+    if jobs <= 1 or not can_fork():
+        for task in tasks:
+            value, seconds = run_task(modules, task, figures_dir)
+            done(task, value, seconds)
+        return
+    ctx = multiprocessing.get_context("fork")
+    parent = os.getpid()
+    workers: list[tuple[Any, Connection]] = []
+    pending = list(tasks)
+    papers_of: dict[Connection, set[str]] = {}
+    try:
+        # Ctrl-C or SIGTERM during a fork would raise in the fork's own callbacks, where Python
+        # ignores it: held until the workers are started, then raised here
+        held = signal.pthread_sigmask(signal.SIG_BLOCK, _STOP)
+        try:
+            for _ in range(jobs):
+                here, there = ctx.Pipe()
+                proc = ctx.Process(target=_worker, args=(there, parent, modules, figures_dir), daemon=True)
+                proc.start()
+                there.close()
+                workers.append((proc, here))
+                papers_of[here] = set()
+        finally:
+            signal.pthread_sigmask(signal.SIG_SETMASK, held)
+        busy: dict[Connection, Task] = {}
+
+        def give(conn: Connection) -> None:
+            if not pending:
+                return
+            # the figures of a paper this worker derived, else the next task in order
+            mine = [t for t in pending if t[1] == "figures" and t[0] in papers_of[conn]]
+            task = mine[0] if mine else pending[0]
+            pending.remove(task)
+            papers_of[conn].add(task[0])
+            busy[conn] = task
+            conn.send(task)
+
+        for _, conn in workers:
+            give(conn)
+        while busy:
+            for ready in wait(list(busy)):
+                conn = cast(Connection, ready)
+                try:
+                    status, task, value, extra = pickle.loads(conn.recv_bytes())
+                except EOFError:
+                    proc = next(p for p, c in workers if c is conn)
+                    proc.join(5)
+                    raise ToolError(f"a worker process ended during {busy[conn][0]}'s {busy[conn][1]} "
+                                    f"(exit code {proc.exitcode})") from None
+                del busy[conn]
+                if status == "error":
+                    raise value
+                done(task, value, extra)
+                give(conn)
+    finally:
+        for proc, conn in workers:
+            if proc.is_alive():
+                proc.kill()
+            proc.join()
+            conn.close()
