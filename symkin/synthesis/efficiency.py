@@ -11,7 +11,9 @@ order whatever the chunking.
 At a boundary of the ``Piecewise`` (a relative power exactly zero) no condition holds:
 there the mesh carries no relative power and loses none, and the design's efficiency is
 taken from the statics of its own train (the route :meth:`symkin.synthesis.Design.efficiency`
-takes).
+takes). Where a condition is itself undefined (a pole of a relative power: a degenerate
+train, such as a double-pinion set with z_r = z_s, whose sun stands still) the efficiency is
+undefined, as the statics of that train says, and such designs rank last.
 
     >>> from symkin.trains import load_train
     >>> from symkin.synthesis.problem import derive
@@ -112,6 +114,9 @@ def _bound(poly: sp.Poly, zmax: int) -> float:
     return sum(abs(float(c)) * float(zmax) ** sum(m) for m, c in poly.terms())
 
 
+_DERIVED: dict[Any, EfficiencyLaw] = {}
+
+
 @dataclass
 class EfficiencyLaw:
     """The efficiency of a problem's power path as a law of its unknown tooth numbers.
@@ -139,7 +144,24 @@ class EfficiencyLaw:
 
     @classmethod
     def derive(cls, problem: Any, mesh_efficiency: Any = "default") -> EfficiencyLaw:
-        """Derive the law from the statics of ``problem.train`` (teeth as symbols) and prepare it."""
+        """Derive the law from the statics of ``problem.train`` (teeth as symbols) and prepare it
+        (once per problem and mesh efficiencies: a search builds two plans)."""
+        key = (problem, repr(mesh_efficiency))
+        try:
+            return _DERIVED[key]
+        except (KeyError, TypeError):
+            pass
+        law = cls._derive(problem, mesh_efficiency)
+        try:
+            if len(_DERIVED) > 8:
+                _DERIVED.pop(next(iter(_DERIVED)))
+            _DERIVED[key] = law
+        except TypeError:  # pragma: no cover - an unhashable problem
+            pass
+        return law
+
+    @classmethod
+    def _derive(cls, problem: Any, mesh_efficiency: Any) -> EfficiencyLaw:
         from symkin.statics import statics
 
         train = problem.train
@@ -200,9 +222,17 @@ class EfficiencyLaw:
     def exact(self, teeth: np.ndarray) -> list[Fraction | None]:
         """The law exactly at each row of ``teeth`` (one column per unknown); None on a boundary
         of its pieces or at a pole (see :meth:`values`)."""
+        return self._exact(teeth)[0]
+
+    def _exact(self, teeth: np.ndarray) -> tuple[list[Fraction | None], np.ndarray]:
+        """:meth:`exact`, and where a condition between pieces is itself undefined (a pole of a
+        mesh's relative power: a degenerate train, e.g. a driver that stands still)."""
         teeth = np.asarray(teeth, dtype=np.int64).reshape(-1, len(self.args))
         m = len(teeth)
         vals = self._evaluate(teeth)
+        degenerate = np.zeros(m, dtype=bool)
+        for node in _relations(self.conditions):
+            degenerate |= vals[node[1] + 1] == 0
 
         def sign(i: int) -> np.ndarray:
             p, q = vals[i], vals[i + 1]
@@ -241,17 +271,32 @@ class EfficiencyLaw:
                     if key not in memo:
                         memo[key] = Fraction(*key)
                     found[r] = memo[key]
-        return found
+        return found, degenerate
 
     def values(self, problem: Any, teeth: np.ndarray) -> list[Fraction | None]:
         """The efficiency at each row of ``teeth``: :meth:`exact`, or on a boundary of the law's
-        pieces the statics of the train built with those numbers (None if that has none)."""
+        pieces (a mesh's relative power exactly zero) the statics of the train built with those
+        numbers; None where the relative power itself is undefined (a degenerate train, which
+        the statics refuses too) or the statics has none."""
         teeth = np.asarray(teeth, dtype=np.int64).reshape(-1, len(self.args))
-        found = self.exact(teeth)
+        found, degenerate = self._exact(teeth)
         for r, v in enumerate(found):
-            if v is None:
+            if v is None and not degenerate[r]:
                 found[r] = _concrete(problem, tuple(int(x) for x in teeth[r]), self.mesh_efficiency)
         return found
+
+
+def _relations(nodes: Sequence[tuple]) -> list[tuple]:
+    """Every ('rel', index, op) node of condition trees."""
+    out: list[tuple] = []
+    for node in nodes:
+        if node[0] == "rel":
+            out.append(node)
+        elif node[0] in ("and", "or"):
+            out += _relations(node[1])
+        elif node[0] == "not":
+            out += _relations([node[1]])
+    return out
 
 
 def _concrete(problem: Any, teeth: tuple[int, ...], mesh_efficiency: Any) -> Fraction | None:
