@@ -170,7 +170,7 @@ class ReducedPhase(sp.Function):
         return sp.Rational(p, q) * sp.Mul(*xs)
 
 
-class LongPhase(sp.Function):
+class LongPhase(_Deferred):
     """``c * t`` for a rational function ``c`` of inputs, reduced mod 2 pi where it is long.
 
     Arguments: a key (an integer digest of ``c``, naming the generated double-double code),
@@ -186,15 +186,6 @@ class LongPhase(sp.Function):
     def doit(self, **hints: Any) -> sp.Expr:
         """The plain phase ``c t``."""
         return self.args[1] * self.args[2]
-
-    def _eval_evalf(self, prec: int) -> sp.Expr:
-        return self.doit()._eval_evalf(prec)
-
-    def _eval_derivative(self, s: sp.Symbol) -> sp.Expr:
-        return sp.diff(self.doit(), s)
-
-    def _latex(self, printer: Any) -> str:
-        return printer._print(self.doit())
 
     @property
     def name(self) -> str:

@@ -40,7 +40,7 @@ import sympy as sp
 from symkin.errors import CoaxialityWarning, InputError, SymkinError
 from symkin.numeric import compile
 
-__all__ = ["EfficiencyLaw", "RANK_KEYS", "DEFAULT_RANK", "rank_order"]
+__all__ = ["EfficiencyLaw", "RANK_KEYS", "DEFAULT_RANK", "rank_order", "power_path"]
 
 #: The keys a search can rank designs by, and what each means.
 RANK_KEYS = {
@@ -165,12 +165,7 @@ class EfficiencyLaw:
         from symkin.statics import statics
 
         train = problem.train
-        driver, driven, fixed, state = problem.request
-        joined: tuple = ()
-        if state is not None:
-            st = train.state(state)
-            driver, driven, fixed, joined = st.input, st.output, st.brakes, st.clutches
-        held = tuple(f for f in (fixed or ()) if f is not None)
+        driver, driven, held, joined = power_path(problem, train)
         result = statics(train, input=driver, output=driven, fixed=held, joined=joined, efficiency=mesh_efficiency)
         law = sp.piecewise_fold(result.efficiency.rhs)
         args = tuple(problem.unknowns)
@@ -286,6 +281,17 @@ class EfficiencyLaw:
         return found
 
 
+def power_path(problem: Any, train: Any) -> tuple[str, str, tuple[str, ...], tuple]:
+    """The searched power path of ``problem`` in ``train``: driver, driven, held links and joined
+    pairs (the request's, or its gear state's brakes and clutches)."""
+    driver, driven, fixed, state = problem.request
+    joined: tuple = ()
+    if state is not None:
+        st = train.state(state)
+        driver, driven, fixed, joined = st.input, st.output, st.brakes, st.clutches
+    return driver, driven, tuple(f for f in (fixed or ()) if f is not None), tuple(joined)
+
+
 def _relations(nodes: Sequence[tuple]) -> list[tuple]:
     """Every ('rel', index, op) node of condition trees."""
     out: list[tuple] = []
@@ -318,12 +324,7 @@ def _concrete(problem: Any, teeth: tuple[int, ...], mesh_efficiency: Any) -> Fra
         meshes = tuple(m if m.centre_distance is None else dataclasses.replace(
             m, centre_distance=sp.sympify(m.centre_distance).subs(values)) for m in train.meshes)
         built = dataclasses.replace(train, links=tuple(links), meshes=meshes)
-    driver, driven, fixed, state = problem.request
-    joined: tuple = ()
-    if state is not None:
-        st = built.state(state)
-        driver, driven, fixed, joined = st.input, st.output, st.brakes, st.clutches
-    held = tuple(f for f in (fixed or ()) if f is not None)
+    driver, driven, held, joined = power_path(problem, built)
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", CoaxialityWarning)  # positions do not enter the statics

@@ -200,14 +200,10 @@ class Design:
         (19553/20000, 38227/40000)
         """
         from symkin.statics import statics
+        from symkin.synthesis.efficiency import power_path
 
         train = self.train()
-        driver, driven, fixed, state = self.problem.request
-        joined: tuple = ()
-        if state is not None:
-            st = train.state(state)  # type: ignore[attr-defined]
-            driver, driven, fixed, joined = st.input, st.output, st.brakes, st.clutches
-        held = tuple(f for f in (fixed or ()) if f is not None)
+        driver, driven, held, joined = power_path(self.problem, train)
         eta = statics(train, input=driver, output=driven, fixed=held, joined=joined, efficiency=mesh_efficiency)
         return eta.efficiency.rhs
 
