@@ -203,6 +203,9 @@ def test_a_train_file_gives_mesh_efficiencies_and_the_cli_prints_both_ways(tmp_p
     # (1 + eta0 k)/(1 + k) with eta0 = 0.97 * 0.99 (the file's and the internal default), k = 3
     assert data["efficiency"]["exact"] == str((1 + sp.Rational(97, 100) * sp.Rational(99, 100) * 3) / 4)
     assert data["self_locking"] is False and data["torques"]["C"]["exact"] == "-4"
+    # the Python API's "default" means the same: the file's value where given, else the defaults
+    lossy = statics(train, input="S", output="C", fixed=("R",), efficiency="default")
+    assert lossy.efficiency.rhs == (1 + sp.Rational(97, 100) * sp.Rational(99, 100) * 3) / 4
     assert main(["efficiency", "II", "--teeth", "200,99,100,201", "--driver", "H", "--driven", "1", "--fixed", "4",
                  "--mesh-efficiency", "1-2=0.995", "--latex"]) == 0
     out = capsys.readouterr().out

@@ -30,7 +30,7 @@ from symkin.errors import InputError, TimeLimitError
 from symkin.model import Gear
 from symkin.synthesis import derive, synthesize
 from symkin.synthesis.integers import solvable
-from symkin.synthesis.result import assembles_tooth_by_tooth
+from symkin.synthesis.result import assembles_tooth_by_tooth, describe_designs
 from symkin.trains import load_train, read_train
 
 # ---------------------------------------------------------------- helpers
@@ -562,3 +562,86 @@ def test_degenerate_designs_have_no_efficiency_and_rank_last_without_a_statics_e
     assert res.designs[-len(undefined):] == tuple(undefined)
     with pytest.raises(symkin.errors.SymkinError):
         undefined[0].efficiency()
+
+
+TWO_ROW_II = """
+name = "two-row II"
+module = 1
+meshes = [["g1", "g2"], ["g3", "g4"]]
+[links.A]
+gears = { g1 = { teeth = "z_1", internal = true } }
+[links.H]
+[links.P]
+carrier = "H"
+count = 1
+gears = { g2 = "z_2", g3 = "z_3" }
+[links.frame]
+gears = { g4 = { teeth = "z_4", internal = true } }
+"""
+
+
+def test_designs_that_lock_are_flagged_and_ranked_by_the_hand_formula():
+    # a two-row II train driven from gear 1, gear 4 held: with i0 = z2 z4/(z1 z3) the basic train's ratio, the
+    # relative power runs 4 -> 1 when i0 < 1 and eta = (1 - i0/eta0)/(1 - i0) (below zero, locking, for
+    # eta0 < i0 < 1), 1 -> 4 when i0 > 1 and eta = (1 - i0 eta0)/(1 - i0); at i0 = 1 the carrier's speed has a pole
+    eta0 = Fraction(99, 100) ** 2
+    res = synthesize(read_train(TWO_ROW_II), driver="A", driven="H", ratio_range=("-0.05", "0.05"), planets=1,
+                     zmin=17, zmax=40, top=None, rank="efficiency", mesh_efficiency="0.99")
+    assert res.mesh_efficiency == (("g1-g2", sp.Rational(99, 100)), ("g3-g4", sp.Rational(99, 100)))
+
+    def by_hand(d):
+        v = d.values
+        i0 = Fraction(v["z_2"] * v["z_4"], v["z_1"] * v["z_3"])
+        if i0 == 1:
+            return None
+        return (1 - i0 / eta0) / (1 - i0) if i0 < 1 else (1 - i0 * eta0) / (1 - i0)
+
+    hand = [by_hand(d) for d in res.designs]
+    assert [None if h is None else sp.Rational(h.numerator, h.denominator) for h in hand] == \
+        [d.ranked_efficiency for d in res.designs]
+    locked = [d for d, h in zip(res.designs, hand) if h is not None and h <= 0]
+    assert len(locked) > 10 and all(d.locks for d in locked) and sum(d.locks for d in res.designs) == len(locked)
+    defined = [h for h in hand if h is not None]
+    assert defined == sorted(defined, reverse=True) and hand[len(defined):] == [None] * (len(hand) - len(defined))
+    for d in (locked[-1], res.designs[-1]):  # the statics of each train agrees, a degenerate one included
+        check = d.check()
+        assert check.passed and check.efficiency == d.ranked_efficiency
+    lines = describe_designs(res.designs[-2:])  # no efficiency in the first row shown: the column stays
+    assert lines[0].endswith("efficiency") and lines[1].endswith("-")
+    assert describe_designs([locked[-1]])[1].endswith("(locks)")
+    data = res.to_json()
+    assert data["mesh_efficiencies"] == {"g1-g2": {"exact": "99/100", "float": 0.99},
+                                         "g3-g4": {"exact": "99/100", "float": 0.99}}
+    assert data["designs"][-1]["efficiency"] is None and data["designs"][-1]["locks"] is False
+    assert {d["locks"] for d in data["designs"]} == {True, False}
+
+
+def test_ranking_by_efficiency_refuses_what_it_cannot_order_exactly_and_keeps_designs_hashable():
+    from symkin.synthesis.efficiency import rank_order
+
+    for bad in (123, [1, 2], {"error": 1}):
+        with pytest.raises(InputError, match="rank by keys among"):
+            rank_order(bad)
+    with pytest.raises(InputError, match=r"needs each mesh efficiency as a rational number.*0\.785398"):
+        synthesize("simple", driver="S", driven="C", fixed="R", ratio=4, zmax=60, rank="efficiency",
+                   mesh_efficiency="pi/4")
+    res = synthesize("simple", driver="S", driven="C", fixed="R", ratio=4, zmax=100, top=None, rank="efficiency",
+                     mesh_efficiency={"s-p": "0.97", "p-r": Fraction(99, 100)})
+    assert len(set(res.designs)) == len(res.designs) > 1  # a dict of mesh efficiencies left them hashable
+    assert dict(res.designs[0].mesh_efficiency) == {"s-p": sp.Rational(97, 100), "p-r": sp.Rational(99, 100)}
+    assert res.designs[0].check().efficiency_ok
+    plain = synthesize("simple", driver="S", driven="C", fixed="R", ratio=4, zmax=60)
+    assert not plain.designs[0].ranked_by_efficiency and "mesh_efficiencies" not in plain.to_json()
+
+
+def test_default_mesh_efficiencies_are_the_train_file_s_where_it_gives_them():
+    import importlib.resources
+
+    text = (importlib.resources.files("symkin.trains") / "library" / "simple.toml").read_text()
+    text = text.replace('meshes = [["s", "p"], ["p", "r"]]', 'meshes = [{ gears = ["s", "p"], efficiency = 0.97 }, ["p", "r"]]')
+    res = synthesize(read_train(text), driver="S", driven="C", fixed="R", ratio=4, zmax=60, rank="efficiency")
+    assert res.mesh_efficiency == (("s-p", sp.Rational(97, 100)), ("p-r", sp.Rational(99, 100)))
+    d = res.designs[0]
+    u = Fraction(d.values["z_r"], d.values["z_s"])
+    expected = (1 + Fraction(97, 100) * Fraction(99, 100) * u) / (1 + u)
+    assert d.ranked_efficiency == sp.Rational(expected.numerator, expected.denominator) == d.efficiency()

@@ -171,3 +171,39 @@ def test_hostile_rank_keys_are_one_line_and_exit_2(capsys):
         code, _, err = run(capsys, "synthesize", "--train", "simple", "--driver", "S", "--driven", "C", "--fixed",
                              "R", "--ratio", "4", "--planets", "3", "--zmax", "40", f"--rank={value}", "--quiet")
         assert code == 2 and len(err.strip().splitlines()) == 1 and "Traceback" not in err, (value, err)
+
+
+def test_locking_and_degenerate_designs_from_the_command_line(capsys, tmp_path):
+    # a two-row II train driven from gear 1 (gear 4 held) near i0 = z2 z4/(z1 z3) = 1: designs whose efficiency
+    # (1 - i0/eta0)/(1 - i0) is below zero lock, and at i0 = 1 (ratio 0) the train has no efficiency at all;
+    # both ways of asking (a column, a ranking key) say so in the table and in JSON valid against the schema
+    import jsonschema
+    from test_synthesis import TWO_ROW_II
+
+    from symkin.cli import output_schema
+
+    path = tmp_path / "ii.toml"
+    path.write_text(TWO_ROW_II)
+    base = ["synthesize", "--train", str(path), "--driver", "A", "--driven", "H", "--ratio-range=-0.03,0.03",
+            "--planets", "1", "--zmin", "20", "--zmax", "30", "--top", "all", "--efficiency", "0.99", "--quiet"]
+    eta0 = Fraction(99, 100) ** 2
+    for extra in ([], ["--rank", "efficiency"]):
+        code, out, _ = run(capsys, *base, *extra, "--json")
+        data = json.loads(out)
+        jsonschema.Draft202012Validator(output_schema("synthesize")).validate(data)
+        assert code == 0 and data["mesh_efficiencies"] == {"g1-g2": {"exact": "99/100", "float": 0.99},
+                                                           "g3-g4": {"exact": "99/100", "float": 0.99}}
+        kinds = set()
+        for d in data["designs"]:
+            t = d["teeth"]
+            i0 = Fraction(t["g2"] * t["g4"], t["g1"] * t["g3"])
+            if i0 == 1:
+                assert d["efficiency"] is None and d["locks"] is False
+                kinds.add("none")
+                continue
+            eta = (1 - i0 / eta0) / (1 - i0) if i0 < 1 else (1 - i0 * eta0) / (1 - i0)
+            assert Fraction(d["efficiency"]["exact"]) == eta and d["locks"] == (eta <= 0)
+            kinds.add("locks" if eta <= 0 else "drives")
+        assert kinds == {"none", "locks", "drives"}
+        code, out, _ = run(capsys, *base, *extra)
+        assert code == 0 and "(locks)" in out and "mesh efficiencies: g1-g2 0.99, g3-g4 0.99" in out

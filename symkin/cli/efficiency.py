@@ -75,12 +75,6 @@ def run_efficiency(args: Any) -> int:
         if per_mesh:
             raise InputError(f"no mesh {sorted(per_mesh)[0]!r}; the meshes are {', '.join(filled)}")
         efficiency = filled
-    elif efficiency == "default" and any(m.efficiency is not None for m in mech.meshes):
-        efficiency = None  # the train file's own values (the rest default below)
-        from symkin.statics.power import DEFAULT_EFFICIENCY, _sides
-
-        efficiency = {f"{s.mesh.a}-{s.mesh.b}": s.mesh.efficiency or DEFAULT_EFFICIENCY["internal" if s.internal else "external"]
-                      for s in _sides(mech)}
     result = statics(mech, input=inp, output=out, fixed=fixed, joined=joined, efficiency=efficiency)
     data = {**about, **result.to_json()}
     text = f"{title}\n{result.text()}"

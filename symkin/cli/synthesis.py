@@ -5,7 +5,7 @@ from __future__ import annotations
 from typing import Any
 
 from symkin.cli.common import Progress, add_command, add_quiet_flag, add_train_argument, emit
-from symkin.errors import InputError
+from symkin.errors import InputError, SymkinError
 
 __all__ = ["register"]
 
@@ -37,7 +37,7 @@ def register(sub: Any) -> None:
     p.add_argument("--state", help="instead of --driver/--driven/--fixed: a gear state of the train file")
     p.add_argument("--ratio", help="target ratio omega_driver/omega_driven, exact (2.4, 12/5, -3)")
     p.add_argument("--tolerance", default="0.01", help="relative ratio tolerance (default 0.01 = 1 %%)")
-    p.add_argument("--ratio-range", metavar="LO,HI", help="instead of --ratio: every ratio from LO to HI")
+    p.add_argument("--ratio-range", metavar="LO,HI", help="instead of --ratio: every ratio from LO to HI (LO negative: --ratio-range=-120,-30)")
     p.add_argument("--planets", "-k", required=True,
                    help="equally spaced planets of each kind, or 'file' for each planet's count in the train file")
     p.add_argument("--zmin", help="least tooth number of every unknown gear (default: the least without undercut)")
@@ -58,7 +58,8 @@ def register(sub: Any) -> None:
     p.add_argument("--workers", help="processes of a local Dask cluster (default: the machine's cores)")
     p.add_argument("--efficiency", nargs="?", const="default", metavar="ETA",
                    help="also give each listed design's efficiency (its statics, driver driving driven): every mesh "
-                        "ETA, or without ETA 0.98 per external and 0.99 per internal mesh (or the file's values)")
+                        "ETA, or without ETA the train file's value where a mesh has one, else 0.98 per external and "
+                        "0.99 per internal mesh; '(locks)' marks an efficiency of zero or below")
     p.add_argument("--rank", metavar="KEYS",
                    help="order of the designs: keys among error, efficiency (largest first), size, teeth (tooth sum), "
                         "separated by commas; the rest of error,size,teeth follow (default error,size,teeth). "
@@ -124,19 +125,35 @@ def run_synthesize(args: Any) -> int:
         bar.close()
     checks = [d.check() for d in result.designs]
     etas = None  # a column of efficiencies that do not rank (ranked ones are in the table and each check)
-    if args.efficiency is not None and "efficiency" not in result.rank:
-        etas = [d.efficiency(mesh) for d in result.designs]
     data = result.to_json()
+    meshes = dict(result.mesh_efficiency)
+    if args.efficiency is not None and "efficiency" not in result.rank:
+        from symkin.statics.power import mesh_efficiencies
+
+        etas = [_efficiency(d, mesh) for d in result.designs]
+        meshes = mesh_efficiencies(result.problem.train, mesh)
+        data["mesh_efficiencies"] = {m: exact_json(v) for m, v in meshes.items()}
     for i, (design, check) in enumerate(zip(data["designs"], checks)):
         design["check"] = check.to_json()
         if etas is not None:
             design["efficiency"] = exact_json(etas[i])
-    emit(args, _text(result, checks, args.latex, etas), data)
+            design["locks"] = etas[i] is not None and bool(etas[i] <= 0)
+    emit(args, _text(result, checks, args.latex, etas, meshes), data)
     return 0 if all(c.passed for c in checks) else 1
 
 
-def _text(result: Any, checks: list[Any], latex: bool, etas: list[Any] | None = None) -> str:
-    from symkin.synthesis.result import describe_designs
+def _efficiency(design: Any, mesh: Any) -> Any:
+    """The design's efficiency from its statics, None where its train has none (a degenerate one)."""
+    try:
+        return design.efficiency(mesh)
+    except SymkinError:
+        return None
+
+
+def _text(result: Any, checks: list[Any], latex: bool, etas: list[Any] | None = None,
+          meshes: dict[str, Any] | None = None) -> str:
+    from symkin._util.jsonout import float_text
+    from symkin.synthesis.result import describe_designs, efficiency_text
 
     p = result.problem
     o = p.options
@@ -162,11 +179,13 @@ def _text(result: Any, checks: list[Any], latex: bool, etas: list[Any] | None = 
     for i, (row, check) in enumerate(zip(table, [None, *checks])):
         mark = "check" if check is None else ("ok" if check.passed else f"FAILED {check.problem}")
         if etas is not None:
-            row += "  efficiency" if i == 0 else f"  {float(etas[i - 1]):10.5f}"
+            row += "  efficiency" if i == 0 else f"  {efficiency_text(etas[i - 1]):>10}"
         lines.append(f"  {row}  {mark}")
     lines.append("check: each train built with its teeth; ratio derived again, coaxiality and planet positions from "
                  "the model, the least gap between planet copies measured" +
                  ("; efficiency from each train's statics (basic-train method), not a ranking key" if etas else "") +
                  ("; efficiency ranked by the train's law, evaluated exactly, and derived again from each train's "
                   "statics (basic-train method)" if "efficiency" in result.rank else ""))
+    if meshes:
+        lines.append("mesh efficiencies: " + ", ".join(f"{m} {float_text(v) or v}" for m, v in meshes.items()))
     return "\n".join(lines)

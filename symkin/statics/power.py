@@ -286,7 +286,7 @@ def _efficiencies(mech: Mechanism, sides: Sequence[_Side], efficiency: Any) -> d
         if isinstance(efficiency, Mapping):
             given = efficiency.get(key, efficiency.get(f"{s.mesh.b}-{s.mesh.a}"))
         elif efficiency == "default":
-            given = DEFAULT_EFFICIENCY["internal" if s.internal else "external"]
+            given = s.mesh.efficiency or DEFAULT_EFFICIENCY["internal" if s.internal else "external"]
         elif efficiency is not None:
             given = efficiency
         if given is None and s.mesh.efficiency is not None:
@@ -341,8 +341,9 @@ def statics(
         Clutches.
     efficiency : None, number, ``"default"`` or mapping
         Mesh efficiencies: None keeps a symbol ``eta_ab`` per mesh (or the train file's
-        ``efficiency``), a number applies to every mesh, ``"default"`` takes
-        :data:`DEFAULT_EFFICIENCY`, a mapping ``{"a-b": value}`` sets meshes one by one.
+        ``efficiency``), a number applies to every mesh, ``"default"`` takes the train
+        file's value where it gives one, else :data:`DEFAULT_EFFICIENCY`, a mapping
+        ``{"a-b": value}`` sets meshes one by one.
     pressure_angle : angle in radians
         For the radial tooth forces (default 20 degrees).
 

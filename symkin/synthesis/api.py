@@ -97,8 +97,11 @@ def synthesize(
         exactly at every design found.
     mesh_efficiency : str, number or dict
         The meshes' efficiencies when ranking by efficiency (:func:`symkin.statics.statics`'
-        ``efficiency``): ``"default"`` (0.98 external, 0.99 internal, or the file's), one
-        number, or ``{"a-b": value}``.
+        ``efficiency``): ``"default"`` (the train file's value where a mesh has one, else 0.98
+        external and 0.99 internal), one number, or ``{"a-b": value}``; rational numbers (a
+        decimal, a fraction), since the order is exact. The values used are in
+        :attr:`SynthesisResult.mesh_efficiency`; a design whose efficiency is zero or below
+        (:attr:`Design.locks`: the driver cannot drive the driven) ranks after the rest.
 
     Raises
     ------
@@ -164,7 +167,8 @@ def synthesize(
         raise InputError(reason)
     return SynthesisResult(problem, target, designs, merged.found, funnel_of(plan, merged), merged.reach,
                            time.perf_counter() - began, plan.describe(), runs[0].to_json() if runs else {},
-                           plan.notes, reason, merged.made, plan.rank)
+                           plan.notes, reason, merged.made, plan.rank,
+                           plan.efficiency.meshes if plan.efficiency is not None else ())
 
 
 _PLANS: dict[Any, Plan] = {}

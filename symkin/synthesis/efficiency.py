@@ -69,8 +69,13 @@ def rank_order(rank: str | Sequence[str] | None) -> tuple[str, ...]:
     """
     if rank is None:
         return DEFAULT_RANK
-    keys = [k.strip().lower() for k in rank.split(",")] if isinstance(rank, str) else [str(k).strip().lower()
-                                                                                        for k in rank]
+    if isinstance(rank, str):
+        keys = [k.strip().lower() for k in rank.split(",")]
+    elif isinstance(rank, Sequence) and all(isinstance(k, str) for k in rank):
+        keys = [k.strip().lower() for k in rank]
+    else:
+        raise InputError(f"rank by keys among {', '.join(RANK_KEYS)} (a string such as 'efficiency,error' or a list "
+                         f"of them), got {rank!r}")
     if not keys or any(not k for k in keys):
         raise InputError(f"rank by one or more of {', '.join(RANK_KEYS)} separated by commas, got {rank!r}")
     for k in keys:
@@ -132,6 +137,9 @@ class EfficiencyLaw:
         Exact, in the unknowns (a ``Piecewise`` where the power flow depends on them).
     mesh_efficiency : str or number or dict
         What the meshes were given (:func:`symkin.statics.statics`' ``efficiency``).
+    meshes : tuple of (str, sympy.Expr)
+        Each mesh's efficiency as the statics took it (``"default"``: the train file's value
+        where a mesh has one, else 0.98 external, 0.99 internal).
     """
 
     law: sp.Expr
@@ -141,6 +149,7 @@ class EfficiencyLaw:
     pieces: tuple[tuple[int, int], ...]  # each piece: polynomial numbers of P and Q
     conditions: tuple[tuple, ...]  # each piece's condition, as a tree over (P, Q) pairs
     f_float: Any  # every polynomial in binary64, or None when they do not stay exact
+    meshes: tuple[tuple[str, sp.Expr], ...] = ()
 
     @classmethod
     def derive(cls, problem: Any, mesh_efficiency: Any = "default") -> EfficiencyLaw:
@@ -174,6 +183,12 @@ class EfficiencyLaw:
             names = ", ".join(sorted(map(str, extra)))
             raise InputError(f"ranking by efficiency needs a number for every mesh efficiency, and {names} has none; "
                              "give one (--efficiency 0.98) or leave 'default'")
+        for mesh, value in result.efficiencies.items():
+            if value.is_number and not value.is_Rational:
+                raise InputError(f"ranking by efficiency orders designs exactly and needs each mesh efficiency as a "
+                                 f"rational number, and mesh {mesh} has {value}; give a decimal such as "
+                                 f"{float(value):.6g}")
+        meshes = tuple(result.efficiencies.items())
         pieces = law.args if isinstance(law, sp.Piecewise) else ((law, sp.true),)
         polys: list[sp.Poly] = []
 
@@ -192,7 +207,7 @@ class EfficiencyLaw:
             if exact else None
         held_polys = tuple((tuple(m for m, _ in p.terms()), tuple(int(c) for _, c in p.terms())) for p in polys)
         return cls(law, args, mesh_efficiency, held_polys, tuple((v, v + 1) for v in values), tuple(conditions),
-                   f_float)
+                   f_float, meshes)
 
     def _evaluate(self, teeth: np.ndarray) -> list[np.ndarray]:
         """Every polynomial at each row of ``teeth``, exactly (int64 or Python-int object arrays)."""
@@ -277,7 +292,7 @@ class EfficiencyLaw:
         found, degenerate = self._exact(teeth)
         for r, v in enumerate(found):
             if v is None and not degenerate[r]:
-                found[r] = _concrete(problem, tuple(int(x) for x in teeth[r]), self.mesh_efficiency)
+                found[r] = _concrete(problem, tuple(int(x) for x in teeth[r]), dict(self.meshes))
         return found
 
 

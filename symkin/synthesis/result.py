@@ -21,7 +21,7 @@ from typing import Any
 import sympy as sp
 
 from symkin._util.jsonout import exact_json, float_text
-from symkin.errors import CoaxialityWarning, ModelError
+from symkin.errors import CoaxialityWarning, ModelError, SymkinError
 from symkin.model import Gear, LinkKind, Mechanism
 from symkin.synthesis.efficiency import DEFAULT_RANK
 from symkin.synthesis.problem import Condition, Problem
@@ -102,11 +102,13 @@ class Design:
     planets : tuple of (str, int)
         Copies of each planet kind.
     ranked_efficiency : sympy.Rational or None
-        The exact efficiency the search ranked the design by (None unless it ranked by
-        efficiency), from the train's efficiency law (:mod:`symkin.synthesis.efficiency`);
-        :meth:`check` derives it again from the statics of the design's own train.
-    mesh_efficiency : str, number or dict
-        The mesh efficiencies that efficiency was worked with.
+        The exact efficiency the search ranked the design by, from the train's efficiency
+        law (:mod:`symkin.synthesis.efficiency`); :meth:`check` derives it again from the
+        statics of the design's own train. None unless the search ranked by efficiency, or
+        where the design has none (a degenerate train: a mesh's relative power has a pole).
+    mesh_efficiency : tuple of (str, sympy.Rational)
+        Each mesh's efficiency that efficiency was worked with (``"a-b"``, value); empty
+        unless the search ranked by efficiency (:attr:`ranked_by_efficiency`).
     """
 
     problem: Problem
@@ -119,7 +121,7 @@ class Design:
     shifts: tuple[tuple[str, sp.Rational], ...]
     planets: tuple[tuple[str, int], ...]
     ranked_efficiency: sp.Rational | None = None
-    mesh_efficiency: Any = "default"
+    mesh_efficiency: tuple[tuple[str, sp.Expr], ...] = ()
 
     @classmethod
     def from_record(cls, plan: Plan, record: Record) -> Design:
@@ -147,10 +149,20 @@ class Design:
                 if r != a_w:
                     shifts.append((f"{m.mesh.a}-{m.mesh.b}", (a_w - r) / m.module))
         eta = None if record.efficiency is None else _rational(record.efficiency)
-        mesh = plan.efficiency.mesh_efficiency if plan.efficiency is not None else "default"
+        mesh = plan.efficiency.meshes if plan.efficiency is not None else ()
         return cls(problem, tuple((str(z), v) for z, v in values.items()), tuple(gear_teeth), _rational(record.ratio),
                    _rational(record.error), sp.Rational(record.size, plan.scale), tuple(arms), tuple(shifts),
                    tuple(problem.counts), eta, mesh)
+
+    @property
+    def ranked_by_efficiency(self) -> bool:
+        """Whether the search that found the design ranked by efficiency (then :attr:`mesh_efficiency` holds the meshes' values)."""
+        return bool(self.mesh_efficiency)
+
+    @property
+    def locks(self) -> bool:
+        """Whether the ranked efficiency is zero or below: the driver cannot drive the driven (the train locks)."""
+        return self.ranked_efficiency is not None and bool(self.ranked_efficiency <= 0)
 
     @property
     def values(self) -> dict[str, int]:
@@ -190,9 +202,11 @@ class Design:
         """The efficiency of the searched ratio's power path, exact, from the statics of :meth:`train`.
 
         ``mesh_efficiency`` is :func:`symkin.statics.statics`' ``efficiency``: ``"default"``
-        (0.98 an external mesh, 0.99 an internal one, or the train file's value), one number
-        for every mesh, or ``{"a-b": value}``.  Driver driving driven with the searched
-        links held (or the state's brakes and clutches).
+        (the train file's value where a mesh has one, else 0.98 an external mesh and 0.99 an
+        internal one), one number for every mesh, or ``{"a-b": value}``.  Driver driving
+        driven with the searched links held (or the state's brakes and clutches). A train
+        whose statics has no efficiency (a degenerate one) raises a
+        :class:`~symkin.errors.SymkinError`.
 
         >>> from symkin.synthesis import synthesize
         >>> best = synthesize("simple", driver="S", driven="C", fixed="R", ratio=4, zmax=80).designs[0]
@@ -233,8 +247,13 @@ class Design:
         count = problem.count
         assembles = all(assembles_tooth_by_tooth(train, g.planets, count[g.planets[0]]) for g in problem.assembly)
         eta, eta_ok = None, True
-        if self.ranked_efficiency is not None:
-            eta = sp.sympify(self.efficiency(self.mesh_efficiency))
+        if self.ranked_by_efficiency:
+            try:
+                eta = sp.sympify(self.efficiency(dict(self.mesh_efficiency)))
+            except SymkinError:  # no efficiency for this train: the ranking must have found none either
+                eta = None
+            if eta is not None and not eta.is_Rational:
+                eta = None
             eta_ok = eta == self.ranked_efficiency
         passed = ratio_ok and coaxial and placed and assembles and (gap is None or gap > 0) and eta_ok
         failed = [name for name, ok in (("ratio", ratio_ok), ("coaxiality", coaxial), ("assembly", assembles),
@@ -252,7 +271,8 @@ class Design:
             "arms": {p: exact_json(a) for p, a in self.arms},
             "shifts": {m: exact_json(y) for m, y in self.shifts},
             "planets": dict(self.planets),
-        } | ({"efficiency": exact_json(self.ranked_efficiency)} if self.ranked_efficiency is not None else {})
+        } | ({"efficiency": exact_json(self.ranked_efficiency), "locks": self.locks} if self.ranked_by_efficiency
+             else {})
 
 
 def assembles_tooth_by_tooth(train: Mechanism, planets: Sequence[str], k: int) -> bool:
@@ -410,6 +430,12 @@ class SynthesisResult:
     notes : tuple of str
     reason : str
         Why there is no design, when there is none.
+    made : int
+        Tuples made in all.
+    rank : tuple of str
+        The ranking keys, in order (:func:`symkin.synthesis.efficiency.rank_order`).
+    mesh_efficiency : tuple of (str, sympy.Rational)
+        Each mesh's efficiency the ranking used, when it ranked by efficiency.
     """
 
     problem: Problem
@@ -425,6 +451,7 @@ class SynthesisResult:
     reason: str = ""
     made: int = 0
     rank: tuple[str, ...] = DEFAULT_RANK
+    mesh_efficiency: tuple[tuple[str, sp.Expr], ...] = ()
 
     @property
     def order(self) -> str:
@@ -461,6 +488,8 @@ class SynthesisResult:
             "execution": self.execution,
             "notes": list(self.notes),
             "rank": list(self.rank),
+            **({"mesh_efficiencies": {m: exact_json(v) for m, v in self.mesh_efficiency}} if self.mesh_efficiency
+               else {}),
             "designs": [d.to_json() for d in self.designs],
         }
 
@@ -529,13 +558,20 @@ def empty_reason(plan: Plan, merged: ChunkResult) -> str:
     return "no design"  # pragma: no cover - some stage is empty when nothing is found
 
 
+def efficiency_text(eta: Any) -> str:
+    """An efficiency for a table: five decimals, "(locks)" at zero or below, "-" where there is none."""
+    if eta is None:
+        return "-"
+    return f"{float(eta):.5f}" + (" (locks)" if eta <= 0 else "")
+
+
 def describe_designs(designs: Sequence[Design]) -> list[str]:
     """A table of designs (best first)."""
     if not designs:
         return []
     problem = designs[0].problem
     names = [str(z) for z in problem.unknowns]
-    ranked = designs[0].ranked_efficiency is not None
+    ranked = any(d.ranked_by_efficiency for d in designs)
     header = ["#", *names, "ratio", "error %", "size", "shift"] + (["efficiency"] if ranked else [])
     rows = [header]
     for n, d in enumerate(designs, 1):
@@ -544,6 +580,6 @@ def describe_designs(designs: Sequence[Design]) -> list[str]:
         shift = ", ".join(f"{m} {float(y):+.3g}" for m, y in d.shifts) or "-"
         rows.append([str(n), *(str(values[z]) for z in names), ratio, f"{float(d.error) * 100:.4f}",
                      float_text(d.size), shift]
-                    + ([f"{float(d.ranked_efficiency):.5f}" if d.ranked_efficiency is not None else "-"] if ranked else []))
+                    + ([efficiency_text(d.ranked_efficiency)] if ranked else []))
     widths = [max(len(r[i]) for r in rows) for i in range(len(header))]
     return ["  ".join(c.rjust(w) for c, w in zip(r, widths)).rstrip() for r in rows]
