@@ -36,7 +36,7 @@ from symkin._util.parsing import parse_number
 from symkin.errors import InputError, PoleError, PrecisionWarning, UnsupportedError
 from symkin.numeric import runtime
 from symkin.numeric.codegen import ExactPrinter, FloatPrinter, ScalarPrinter, kernel_source, phase_sources
-from symkin.numeric.stable import ExactRatio, plain_form
+from symkin.numeric.stable import ExactRatio, fuse_product_quotients, plain_form
 
 __all__ = ["Plan", "BACKENDS", "NumpyBackend", "NumbaBackend", "MpmathBackend", "ExactBackend", "numba_available"]
 
@@ -238,6 +238,8 @@ class NumpyBackend:
         self.integer_syms = self._exact_integer_symbols(plan)
         self.twins = {s: sp.Symbol(f"_int_{s.name}", integer=True) for s in self.integer_syms}
         exprs = [self._twin(e) for e in plan.stable]
+        if plan.precision == "float64":  # x a b/(a b - c d): one division (the cancellation test's ratio)
+            exprs = [fuse_product_quotients(e) for e in exprs]
         printer = FloatPrinter(plan.precision)
         self.phases = {name: runtime.dd_function(text, name) for name, text in phase_sources(plan.stable).items()}
         modules = [{**runtime.NAMESPACE[plan.precision], **self.phases}, "numpy"]
@@ -392,10 +394,18 @@ class NumpyBackend:
             return False
         if any(i.dtype == object for i in ints):
             return True
-        # one pass of |z| and one reduction per array (max and min took two reductions)
-        big = [int(np.maximum.reduce(np.abs(i), axis=None)) if i.size else 0 for i in ints]
-        if any(b < 0 for b in big):  # |-2^63| wraps to -2^63 in int64
-            return True
+        # one reduction per array: the bitwise or of values that are all >= 0 is >= 0 and bounds
+        # their maximum (below twice it); where that bound is too coarse, |z| and its maximum
+        big = [int(np.bitwise_or.reduce(i, axis=None)) if i.size and i.dtype.kind in "iu" else -1 for i in ints]
+        if any(b < 0 for b in big) or self._over_bound(big):
+            big = [int(np.maximum.reduce(np.abs(i), axis=None)) if i.size else 0 for i in ints]
+            if any(b < 0 for b in big):  # |-2^63| wraps to -2^63 in int64
+                return True
+            return self._over_bound(big)
+        return False
+
+    def _over_bound(self, big: Sequence[int]) -> bool:
+        """True when some integer polynomial may reach 2^62 for inputs bounded by ``big``."""
         for terms in self.bound_terms:
             bound = 0
             for coeff, powers in terms:
@@ -466,16 +476,28 @@ class NumpyBackend:
         results = _allocate(outs, len(plan.stable), n, plan.dtype)
         chunk = max(1, plan.chunk)
         starts = list(range(0, n, chunk))
+        func = self.func
+        # int64 tooth arrays whose polynomials cannot overflow int64 (decided once for the call:
+        # one reduction per array) are sliced as they are; others are checked chunk by chunk
+        sliced = not ints or (all(i.dtype.kind == "i" for i in ints) and not self.needs_python_integers(ints))
 
         def work(block: Sequence[int]) -> bool:
             flagged = False
-            for start in block:
-                sl = slice(start, min(n, start + chunk))
-                int_part = self.integer_chunk([i[sl] if i.ndim else i for i in ints])  # while it is in cache
-                part = self.run([f[sl] if f.ndim else f for f in floats], int_part)
-                for o, r in zip(results, part):
-                    o[sl] = r
-                    flagged = flagged or not _all_finite([o[sl]])
+            with np.errstate(all="ignore"):  # one context for the block: non-finite outputs are flagged here
+                for start in block:
+                    stop = min(n, start + chunk)
+                    part = [f[start:stop] if f.ndim else f for f in floats]
+                    if ints:
+                        int_part = [i[start:stop] if i.ndim else i for i in ints]
+                        out = func(*part, *(int_part if sliced else self.integer_chunk(int_part)))  # (while in cache)
+                    else:
+                        out = func(*part)
+                    for o, r in zip(results, out):
+                        seg = o[start:stop]
+                        seg[...] = r
+                        # a finite sum (one pass, no temporary) proves every value finite
+                        if not flagged and not (math.isfinite(np.add.reduce(seg, axis=None)) or np.isfinite(seg).all()):
+                            flagged = True
             return flagged
 
         threads = min(plan.threads or 1, len(starts))
