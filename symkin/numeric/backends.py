@@ -79,6 +79,7 @@ class Plan:
 #: What each refused NumPy dtype kind holds, for the error message.
 _KIND_WORDS = {"c": "complex", "b": "boolean", "U": "text", "S": "bytes", "M": "date", "m": "time-span", "V": "raw"}
 _INT64_MAX = np.iinfo(np.int64).max
+_INT64 = np.dtype(np.int64)
 
 
 def _refusal(name: str, got: str, integer: bool) -> InputError:
@@ -264,6 +265,7 @@ class NumpyBackend:
         self.names = [s.name for s in plan.args]
         self.integer_flags = tuple(s in self.twins for s in plan.args)
         self.dtype = plan.dtype
+        self._np_dtype = np.dtype(plan.dtype)  # (arrays of it carry this very object: compared by identity)
 
     # ------------------------------------------------------------------ one point
     _scalar_code: Any = None  # built on the first scalar call; False where it cannot be
@@ -372,6 +374,32 @@ class NumpyBackend:
             out[k] = flat[j]
         return shape, out, flat[len(real):]
 
+    def _prepare_flat(self, values: Sequence[Any]) -> tuple[tuple[int, ...], list[np.ndarray], list[np.ndarray]] | None:
+        """:meth:`prepare` for the common call, without its conversions: every tooth number an
+        int64 array and every other input a float array of the working type, all of one flat
+        contiguous shape; None otherwise."""
+        shape = None
+        floats: list[np.ndarray] = []
+        ints: list[np.ndarray] = []
+        dt = self._np_dtype
+        for v, integer, used in zip(values, self.integer_flags, self.float_used):
+            if type(v) is not np.ndarray or v.ndim != 1 or not v.flags.c_contiguous:
+                return None
+            if shape is None:
+                shape = v.shape
+            elif v.shape != shape:
+                return None
+            if integer:
+                if v.dtype is not _INT64:
+                    return None
+                ints.append(v)
+                floats.append(v.astype(self.dtype) if used else self._placeholder)
+            elif v.dtype is dt:
+                floats.append(v)
+            else:
+                return None
+        return (shape, floats, ints) if shape is not None else None
+
     @property
     def _placeholder(self) -> np.ndarray:
         value = self.__dict__.get("_zero")
@@ -430,7 +458,7 @@ class NumpyBackend:
         any of their values is not finite."""
         plan = self.plan
         if not self.twins:  # real inputs only
-            names, dtype = self.names, self.dtype
+            names, dtype, dt = self.names, self.dtype, self._np_dtype
             floats: list[Any] = []
             shape = None
             same = True  # every array of one shape (the common call): no broadcasting to decide
@@ -442,7 +470,7 @@ class NumpyBackend:
                     # in the generated code is cheaper than a 0-d array's ufunc call per operation
                     floats.append(np.float64(v))
                     continue
-                if kind is not np.ndarray or v.dtype != dtype:
+                if kind is not np.ndarray or v.dtype is not dt:
                     v = _as_floats(as_array(v, nm), nm, dtype)
                 floats.append(v)
                 if shape is None:
@@ -458,13 +486,19 @@ class NumpyBackend:
             if outs is None and n <= plan.chunk:
                 # one call on the arrays as given: no copies, no chunks, one finiteness pass
                 with np.errstate(all="ignore"):
-                    out = self.func(*floats)
-                    results = [_own(r, shape, dtype, floats) for r in out]
-                    return shape, results, not _finite(results)
+                    results = self.func(*floats)
+                    finite = True
+                    for k, r in enumerate(results):
+                        # (a fresh array of the call's shape is the output as it is; see _own)
+                        if type(r) is not np.ndarray or r.dtype is not dt or r.shape != shape or r.base is not None or any(r is a for a in floats):
+                            r = results[k] = _own(r, shape, dtype, floats)
+                        if finite and not math.isfinite(np.add.reduce(r, axis=None)):
+                            finite = bool(np.isfinite(r).all())
+                    return shape, results, not finite
             shape, floats = broadcast_flat([np.asarray(f, dtype) for f in floats], names)
             ints: list[np.ndarray] = []
         else:
-            shape, floats, ints = self.prepare(values)
+            shape, floats, ints = self._prepare_flat(values) or self.prepare(values)
             n = math.prod(shape)
             if outs is None and n <= plan.chunk:
                 ints = self.integer_chunk(ints)

@@ -427,19 +427,20 @@ def _two_pi_dd() -> tuple[float, float]:
 _TWO_PI_HI, _TWO_PI_LO = _two_pi_dd()
 
 
-def _turns(fn: Any, args: tuple[float, ...]) -> tuple[float, float]:
+def _turns(fn: Any, args: tuple[float, ...]) -> tuple[float, ...]:
     """``c / (2 pi)`` in double-double (turns per unit of t) for ``c = fn(*args)``; the last
     coefficient is remembered on ``fn`` (a sweep of t with the same other inputs computes it once)."""
     memo = getattr(fn, "_symkin_memo", None)
     if memo is not None and memo[0] == args:
         return memo[1]
     ch, cl = fn(*args)
-    u = _dd_div(float(ch), float(cl), _TWO_PI_HI, _TWO_PI_LO)
+    pair = _dd_div(float(ch), float(cl), _TWO_PI_HI, _TWO_PI_LO)
+    u = (*pair, *_split_turns(pair))  # (hi, lo) and its 26-bit split (hi26, rest), for _reduce_turns_all
     fn._symkin_memo = (args, u)  # one assignment: another thread sees the old pair or the new one
     return u
 
 
-def _reduce_turns(u: tuple[float, float], t: Any) -> Any:
+def _reduce_turns(u: tuple[float, ...], t: Any) -> Any:
     """``2 pi frac(u t)`` for the double-double ``u`` (turns) and float ``t``: the product split
     exactly, the whole turns removed exactly (Sterbenz), one rounding in the fraction."""
     y, e = _two_prod(u[0], t)
@@ -449,7 +450,7 @@ def _reduce_turns(u: tuple[float, float], t: Any) -> Any:
     return f * _TWO_PI_HI + f * _TWO_PI_LO
 
 
-def _split_turns(u: tuple[float, float]) -> tuple[float, float]:
+def _split_turns(u: tuple[float, ...]) -> tuple[float, float]:
     """The double-double ``u`` as ``uh + ul`` with ``uh`` of 26 significant bits (Veltkamp),
     so that ``uh`` times a 26-bit part of a float is exact."""
     c = _SPLIT * u[0]
@@ -457,12 +458,12 @@ def _split_turns(u: tuple[float, float]) -> tuple[float, float]:
     return uh, (u[0] - uh) + u[1]
 
 
-def _reduce_turns_all(u: tuple[float, float], t: np.ndarray) -> np.ndarray:
+def _reduce_turns_all(u: tuple[float, ...], t: np.ndarray) -> np.ndarray:
     """:func:`_reduce_turns` for a whole array of times, branch-free and in place (15 passes, no
     gather or scatter): ``t = th + tl`` split exactly (26 bits each), ``uh th`` exact, its whole
     turns removed exactly, then ``uh tl`` (exact) and ``ul t`` (about 2^-26 of the phase) added to
     the fraction; the same error as :func:`_reduce_turns` (about 2^-52 pi below 2^27 turns)."""
-    uh, ul = _split_turns(u)
+    uh, ul = u[2:] if len(u) == 4 else _split_turns(u)  # (split once by _turns)
     c = np.multiply(t, _SPLIT)
     th = np.subtract(c, t)
     np.subtract(c, th, out=th)  # th = c - (c - t)
@@ -493,9 +494,9 @@ def long_phase(x: Any, fn: Any, t: Any, *args: Any) -> Any:
     if x.max() <= LONG_PHASE and x.min() >= -LONG_PHASE:  # (two passes, no temporary)
         return x
     shape = x.shape
-    if all(type(a) is float or np.ndim(a) == 0 for a in args):
+    if all(isinstance(a, float) or np.ndim(a) == 0 for a in args):  # (np.float64 is a float)
         t = np.asarray(t, np.float64)
-        return _reduce_turns_all(_turns(fn, tuple(float(a) for a in args)), t if t.shape == shape else np.broadcast_to(t, shape))
+        return _reduce_turns_all(_turns(fn, tuple(map(float, args))), t if t.shape == shape else np.broadcast_to(t, shape))
     big = np.abs(x) > LONG_PHASE
     x = x if x.dtype == np.float64 else x.astype(np.float64)  # (a fresh product c*t: written in place)
     t = np.asarray(t, np.float64)
