@@ -409,7 +409,14 @@ STATIC = """## What the float backends guarantee (tested, not measured here)
   `c t` with `c` a rational constant times inputs in double-double; `c t` with `c` any rational function of
   inputs (the planet's omega_1 r1 r3/(r1 r3 + r2 r4)) plainly where |c t| <= 8 rad and, beyond, with `c`
   evaluated in double-double from the inputs and the product reduced, so the rounding of `c` is not
-  multiplied by t (tests/test_numeric_long_phase.py). Exact while the phase is below 2^27 turns.
+  multiplied by t (tests/test_numeric_long_phase.py). Exact while the phase is below 2^27 turns. When `c`'s
+  inputs are numbers (an array of times), `c` is computed once and, if any phase of the call is long, every
+  phase of the call is reduced, branch-free (tests/test_numeric_fast_paths.py).
+- Where the products of `a b - c d` may cancel is decided per call from `g = a b/(a b - c d)`: its minimum
+  and maximum in [-0.499, 1.499] certify every point (the plain difference is within 3 units there); only
+  uncertified points are redone in double-double. A law `x a b/(a b - c d)` uses `g` itself (one division).
+- Tooth-number arrays are bounded by one bitwise-or reduction each (all >= 0: the or bounds the maximum); only
+  where that bound could overflow int64 are |z| and its maximum taken, and beyond it Python integers are used.
 - float32: inputs that are float32 keep the guarantees above in float32; inputs given in float64 are rounded
   to float32, and where that moves a result by more than 2^-16 of the call's largest value (near a pole) a
   `PrecisionWarning` says so (checked by one float64 evaluation, paid only for such inputs).

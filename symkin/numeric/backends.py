@@ -295,6 +295,17 @@ class NumpyBackend:
             code = self._scalar_code = self._build_scalar()
         if code is False:
             return None
+        if not self.twins:  # real inputs only: floats pass as they are (one type test each)
+            for v in values:
+                kind = type(v)
+                if kind is not float and kind is not np.float64:
+                    break
+            else:
+                try:
+                    out = code(*values)
+                except (ArithmeticError, ValueError, TypeError):
+                    return None
+                return self._scalar_results(out)
         floats = []
         ints = []
         for v, integer in zip(values, self.integer_flags):
@@ -319,6 +330,12 @@ class NumpyBackend:
             out = code(*floats, *ints)
         except (ArithmeticError, ValueError, TypeError):  # a pole or a domain error: reported by the array path
             return None
+        return self._scalar_results(out)
+
+    @staticmethod
+    def _scalar_results(out: Sequence[Any]) -> list[Any] | None:
+        """The outputs of the scalar code as NumPy float64 numbers, or None where one is not a
+        finite real (the array path then says what it is)."""
         results = []
         for r in out:
             if type(r) is not float:
