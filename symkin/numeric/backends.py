@@ -528,9 +528,6 @@ class NumpyBackend:
         chunk = max(1, plan.chunk)
         starts = list(range(0, n, chunk))
         func = self.func
-        # int64 tooth arrays whose polynomials cannot overflow int64 (decided once for the call:
-        # one reduction per array) are sliced as they are; others are checked chunk by chunk
-        sliced = not ints or (all(i.dtype.kind == "i" for i in ints) and not self.needs_python_integers(ints))
 
         def work(block: Sequence[int]) -> bool:
             flagged = False
@@ -538,9 +535,8 @@ class NumpyBackend:
                 for start in block:
                     stop = min(n, start + chunk)
                     part = [f[start:stop] if f.ndim else f for f in floats]
-                    if ints:
-                        int_part = [i[start:stop] if i.ndim else i for i in ints]
-                        out = func(*part, *(int_part if sliced else self.integer_chunk(int_part)))  # (while in cache)
+                    if ints:  # tooth numbers checked (one bitwise-or reduction each) while the chunk is in cache
+                        out = func(*part, *self.integer_chunk([i[start:stop] if i.ndim else i for i in ints]))
                     else:
                         out = func(*part)
                     for o, r in zip(results, out):
