@@ -297,6 +297,59 @@ def hard_regions() -> list[dict]:
     return rows
 
 
+# --------------------------------------------------------------------------- fixed costs
+def best(fn, loops: int = 2000, repeat: int = 7) -> float:
+    """Seconds per call: the minimum over ``repeat`` loops of ``loops`` calls (fixed costs of a
+    few microseconds: the minimum is the cost without the machine's interruptions)."""
+    out = []
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        for _ in range(loops):
+            fn()
+        out.append((time.perf_counter() - t0) / loops)
+    return min(out)
+
+
+def fixed_costs(all_cases: dict) -> list[dict]:
+    """Where the time of a small call goes, per law: the whole call, lambdify, the generated code
+    alone (its own checks inside: the cancellation test's two reductions, the long phases' two),
+    and each check the default path adds around it, timed on its own (10^3 points and one point)."""
+    from symkin.numeric.backends import NumpyBackend
+
+    rows = []
+    for title, case in all_cases.items():
+        f = symkin.compile(case["expr"], case["args"], ranges=L.RANGES)
+        lam = sp.lambdify(case["args"], case["expr"], modules="numpy")
+        ev = f._evaluator
+        assert isinstance(ev, NumpyBackend)
+        for n in (1, 10**3):
+            vals = point(case["values"], n)
+            with warnings.catch_warnings(), np.errstate(all="ignore"):
+                warnings.simplefilter("ignore")
+                f(*vals)
+                row = dict(law=title, n=n, call=best(lambda: f(*vals)), lambdify=best(lambda: lam(*vals)))
+                if n == 1:
+                    code = ev._scalar_code
+                    flo = [float(v) for v in vals]
+                    ints = [int(v) for v, i in zip(vals, ev.integer_flags) if i]
+                    row["generated"] = best(lambda: code(*flo, *ints))
+                else:
+                    _shape, floats, ints = ev.prepare(vals)
+                    ints = ev.integer_chunk(ints)
+                    out = list(ev.func(*floats, *ints))
+                    row["generated"] = best(lambda: ev.func(*floats, *ints))
+                    def enter_exit():
+                        with np.errstate(all="ignore"):  # (as the call does: a new context each time)
+                            pass
+
+                    row["errstate"] = best(enter_exit)
+                    row["finite"] = best(lambda: [np.add.reduce(r, axis=None) for r in out])
+                    row["bound"] = best(lambda: ev.needs_python_integers(ints)) if ints else 0.0
+                    row["reduction"] = best(lambda: np.minimum.reduce(out[0], axis=None))
+            rows.append(row)
+    return rows
+
+
 # --------------------------------------------------------------------------- report
 def fmt_time(s: float) -> str:
     if s < 1e-3:
@@ -365,6 +418,27 @@ def markdown(res: dict) -> str:
     for r in res["hard"]:
         lines.append(f"| {r['region']} | {r['method']} | {r['error']:.1e} | {r['metric']} | {r['warned'] or ''} | {r['before'] or ''} |")
     # the issue's speed figures beside this run's
+    if res.get("fixed"):
+        us = lambda x: f"{x * 1e6:.2f}"  # noqa: E731
+        lines += [
+            "", "## Where the time of a small call goes (microseconds, this run)", "",
+            "Each piece timed on its own, the minimum of 7 loops (the cost without interruptions), so the pieces",
+            "need not add up to the call exactly. `generated` is the generated code alone: at one point the",
+            "Python-float code (the call adds the type test of each argument, the finiteness test of each output",
+            "and the conversion to a NumPy float64); at 10^3 points the NumPy code, with the tests inside it (the",
+            "cancellation test of `a b - c d`: two reductions; a long phase: two reductions, and its reduction",
+            "where a phase is long). Around it the call adds one `np.errstate` context, one finiteness sum per",
+            "output and, for tooth numbers, the int64 bound (one bitwise-or reduction per array); `reduction` is",
+            "one min-reduction of the output's size, the unit of those tests.",
+            "",
+            "| law | points | call | lambdify | generated | errstate | finiteness | tooth bound | one reduction |",
+            "|---|---:|---:|---:|---:|---:|---:|---:|---:|",
+        ]
+        for r in res["fixed"]:
+            cells = [us(r["call"]), us(r["lambdify"]), us(r["generated"])]
+            cells += [us(r[k]) if k in r else "" for k in ("errstate", "finite")]
+            cells += [us(r["bound"]) if r.get("bound") else ("" if r["n"] == 1 else "-"), us(r["reduction"]) if "reduction" in r else ""]
+            lines.append(f"| {r['law']} | {r['n']} | " + " | ".join(cells) + " |")
     lines += ["", "## The issue's figures beside this run's", ""]
     cell = {(r["law"], r["method"], r["n"]): r for r in res["speed"]}
     big = max(sizes)
@@ -442,6 +516,7 @@ def main() -> None:
     res["speed"] = speed(all_cases, sizes, rounds)
     res["accuracy"] = accuracy(all_cases)
     res["hard"] = hard_regions()
+    res["fixed"] = fixed_costs(all_cases)
     res["load"] = [load0, os.getloadavg()[0]]
     res["seconds"] = time.perf_counter() - t0
     for r in res["accuracy"]:

@@ -441,7 +441,12 @@ class NumpyBackend:
             return True
         # one reduction per array: the bitwise or of values that are all >= 0 is >= 0 and bounds
         # their maximum (below twice it); where that bound is too coarse, |z| and its maximum
-        big = [int(np.bitwise_or.reduce(i, axis=None)) if i.size and i.dtype.kind in "iu" else -1 for i in ints]
+        if len(ints) > 1 and ints[0].size <= 4096 and all(i.dtype is _INT64 and i.ndim == 1 for i in ints):
+            # small arrays: one reduction of them all (a reduction's call costs more than its work)
+            one = int(np.bitwise_or.reduce(np.concatenate(ints), axis=None))
+            big = [one] * len(ints)
+        else:
+            big = [int(np.bitwise_or.reduce(i, axis=None)) if i.size and i.dtype.kind in "iu" else -1 for i in ints]
         if any(b < 0 for b in big) or self._over_bound(big):
             big = [int(np.maximum.reduce(np.abs(i), axis=None)) if i.size else 0 for i in ints]
             if any(b < 0 for b in big):  # |-2^63| wraps to -2^63 in int64
