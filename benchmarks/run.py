@@ -297,6 +297,29 @@ def hard_regions() -> list[dict]:
     return rows
 
 
+# --------------------------------------------------------------------------- 10^7 points
+def issue_size(rounds: int = 3) -> dict:
+    """The II differential in radii at 10^7 points, as issue 18 measured it: lambdify and the
+    default path in round robin (median wall time of one call)."""
+    n = 10**7
+    rng = np.random.default_rng(7)
+    vals = [rng.uniform(-1, 1, n), rng.uniform(-1, 1, n), rng.uniform(5, 10, n), rng.uniform(1, 2, n),
+            rng.uniform(2.5, 4, n), rng.uniform(1, 2, n)]
+    expr = schemes.two_row("II").speeds({"1": W1, "4": W4}).law("H").rhs
+    fns = {"sympy.lambdify": sp.lambdify([W1, W4, *R], expr, modules="numpy"),
+           "symkin numpy (default)": symkin.compile(expr, [W1, W4, *R])}
+    samples: dict[str, list[float]] = {k: [] for k in fns}
+    with np.errstate(all="ignore"):
+        for fn in fns.values():
+            fn(*vals)
+        for _ in range(rounds):
+            for k, fn in fns.items():
+                t0 = time.perf_counter()
+                fn(*vals)
+                samples[k].append(time.perf_counter() - t0)
+    return {k: statistics.median(v) for k, v in samples.items()} | {"n": n, "load": os.getloadavg()[0]}
+
+
 # --------------------------------------------------------------------------- fixed costs
 def best(fn, loops: int = 2000, repeat: int = 7) -> float:
     """Seconds per call: the minimum over ``repeat`` loops of ``loops`` calls (fixed costs of a
@@ -373,7 +396,8 @@ def markdown(res: dict) -> str:
         "elliptical-drive slider acceleration a_s. `symkin numpy (default)` is `symkin.compile(law)` (NumPy float64,",
         "stable forms, input and pole checks); `symkin numba` is `backend=\"numba\"` (all threads). Each cell is the",
         "median wall time of one call over the rounds (methods in round robin), spread = (max - min)/median.",
-        "A call with 1 point passes Python floats.",
+        "A call with 1 point passes Python floats. The NumPy default evaluates a call of up to 2^17 points in one",
+        "piece, larger calls in chunks of 2^17 points.",
         "",
         "## Time per call, as a ratio to sympy.lambdify (below 1: faster than lambdify)",
         "",
@@ -447,6 +471,11 @@ def markdown(res: dict) -> str:
     if d_s and d_l:
         lines.append(f"- II differential in radii, default path: before, {BEFORE['speed differential']}; this run, "
                      f"{d_s['median_s'] / d_l['median_s']:.2f}x lambdify's time at {big:.0e} points.")
+    big7 = res.get("issue_size")
+    if big7:
+        s7, l7 = big7["symkin numpy (default)"], big7["sympy.lambdify"]
+        lines.append(f"- The same law at 10^7 points, as the issue measured it (3 rounds, round robin, load {big7['load']:.1f}): "
+                     f"{s7 / l7:.2f}x lambdify's time ({fmt_time(s7)} against {fmt_time(l7)}; {l7 / s7:.2f}x its speed).")
     s1 = [r for r in res["speed"] if r["n"] == 1 and r["method"] in ("symkin numpy (default)", "sympy.lambdify")]
     if s1:
         per = {(r["law"], r["method"]): r["median_s"] for r in s1}
@@ -517,6 +546,8 @@ def main() -> None:
     res["accuracy"] = accuracy(all_cases)
     res["hard"] = hard_regions()
     res["fixed"] = fixed_costs(all_cases)
+    if not opts.quick:
+        res["issue_size"] = issue_size()
     res["load"] = [load0, os.getloadavg()[0]]
     res["seconds"] = time.perf_counter() - t0
     for r in res["accuracy"]:
