@@ -421,7 +421,7 @@ class NumpyBackend:
         ints: list[np.ndarray] = []
         dt = self._np_dtype
         for v, integer, used in zip(values, self.integer_flags, self.float_used):
-            if type(v) is not np.ndarray or v.ndim != 1 or not v.flags.c_contiguous:
+            if type(v) is not np.ndarray or v.ndim != 1 or v.strides[0] != v.itemsize:  # (flat, contiguous)
                 return None
             if shape is None:
                 shape = v.shape
@@ -458,7 +458,7 @@ class NumpyBackend:
         """True when an integer polynomial could overflow int64 for these inputs."""
         if not self.bound_terms or not ints:
             return False
-        if any(i.dtype == object for i in ints):
+        if any(i.dtype.kind == "O" for i in ints):
             return True
         # one reduction per array: the bitwise or of values that are all >= 0 is >= 0 and bounds
         # their maximum (below twice it); where that bound is too coarse, |z| and its maximum
@@ -476,7 +476,17 @@ class NumpyBackend:
         return False
 
     def _over_bound(self, big: Sequence[int]) -> bool:
-        """True when some integer polynomial may reach 2^62 for inputs bounded by ``big``."""
+        """True when some integer polynomial may reach 2^62 for inputs bounded by ``big`` (the
+        answer for the last bounds is remembered: calls with like inputs repeat them)."""
+        key = tuple(big)
+        memo = self.__dict__.get("_bound_memo")
+        if memo is not None and memo[0] == key:
+            return memo[1]
+        over = self._over_bound_of(big)
+        self.__dict__["_bound_memo"] = (key, over)  # one assignment: another thread sees the old pair or the new one
+        return over
+
+    def _over_bound_of(self, big: Sequence[int]) -> bool:
         for terms in self.bound_terms:
             bound = 0
             for coeff, powers in terms:
@@ -550,10 +560,18 @@ class NumpyBackend:
             if outs is None and n <= plan.chunk:
                 ints = self.integer_chunk(ints)
                 flat_shape = (n,) if shape else ()
+                dt = self._np_dtype
                 with np.errstate(all="ignore"):  # one context for the call and its finiteness pass
-                    out = self.func(*floats, *ints)
-                    results = [_own(r, flat_shape, plan.dtype, floats + ints) for r in out]
-                    return shape, results, not _finite(results)
+                    results = self.func(*floats, *ints)
+                    finite = True
+                    for k, r in enumerate(results):
+                        # (a fresh array of the call's shape is the output as it is; see _own)
+                        if type(r) is not np.ndarray or r.dtype is not dt or r.shape != flat_shape or r.base is not None or any(
+                            r is a for a in floats) or any(r is a for a in ints):
+                            r = results[k] = _own(r, flat_shape, plan.dtype, floats + ints)
+                        if finite and not math.isfinite(np.add.reduce(r, axis=None)):
+                            finite = bool(np.isfinite(r).all())
+                    return shape, results, not finite
         results = _allocate(outs, len(plan.stable), n, plan.dtype)
         chunk = max(1, plan.chunk)
         starts = list(range(0, n, chunk))
