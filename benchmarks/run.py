@@ -297,6 +297,82 @@ def hard_regions() -> list[dict]:
     return rows
 
 
+# --------------------------------------------------------------------------- 10^7 points
+def issue_size(rounds: int = 3) -> dict:
+    """The II differential in radii at 10^7 points, as issue 18 measured it: lambdify and the
+    default path in round robin (median wall time of one call)."""
+    n = 10**7
+    rng = np.random.default_rng(7)
+    vals = [rng.uniform(-1, 1, n), rng.uniform(-1, 1, n), rng.uniform(5, 10, n), rng.uniform(1, 2, n),
+            rng.uniform(2.5, 4, n), rng.uniform(1, 2, n)]
+    expr = schemes.two_row("II").speeds({"1": W1, "4": W4}).law("H").rhs
+    fns = {"sympy.lambdify": sp.lambdify([W1, W4, *R], expr, modules="numpy"),
+           "symkin numpy (default)": symkin.compile(expr, [W1, W4, *R])}
+    samples: dict[str, list[float]] = {k: [] for k in fns}
+    with np.errstate(all="ignore"):
+        for fn in fns.values():
+            fn(*vals)
+        for _ in range(rounds):
+            for k, fn in fns.items():
+                t0 = time.perf_counter()
+                fn(*vals)
+                samples[k].append(time.perf_counter() - t0)
+    return {k: statistics.median(v) for k, v in samples.items()} | {"n": n, "load": os.getloadavg()[0]}
+
+
+# --------------------------------------------------------------------------- fixed costs
+def best(fn, loops: int = 2000, repeat: int = 7) -> float:
+    """Seconds per call: the minimum over ``repeat`` loops of ``loops`` calls (fixed costs of a
+    few microseconds: the minimum is the cost without the machine's interruptions)."""
+    out = []
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        for _ in range(loops):
+            fn()
+        out.append((time.perf_counter() - t0) / loops)
+    return min(out)
+
+
+def fixed_costs(all_cases: dict) -> list[dict]:
+    """Where the time of a small call goes, per law: the whole call, lambdify, the generated code
+    alone (its own checks inside: the cancellation test's two reductions, the long phases' two),
+    and each check the default path adds around it, timed on its own (10^3 points and one point)."""
+    from symkin.numeric.backends import NumpyBackend
+
+    rows = []
+    for title, case in all_cases.items():
+        f = symkin.compile(case["expr"], case["args"], ranges=L.RANGES)
+        lam = sp.lambdify(case["args"], case["expr"], modules="numpy")
+        ev = f._evaluator
+        assert isinstance(ev, NumpyBackend)
+        for n in (1, 10**3):
+            vals = point(case["values"], n)
+            with warnings.catch_warnings(), np.errstate(all="ignore"):
+                warnings.simplefilter("ignore")
+                f(*vals)
+                row = dict(law=title, n=n, call=best(lambda: f(*vals)), lambdify=best(lambda: lam(*vals)))
+                if n == 1:
+                    code = ev._scalar_code
+                    flo = [float(v) for v in vals]
+                    ints = [int(v) for v, i in zip(vals, ev.integer_flags) if i]
+                    row["generated"] = best(lambda: code(*flo, *ints))
+                else:
+                    _shape, floats, ints = ev.prepare(vals)
+                    ints = ev.integer_chunk(ints)
+                    out = list(ev.func(*floats, *ints))
+                    row["generated"] = best(lambda: ev.func(*floats, *ints))
+                    def enter_exit():
+                        with np.errstate(all="ignore"):  # (as the call does: a new context each time)
+                            pass
+
+                    row["errstate"] = best(enter_exit)
+                    row["finite"] = best(lambda: [np.add.reduce(r, axis=None) for r in out])
+                    row["bound"] = best(lambda: ev.needs_python_integers(ints)) if ints else 0.0
+                    row["reduction"] = best(lambda: np.minimum.reduce(out[0], axis=None))
+            rows.append(row)
+    return rows
+
+
 # --------------------------------------------------------------------------- report
 def fmt_time(s: float) -> str:
     if s < 1e-3:
@@ -320,7 +396,8 @@ def markdown(res: dict) -> str:
         "elliptical-drive slider acceleration a_s. `symkin numpy (default)` is `symkin.compile(law)` (NumPy float64,",
         "stable forms, input and pole checks); `symkin numba` is `backend=\"numba\"` (all threads). Each cell is the",
         "median wall time of one call over the rounds (methods in round robin), spread = (max - min)/median.",
-        "A call with 1 point passes Python floats.",
+        "A call with 1 point passes Python floats. The NumPy default evaluates a call of up to 2^17 points in one",
+        "piece, larger calls in chunks of 2^17 points.",
         "",
         "## Time per call, as a ratio to sympy.lambdify (below 1: faster than lambdify)",
         "",
@@ -365,6 +442,27 @@ def markdown(res: dict) -> str:
     for r in res["hard"]:
         lines.append(f"| {r['region']} | {r['method']} | {r['error']:.1e} | {r['metric']} | {r['warned'] or ''} | {r['before'] or ''} |")
     # the issue's speed figures beside this run's
+    if res.get("fixed"):
+        us = lambda x: f"{x * 1e6:.2f}"  # noqa: E731
+        lines += [
+            "", "## Where the time of a small call goes (microseconds, this run)", "",
+            "Each piece timed on its own, the minimum of 7 loops (the cost without interruptions), so the pieces",
+            "need not add up to the call exactly. `generated` is the generated code alone: at one point the",
+            "Python-float code (the call adds the type test of each argument, the finiteness test of each output",
+            "and the conversion to a NumPy float64); at 10^3 points the NumPy code, with the tests inside it (the",
+            "cancellation test of `a b - c d`: two reductions; a long phase: two reductions, and its reduction",
+            "where a phase is long). Around it the call adds one `np.errstate` context, one finiteness sum per",
+            "output and, for tooth numbers, the int64 bound (one bitwise-or reduction per array); `reduction` is",
+            "one min-reduction of the output's size, the unit of those tests.",
+            "",
+            "| law | points | call | lambdify | generated | errstate | finiteness | tooth bound | one reduction |",
+            "|---|---:|---:|---:|---:|---:|---:|---:|---:|",
+        ]
+        for r in res["fixed"]:
+            cells = [us(r["call"]), us(r["lambdify"]), us(r["generated"])]
+            cells += [us(r[k]) if k in r else "" for k in ("errstate", "finite")]
+            cells += [us(r["bound"]) if r.get("bound") else ("" if r["n"] == 1 else "-"), us(r["reduction"]) if "reduction" in r else ""]
+            lines.append(f"| {r['law']} | {r['n']} | " + " | ".join(cells) + " |")
     lines += ["", "## The issue's figures beside this run's", ""]
     cell = {(r["law"], r["method"], r["n"]): r for r in res["speed"]}
     big = max(sizes)
@@ -373,6 +471,11 @@ def markdown(res: dict) -> str:
     if d_s and d_l:
         lines.append(f"- II differential in radii, default path: before, {BEFORE['speed differential']}; this run, "
                      f"{d_s['median_s'] / d_l['median_s']:.2f}x lambdify's time at {big:.0e} points.")
+    big7 = res.get("issue_size")
+    if big7:
+        s7, l7 = big7["symkin numpy (default)"], big7["sympy.lambdify"]
+        lines.append(f"- The same law at 10^7 points, as the issue measured it (3 rounds, round robin, load {big7['load']:.1f}): "
+                     f"{s7 / l7:.2f}x lambdify's time ({fmt_time(s7)} against {fmt_time(l7)}; {l7 / s7:.2f}x its speed).")
     s1 = [r for r in res["speed"] if r["n"] == 1 and r["method"] in ("symkin numpy (default)", "sympy.lambdify")]
     if s1:
         per = {(r["law"], r["method"]): r["median_s"] for r in s1}
@@ -409,7 +512,14 @@ STATIC = """## What the float backends guarantee (tested, not measured here)
   `c t` with `c` a rational constant times inputs in double-double; `c t` with `c` any rational function of
   inputs (the planet's omega_1 r1 r3/(r1 r3 + r2 r4)) plainly where |c t| <= 8 rad and, beyond, with `c`
   evaluated in double-double from the inputs and the product reduced, so the rounding of `c` is not
-  multiplied by t (tests/test_numeric_long_phase.py). Exact while the phase is below 2^27 turns.
+  multiplied by t (tests/test_numeric_long_phase.py). Exact while the phase is below 2^27 turns. When `c`'s
+  inputs are numbers (an array of times), `c` is computed once and, if any phase of the call is long, every
+  phase of the call is reduced, branch-free (tests/test_numeric_fast_paths.py).
+- Where the products of `a b - c d` may cancel is decided per call from `g = a b/(a b - c d)`: its minimum
+  and maximum in [-0.499, 1.499] certify every point (the plain difference is within 3 units there); only
+  uncertified points are redone in double-double. A law `x a b/(a b - c d)` uses `g` itself (one division).
+- Tooth-number arrays are bounded by one bitwise-or reduction each (all >= 0: the or bounds the maximum); only
+  where that bound could overflow int64 are |z| and its maximum taken, and beyond it Python integers are used.
 - float32: inputs that are float32 keep the guarantees above in float32; inputs given in float64 are rounded
   to float32, and where that moves a result by more than 2^-16 of the call's largest value (near a pole) a
   `PrecisionWarning` says so (checked by one float64 evaluation, paid only for such inputs).
@@ -435,6 +545,9 @@ def main() -> None:
     res["speed"] = speed(all_cases, sizes, rounds)
     res["accuracy"] = accuracy(all_cases)
     res["hard"] = hard_regions()
+    res["fixed"] = fixed_costs(all_cases)
+    if not opts.quick:
+        res["issue_size"] = issue_size()
     res["load"] = [load0, os.getloadavg()[0]]
     res["seconds"] = time.perf_counter() - t0
     for r in res["accuracy"]:

@@ -40,9 +40,12 @@ from symkin.numeric.stable import RULE_NOTES, stable_form
 
 __all__ = ["compile", "NumericFunction", "NonFiniteInputWarning", "BACKENDS", "dask_map"]
 
-#: Points per chunk of the NumPy backend (temporaries of 128 KiB stay in cache and are reused;
-#: 8192 points was 10-40% slower at 10^5 and 10^6 points in an interleaved A/B on 2 cores).
-DEFAULT_CHUNK = 1 << 14
+#: Points per chunk of the NumPy backend: a call of up to this many points is one call of the
+#: generated code on the arrays as given (no copy of the outputs), larger calls go in chunks of it.
+#: 2^17 (temporaries of 1 MiB): in benchmarks/run.py's process, on 2 shared cores, 2^14 took
+#: 1.3-2x the time at 10^5 points (the II differential 1.76x lambdify's time against 1.11x; the AA
+#: ratio 2.3x against 1.6x) and was no faster at 10^6 (all four laws, round robin in one run).
+DEFAULT_CHUNK = 1 << 17
 
 
 def _exprs(laws: Any) -> tuple[list[sp.Expr], list[str]]:

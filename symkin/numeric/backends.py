@@ -36,7 +36,7 @@ from symkin._util.parsing import parse_number
 from symkin.errors import InputError, PoleError, PrecisionWarning, UnsupportedError
 from symkin.numeric import runtime
 from symkin.numeric.codegen import ExactPrinter, FloatPrinter, ScalarPrinter, kernel_source, phase_sources
-from symkin.numeric.stable import ExactRatio, plain_form
+from symkin.numeric.stable import ExactRatio, fuse_product_quotients, plain_form
 
 __all__ = ["Plan", "BACKENDS", "NumpyBackend", "NumbaBackend", "MpmathBackend", "ExactBackend", "numba_available"]
 
@@ -79,6 +79,7 @@ class Plan:
 #: What each refused NumPy dtype kind holds, for the error message.
 _KIND_WORDS = {"c": "complex", "b": "boolean", "U": "text", "S": "bytes", "M": "date", "m": "time-span", "V": "raw"}
 _INT64_MAX = np.iinfo(np.int64).max
+_INT64 = np.dtype(np.int64)
 
 
 def _refusal(name: str, got: str, integer: bool) -> InputError:
@@ -224,6 +225,27 @@ def _finite(results: Sequence[np.ndarray]) -> bool:
     return all(math.isfinite(np.add.reduce(r, axis=None)) or np.isfinite(r).all() for r in results)
 
 
+_PRIMED: list[bool] = []
+_PRIME_FROM = 1 << 13  # points: below this a call's temporaries stay under 64 KiB
+
+
+def _prime_allocator() -> None:
+    """Free one 16 MiB block once per process, so that the C allocator keeps the temporaries of
+    large calls instead of returning them to the system after each operation.
+
+    glibc's malloc maps blocks of 128 KiB and more on their own and unmaps them when freed, and
+    gives freed memory above 128 KiB at the top of its heap back to the system; each temporary
+    of a large call then costs page faults (about 5 ns per point instead of 0.3-1 ns).  glibc
+    raises both thresholds when a mapped block of up to 32 MiB is freed -- what any NumPy
+    program does once it frees a 16 MiB array; a process that has not (one that only made
+    80 MB arrays) evaluated the II differential at 10^7 points in 270 ms instead of 83 ms
+    (lambdify: 134-143 ms, same process).  Untouched pages: no memory is written.  Other
+    allocators ignore it."""
+    if not _PRIMED:
+        _PRIMED.append(True)
+        np.empty(1 << 21)  # 16 MiB, allocated and freed at once (never touched)
+
+
 # --------------------------------------------------------------------------- numpy
 class NumpyBackend:
     """Vectorised NumPy code (``sympy.lambdify`` with a printer for the stable forms),
@@ -238,6 +260,8 @@ class NumpyBackend:
         self.integer_syms = self._exact_integer_symbols(plan)
         self.twins = {s: sp.Symbol(f"_int_{s.name}", integer=True) for s in self.integer_syms}
         exprs = [self._twin(e) for e in plan.stable]
+        if plan.precision == "float64":  # x a b/(a b - c d): one division (the cancellation test's ratio)
+            exprs = [fuse_product_quotients(e) for e in exprs]
         printer = FloatPrinter(plan.precision)
         self.phases = {name: runtime.dd_function(text, name) for name, text in phase_sources(plan.stable).items()}
         modules = [{**runtime.NAMESPACE[plan.precision], **self.phases}, "numpy"]
@@ -262,6 +286,7 @@ class NumpyBackend:
         self.names = [s.name for s in plan.args]
         self.integer_flags = tuple(s in self.twins for s in plan.args)
         self.dtype = plan.dtype
+        self._np_dtype = np.dtype(plan.dtype)  # (arrays of it carry this very object: compared by identity)
 
     # ------------------------------------------------------------------ one point
     _scalar_code: Any = None  # built on the first scalar call; False where it cannot be
@@ -291,6 +316,17 @@ class NumpyBackend:
             code = self._scalar_code = self._build_scalar()
         if code is False:
             return None
+        if not self.twins:  # real inputs only: floats pass as they are (one type test each)
+            for v in values:
+                kind = type(v)
+                if kind is not float and kind is not np.float64:
+                    break
+            else:
+                try:
+                    out = code(*values)
+                except (ArithmeticError, ValueError, TypeError):
+                    return None
+                return self._scalar_results(out)
         floats = []
         ints = []
         for v, integer in zip(values, self.integer_flags):
@@ -315,6 +351,12 @@ class NumpyBackend:
             out = code(*floats, *ints)
         except (ArithmeticError, ValueError, TypeError):  # a pole or a domain error: reported by the array path
             return None
+        return self._scalar_results(out)
+
+    @staticmethod
+    def _scalar_results(out: Sequence[Any]) -> list[Any] | None:
+        """The outputs of the scalar code as NumPy float64 numbers, or None where one is not a
+        finite real (the array path then says what it is)."""
         results = []
         for r in out:
             if type(r) is not float:
@@ -370,6 +412,32 @@ class NumpyBackend:
             out[k] = flat[j]
         return shape, out, flat[len(real):]
 
+    def _prepare_flat(self, values: Sequence[Any]) -> tuple[tuple[int, ...], list[np.ndarray], list[np.ndarray]] | None:
+        """:meth:`prepare` for the common call, without its conversions: every tooth number an
+        int64 array and every other input a float array of the working type, all of one flat
+        contiguous shape; None otherwise."""
+        shape = None
+        floats: list[np.ndarray] = []
+        ints: list[np.ndarray] = []
+        dt = self._np_dtype
+        for v, integer, used in zip(values, self.integer_flags, self.float_used):
+            if type(v) is not np.ndarray or v.ndim != 1 or v.strides[0] != v.itemsize:  # (flat, contiguous)
+                return None
+            if shape is None:
+                shape = v.shape
+            elif v.shape != shape:
+                return None
+            if integer:
+                if v.dtype is not _INT64:
+                    return None
+                ints.append(v)
+                floats.append(v.astype(self.dtype) if used else self._placeholder)
+            elif v.dtype is dt:
+                floats.append(v)
+            else:
+                return None
+        return (shape, floats, ints) if shape is not None else None
+
     @property
     def _placeholder(self) -> np.ndarray:
         value = self.__dict__.get("_zero")
@@ -390,12 +458,35 @@ class NumpyBackend:
         """True when an integer polynomial could overflow int64 for these inputs."""
         if not self.bound_terms or not ints:
             return False
-        if any(i.dtype == object for i in ints):
+        if any(i.dtype.kind == "O" for i in ints):
             return True
-        # one pass of |z| and one reduction per array (max and min took two reductions)
-        big = [int(np.maximum.reduce(np.abs(i), axis=None)) if i.size else 0 for i in ints]
-        if any(b < 0 for b in big):  # |-2^63| wraps to -2^63 in int64
-            return True
+        # one reduction per array: the bitwise or of values that are all >= 0 is >= 0 and bounds
+        # their maximum (below twice it); where that bound is too coarse, |z| and its maximum
+        if len(ints) > 1 and ints[0].size <= 4096 and all(i.dtype is _INT64 and i.ndim == 1 for i in ints):
+            # small arrays: one reduction of them all (a reduction's call costs more than its work)
+            one = int(np.bitwise_or.reduce(np.concatenate(ints), axis=None))
+            big = [one] * len(ints)
+        else:
+            big = [int(np.bitwise_or.reduce(i, axis=None)) if i.size and i.dtype.kind in "iu" else -1 for i in ints]
+        if any(b < 0 for b in big) or self._over_bound(big):
+            big = [int(np.maximum.reduce(np.abs(i), axis=None)) if i.size else 0 for i in ints]
+            if any(b < 0 for b in big):  # |-2^63| wraps to -2^63 in int64
+                return True
+            return self._over_bound(big)
+        return False
+
+    def _over_bound(self, big: Sequence[int]) -> bool:
+        """True when some integer polynomial may reach 2^62 for inputs bounded by ``big`` (the
+        answer for the last bounds is remembered: calls with like inputs repeat them)."""
+        key = tuple(big)
+        memo = self.__dict__.get("_bound_memo")
+        if memo is not None and memo[0] == key:
+            return memo[1]
+        over = self._over_bound_of(big)
+        self.__dict__["_bound_memo"] = (key, over)  # one assignment: another thread sees the old pair or the new one
+        return over
+
+    def _over_bound_of(self, big: Sequence[int]) -> bool:
         for terms in self.bound_terms:
             bound = 0
             for coeff, powers in terms:
@@ -420,7 +511,7 @@ class NumpyBackend:
         any of their values is not finite."""
         plan = self.plan
         if not self.twins:  # real inputs only
-            names, dtype = self.names, self.dtype
+            names, dtype, dt = self.names, self.dtype, self._np_dtype
             floats: list[Any] = []
             shape = None
             same = True  # every array of one shape (the common call): no broadcasting to decide
@@ -432,7 +523,7 @@ class NumpyBackend:
                     # in the generated code is cheaper than a 0-d array's ufunc call per operation
                     floats.append(np.float64(v))
                     continue
-                if kind is not np.ndarray or v.dtype != dtype:
+                if kind is not np.ndarray or v.dtype is not dt:
                     v = _as_floats(as_array(v, nm), nm, dtype)
                 floats.append(v)
                 if shape is None:
@@ -445,37 +536,63 @@ class NumpyBackend:
                 shape = common_shape([f for f in floats if type(f) is np.ndarray],
                                      [nm for f, nm in zip(floats, names) if type(f) is np.ndarray])
             n = math.prod(shape)
+            if n > _PRIME_FROM and not _PRIMED:
+                _prime_allocator()
             if outs is None and n <= plan.chunk:
                 # one call on the arrays as given: no copies, no chunks, one finiteness pass
                 with np.errstate(all="ignore"):
-                    out = self.func(*floats)
-                    results = [_own(r, shape, dtype, floats) for r in out]
-                    return shape, results, not _finite(results)
+                    results = self.func(*floats)
+                    finite = True
+                    for k, r in enumerate(results):
+                        # (a fresh array of the call's shape is the output as it is; see _own)
+                        if type(r) is not np.ndarray or r.dtype is not dt or r.shape != shape or r.base is not None or any(r is a for a in floats):
+                            r = results[k] = _own(r, shape, dtype, floats)
+                        if finite and not math.isfinite(np.add.reduce(r, axis=None)):
+                            finite = bool(np.isfinite(r).all())
+                    return shape, results, not finite
             shape, floats = broadcast_flat([np.asarray(f, dtype) for f in floats], names)
             ints: list[np.ndarray] = []
         else:
-            shape, floats, ints = self.prepare(values)
+            shape, floats, ints = self._prepare_flat(values) or self.prepare(values)
             n = math.prod(shape)
+            if n > _PRIME_FROM and not _PRIMED:
+                _prime_allocator()
             if outs is None and n <= plan.chunk:
                 ints = self.integer_chunk(ints)
                 flat_shape = (n,) if shape else ()
+                dt = self._np_dtype
                 with np.errstate(all="ignore"):  # one context for the call and its finiteness pass
-                    out = self.func(*floats, *ints)
-                    results = [_own(r, flat_shape, plan.dtype, floats + ints) for r in out]
-                    return shape, results, not _finite(results)
+                    results = self.func(*floats, *ints)
+                    finite = True
+                    for k, r in enumerate(results):
+                        # (a fresh array of the call's shape is the output as it is; see _own)
+                        if type(r) is not np.ndarray or r.dtype is not dt or r.shape != flat_shape or r.base is not None or any(
+                            r is a for a in floats) or any(r is a for a in ints):
+                            r = results[k] = _own(r, flat_shape, plan.dtype, floats + ints)
+                        if finite and not math.isfinite(np.add.reduce(r, axis=None)):
+                            finite = bool(np.isfinite(r).all())
+                    return shape, results, not finite
         results = _allocate(outs, len(plan.stable), n, plan.dtype)
         chunk = max(1, plan.chunk)
         starts = list(range(0, n, chunk))
+        func = self.func
 
         def work(block: Sequence[int]) -> bool:
             flagged = False
-            for start in block:
-                sl = slice(start, min(n, start + chunk))
-                int_part = self.integer_chunk([i[sl] if i.ndim else i for i in ints])  # while it is in cache
-                part = self.run([f[sl] if f.ndim else f for f in floats], int_part)
-                for o, r in zip(results, part):
-                    o[sl] = r
-                    flagged = flagged or not _all_finite([o[sl]])
+            with np.errstate(all="ignore"):  # one context for the block: non-finite outputs are flagged here
+                for start in block:
+                    stop = min(n, start + chunk)
+                    part = [f[start:stop] if f.ndim else f for f in floats]
+                    if ints:  # tooth numbers checked (one bitwise-or reduction each) while the chunk is in cache
+                        out = func(*part, *self.integer_chunk([i[start:stop] if i.ndim else i for i in ints]))
+                    else:
+                        out = func(*part)
+                    for o, r in zip(results, out):
+                        seg = o[start:stop]
+                        seg[...] = r
+                        # a finite sum (one pass, no temporary) proves every value finite
+                        if not flagged and not (math.isfinite(np.add.reduce(seg, axis=None)) or np.isfinite(seg).all()):
+                            flagged = True
             return flagged
 
         threads = min(plan.threads or 1, len(starts))

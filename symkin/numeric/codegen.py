@@ -22,7 +22,15 @@ from sympy.printing.numpy import NumPyPrinter
 from sympy.printing.pycode import PythonCodePrinter
 
 from symkin.numeric.runtime import LONG_PHASE
-from symkin.numeric.stable import ExactRatio, Group, LongPhase, ProductDifference, ReducedPhase, plain_form
+from symkin.numeric.stable import (
+    ExactRatio,
+    Group,
+    LongPhase,
+    ProductDifference,
+    ProductQuotient,
+    ReducedPhase,
+    plain_form,
+)
 
 __all__ = ["FloatPrinter", "ScalarPrinter", "ExactPrinter", "kernel_source", "abs_bound", "phase_sources"]
 
@@ -106,6 +114,9 @@ class FloatPrinter(NumPyPrinter):
 
     def _print_ProductDifference(self, expr: ProductDifference) -> str:
         return f"_symkin_product_difference({', '.join(self._print(a) for a in expr.args)})"
+
+    def _print_ProductQuotient(self, expr: ProductQuotient) -> str:
+        return f"_symkin_product_quotient({', '.join(self._print(a) for a in expr.args)})"
 
     def _print_ReducedPhase(self, expr: ReducedPhase) -> str:
         p, q, *xs = expr.args

@@ -154,7 +154,7 @@ class NumericFunction:
         if out is not None:
             shaped = [o for o in out]
         else:
-            shaped = [r.reshape(shape) for r in results]
+            shaped = [r if r.shape == shape else r.reshape(shape) for r in results]
             if shape == ():
                 shaped = [r[()] for r in shaped]
         return shaped[0] if len(shaped) == 1 else tuple(shaped)

@@ -24,7 +24,7 @@ from typing import Any
 import mpmath
 import numpy as np
 
-__all__ = ["exact_ratio", "reduced_phase", "product_difference", "long_phase", "dd_source", "TWO_PI_PARTS", "NAMESPACE"]
+__all__ = ["exact_ratio", "reduced_phase", "product_difference", "product_quotient", "long_phase", "dd_source", "TWO_PI_PARTS", "NAMESPACE"]
 
 _SPLIT = 134217729.0  # 2^27 + 1, Dekker's splitter for float64
 
@@ -74,53 +74,95 @@ def _product_difference_core(a: Any, b: Any, c: Any, d: Any) -> Any:
     return vh + (tl + vl)
 
 
+#: A point whose ``g = a b / (a b - c d)`` (plain difference) lies in this interval is certified
+#: far from cancellation: ``g`` in [-1/2, 3/2] is ``2 |a b - c d| >= |a b + c d|`` (the ratio
+#: ``c d / a b`` outside (1/3, 3)), where the plain difference is within 3 units of 2^-53; the
+#: bounds are pulled in by 1/1000 so that the rounding of ``g`` cannot move a point across.
+_CERTIFIED = (-0.499, 1.499)
+
+
+def _product_ratio(a: Any, b: Any, c: Any, d: Any) -> tuple[Any, Any, Any]:
+    """``(p, diff, g)``: ``p = a b``, ``diff = a b - c d`` within 3 units of 2^-53 and
+    ``g = p / diff``, for arrays (or 0-d arrays), inside ``np.errstate(all="ignore")``.
+
+    The plain ``diff = p - q`` is kept where ``g`` is certified (:data:`_CERTIFIED`); two
+    reductions of ``g`` (min and max, no temporary) decide that for the whole call, and only
+    when they do not are the points outside the interval (or nan) found and redone in
+    double-double arithmetic (:func:`_product_difference_core`)."""
+    p = a * b
+    diff = p - c * d
+    g = p / diff
+    lo, hi = _CERTIFIED
+    if lo <= np.minimum.reduce(g, axis=None) and np.maximum.reduce(g, axis=None) <= hi:  # (nan: False)
+        return p, diff, g
+    if g.ndim == 0:
+        exact = _product_difference_core(a, b, c, d)
+        if exact == exact:
+            diff = exact
+            g = p / diff
+        return p, diff, g
+    near = (g >= lo) & (g <= hi)
+    np.logical_not(near, out=near)
+    shape = g.shape
+    parts = [x[near] if type(x) is np.ndarray and x.shape == shape else np.broadcast_to(x, shape)[near] for x in (a, b, c, d)]
+    exact = _product_difference_core(*parts)
+    keep = np.isnan(exact)
+    if diff.shape != shape:
+        diff = np.broadcast_to(diff, shape).copy()
+    if p.shape != shape:
+        p = np.broadcast_to(p, shape).copy()
+    diff[near] = np.where(keep, diff[near], exact)
+    g[near] = p[near] / diff[near]
+    return p, diff, g
+
+
+def _arrays(a: Any, b: Any, c: Any, d: Any) -> tuple[Any, Any, Any, Any]:
+    f = np.float64
+    if type(a) is not np.ndarray or type(b) is not np.ndarray or type(c) is not np.ndarray or type(d) is not np.ndarray:
+        return tuple(np.asarray(x, f) for x in (a, b, c, d))  # type: ignore[return-value]
+    return a, b, c, d
+
+
 def product_difference(a: Any, b: Any, c: Any, d: Any) -> Any:
     """``a*b - c*d`` of float64 values within 3 units of 2^-53 of the exact value
     (relative), however much the two products cancel.
 
     The plain ``p - q`` (``p = a*b``, ``q = c*d``) is within ``2^-53 (|p| + |q| + |p - q|)``
     of the exact value: 3 units where the products cancel to no less than half their
-    sum (``2 |p - q| >= |p + q|``, the common case, 6 operations).  Only the points where
-    they cancel more are redone in double-double arithmetic (:func:`_product_difference_core`,
-    about 50 operations: within one unit), so the result keeps its digits at any distance
-    from a pole and is zero exactly where ``a b = c d``.  The double-double is exact while the
-    inputs are below 2^995 and the products above 2^-969 in magnitude (or zero); where its
-    splitting overflows the plain difference is kept.
+    sum (``2 |p - q| >= |p + q|``, the common case).  That is decided from ``g = p/(p - q)``
+    (in [-1/2, 3/2] exactly there), for a whole array by its minimum and maximum; only the
+    points where the products cancel more are redone in double-double arithmetic
+    (:func:`_product_difference_core`, about 50 operations: within one unit), so the result
+    keeps its digits at any distance from a pole and is zero exactly where ``a b = c d``.  The
+    double-double is exact while the inputs are below 2^995 and the products above 2^-969 in
+    magnitude (or zero); where its splitting overflows the plain difference is kept.
     """
-    f = np.float64
-    if type(a) is not np.ndarray or type(b) is not np.ndarray or type(c) is not np.ndarray or type(d) is not np.ndarray:
-        a, b, c, d = (np.asarray(x, f) for x in (a, b, c, d))
-    p = a * b
-    q = c * d
-    out = p - q
-    if out.ndim and type(p) is np.ndarray and type(q) is np.ndarray and p.shape == out.shape == q.shape:
-        # the same test in place (fewer temporaries: at 10^5 points the test is memory bound)
-        np.add(p, q, out=p)
-        np.abs(p, out=p)
-        np.abs(out, out=q)
-        np.add(q, q, out=q)
-        near = np.less(q, p)
-    else:
-        near = np.abs(out + out) < np.abs(p + q)  # cancels to less than half the sum (nan: False)
-    if out.ndim == 0:
-        if near:
-            exact = _product_difference_core(a, b, c, d)
-            return out if exact != exact else exact
-        return out
-    if np.count_nonzero(near):  # (count_nonzero: no Python wrapper, unlike ndarray.any)
-        shape = out.shape
-        parts = [x[near] if x.shape == shape else np.broadcast_to(x, shape)[near] for x in (a, b, c, d)]
-        exact = _product_difference_core(*parts)
-        out[near] = np.where(np.isnan(exact), out[near], exact)
-    return out
+    with np.errstate(all="ignore"):
+        return _product_ratio(*_arrays(a, b, c, d))[1]
+
+
+def _product_difference_quiet(a: Any, b: Any, c: Any, d: Any) -> Any:
+    """:func:`product_difference` for generated code (inside ``np.errstate(all="ignore")``)."""
+    return _product_ratio(*_arrays(a, b, c, d))[1]
+
+
+def product_quotient(a: Any, b: Any, c: Any, d: Any) -> Any:
+    """``a b / (a b - c d)`` with the difference of :func:`product_difference`: the ratio the
+    cancellation test computes anyway (a law ``x a b / (a b - c d)`` costs no division more)."""
+    with np.errstate(all="ignore"):
+        return _product_ratio(*_arrays(a, b, c, d))[2]
+
+
+def _product_quotient_quiet(a: Any, b: Any, c: Any, d: Any) -> Any:
+    """:func:`product_quotient` for generated code (inside ``np.errstate(all="ignore")``)."""
+    return _product_ratio(*_arrays(a, b, c, d))[2]
 
 
 def product_difference_scalar(a: float, b: float, c: float, d: float) -> float:
     """:func:`product_difference` of Python floats (the scalar path of a compiled law)."""
     p = a * b
-    q = c * d
-    r = p - q
-    if abs(r + r) < abs(p + q):
+    r = p - c * d
+    if r == 0 or not (-0.499 <= p / r <= 1.499):  # not certified (see _CERTIFIED): double-double
         exact = _product_difference_core(a, b, c, d)
         if exact == exact:
             return exact
@@ -216,7 +258,7 @@ SCALAR_NAMESPACE = {
 NAMESPACE = {
     "float64": {
         "_symkin_exact_ratio": _exact_ratio_quiet, "_symkin_reduced_phase": reduced_phase,
-        "_symkin_product_difference": product_difference,
+        "_symkin_product_difference": _product_difference_quiet, "_symkin_product_quotient": _product_quotient_quiet,
     },
     "float32": {
         "_symkin_exact_ratio": exact_ratio_f32, "_symkin_reduced_phase": reduced_phase_f32,
@@ -271,9 +313,8 @@ def numba_namespace(precision: str) -> dict[str, Any]:
         def difference(a, b, c, d):  # pragma: no cover - compiled
             a, b, c, d = np.float64(a), np.float64(b), np.float64(c), np.float64(d)
             p = a * b
-            q = c * d
-            r = p - q
-            if abs(r + r) < abs(p + q):  # the products cancel: double-double (see product_difference)
+            r = p - c * d
+            if r == 0 or not (-0.499 <= p / r <= 1.499):  # the products may cancel: double-double (see product_difference)
                 e = core(a, b, c, d)
                 if e == e:  # else the splitting overflowed: the plain form
                     r = e
@@ -386,19 +427,20 @@ def _two_pi_dd() -> tuple[float, float]:
 _TWO_PI_HI, _TWO_PI_LO = _two_pi_dd()
 
 
-def _turns(fn: Any, args: tuple[float, ...]) -> tuple[float, float]:
+def _turns(fn: Any, args: tuple[float, ...]) -> tuple[float, ...]:
     """``c / (2 pi)`` in double-double (turns per unit of t) for ``c = fn(*args)``; the last
     coefficient is remembered on ``fn`` (a sweep of t with the same other inputs computes it once)."""
     memo = getattr(fn, "_symkin_memo", None)
     if memo is not None and memo[0] == args:
         return memo[1]
     ch, cl = fn(*args)
-    u = _dd_div(float(ch), float(cl), _TWO_PI_HI, _TWO_PI_LO)
+    pair = _dd_div(float(ch), float(cl), _TWO_PI_HI, _TWO_PI_LO)
+    u = (*pair, *_split_turns(pair))  # (hi, lo) and its 26-bit split (hi26, rest), for _reduce_turns_all
     fn._symkin_memo = (args, u)  # one assignment: another thread sees the old pair or the new one
     return u
 
 
-def _reduce_turns(u: tuple[float, float], t: Any) -> Any:
+def _reduce_turns(u: tuple[float, ...], t: Any) -> Any:
     """``2 pi frac(u t)`` for the double-double ``u`` (turns) and float ``t``: the product split
     exactly, the whole turns removed exactly (Sterbenz), one rounding in the fraction."""
     y, e = _two_prod(u[0], t)
@@ -408,27 +450,59 @@ def _reduce_turns(u: tuple[float, float], t: Any) -> Any:
     return f * _TWO_PI_HI + f * _TWO_PI_LO
 
 
+def _split_turns(u: tuple[float, ...]) -> tuple[float, float]:
+    """The double-double ``u`` as ``uh + ul`` with ``uh`` of 26 significant bits (Veltkamp),
+    so that ``uh`` times a 26-bit part of a float is exact."""
+    c = _SPLIT * u[0]
+    uh = c - (c - u[0])
+    return uh, (u[0] - uh) + u[1]
+
+
+def _reduce_turns_all(u: tuple[float, ...], t: np.ndarray) -> np.ndarray:
+    """:func:`_reduce_turns` for a whole array of times, branch-free and in place (15 passes, no
+    gather or scatter): ``t = th + tl`` split exactly (26 bits each), ``uh th`` exact, its whole
+    turns removed exactly, then ``uh tl`` (exact) and ``ul t`` (about 2^-26 of the phase) added to
+    the fraction; the same error as :func:`_reduce_turns` (about 2^-52 pi below 2^27 turns)."""
+    uh, ul = u[2:] if len(u) == 4 else _split_turns(u)  # (split once by _turns)
+    c = np.multiply(t, _SPLIT)
+    th = np.subtract(c, t)
+    np.subtract(c, th, out=th)  # th = c - (c - t)
+    tl = np.subtract(t, th, out=c)
+    y = np.multiply(th, uh, out=th)  # exact
+    k = np.rint(y)
+    np.subtract(y, k, out=y)  # the fraction of uh th, exact
+    np.multiply(tl, uh, out=tl)  # exact
+    np.multiply(t, ul, out=k)
+    np.add(tl, k, out=tl)
+    np.add(y, tl, out=y)  # the phase in turns, within a few turns of 0
+    np.multiply(y, _TWO_PI_LO, out=tl)
+    np.multiply(y, _TWO_PI_HI, out=y)
+    return np.add(y, tl, out=y)
+
+
 def long_phase(x: Any, fn: Any, t: Any, *args: Any) -> Any:
     """The phase ``x = c t`` (evaluated plainly) where ``|x| <= LONG_PHASE``; elsewhere the
     same phase from ``c = fn(*args)`` in double-double, reduced mod 2 pi.  Where the
     coefficient's inputs are numbers (an array of times only) ``c`` is computed once, in
-    Python floats, and the phase reduced in turns (fewer operations per point)."""
+    Python floats, and, when any phase of the call is long, every phase of the call is
+    reduced in turns, branch-free (:func:`_reduce_turns_all`: a masked gather and scatter of
+    the long ones cost more than the reduction of all)."""
     if type(x) is not np.ndarray or x.ndim == 0:
         if not abs(x) > LONG_PHASE:
             return x
         return _reduce_turns(_turns(fn, tuple(float(a) for a in args)), float(t))
     if x.max() <= LONG_PHASE and x.min() >= -LONG_PHASE:  # (two passes, no temporary)
         return x
-    big = np.abs(x) > LONG_PHASE
     shape = x.shape
+    if all(isinstance(a, float) or np.ndim(a) == 0 for a in args):  # (np.float64 is a float)
+        t = np.asarray(t, np.float64)
+        return _reduce_turns_all(_turns(fn, tuple(map(float, args))), t if t.shape == shape else np.broadcast_to(t, shape))
+    big = np.abs(x) > LONG_PHASE
     x = x if x.dtype == np.float64 else x.astype(np.float64)  # (a fresh product c*t: written in place)
     t = np.asarray(t, np.float64)
     tb = t[big] if t.shape == shape else np.broadcast_to(t, shape)[big]
-    if all(type(a) is float or np.ndim(a) == 0 for a in args):
-        x[big] = _reduce_turns(_turns(fn, tuple(float(a) for a in args)), tb)
-    else:
-        c = fn(*(a[big] if a.shape == shape else np.broadcast_to(a, shape)[big] for a in (np.asarray(v, np.float64) for v in args)))
-        x[big] = _dd_reduce_pair(c, tb)
+    c = fn(*(a[big] if a.shape == shape else np.broadcast_to(a, shape)[big] for a in (np.asarray(v, np.float64) for v in args)))
+    x[big] = _dd_reduce_pair(c, tb)
     return x
 
 

@@ -1,0 +1,126 @@
+"""The fast paths of the default NumPy float64 code keep the guarantees they shortcut.
+
+- The cancellation test of ``a b - c d`` is one ratio ``g = a b/(a b - c d)`` and its minimum and
+  maximum over the call: points near the pole in an array of points far from it are still redone
+  in double-double (against mpmath at 50 digits), including the points just outside the certified
+  interval; the II differential divides once (``ProductQuotient``).
+- Tooth arrays are bounded by one bitwise-or reduction each: negative values, values whose bound
+  is too coarse and values beyond int64's safe range still take the exact paths.
+- Long phases with numbers as coefficient inputs are reduced for every point of the call,
+  branch-free: short and long phases of one array, negative times, against mpmath.
+"""
+
+from __future__ import annotations
+
+import warnings
+from fractions import Fraction
+
+import mpmath
+import numpy as np
+import pytest
+import sympy as sp
+
+import symkin
+from symkin import schemes
+from symkin import symbols as S
+from symkin.numeric import runtime
+from symkin.numeric import stable as st
+
+U64 = 2.0**-53
+W1, W4 = S.omega("1"), S.omega("4")
+R = [S.radius(i) for i in "1234"]
+
+
+def _exact_difference(a, b, c, d):
+    with mpmath.workdps(60):
+        return float(mpmath.mpf(a) * mpmath.mpf(b) - mpmath.mpf(c) * mpmath.mpf(d))
+
+
+def test_near_points_among_far_ones_are_redone_and_the_margin_too():
+    rng = np.random.default_rng(5)
+    n = 4000
+    a, b, c = rng.uniform(0.5, 2, n), rng.uniform(0.5, 2, n), rng.uniform(0.5, 2, n)
+    rho = rng.uniform(0.01, 0.2, n)  # c d / a b: far from cancellation almost everywhere
+    rho[::400] = 1 + rng.integers(-40, 41, 10) * U64  # within 40 ulps of the pole
+    rho[1::400] = 1 / 3 * (1 + rng.uniform(-2e-3, 2e-3, 10))  # on the edge of the certified interval
+    rho[2::400] = 3 * (1 + rng.uniform(-2e-3, 2e-3, 10))
+    d = a * b * rho / c
+    got = runtime.product_difference(a, b, c, d)
+    ref = np.array([_exact_difference(*x) for x in zip(a, b, c, d)])
+    ok = ref != 0
+    assert np.all(got[~ok] == 0)
+    assert np.max(np.abs(got[ok] - ref[ok]) / np.abs(ref[ok])) <= 3 * U64
+    scalar = np.array([runtime.product_difference_scalar(*map(float, x)) for x in zip(a, b, c, d)])
+    assert np.array_equal(scalar, got)  # the scalar path decides the same way
+    q = runtime.product_quotient(a, b, c, d)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        assert np.array_equal(q, (a * b) / got, equal_nan=True)
+
+
+def test_the_differential_divides_once_and_stays_exact_near_its_pole():
+    law = schemes.two_row("II").speeds({"1": W1, "4": W4}).law("H").rhs
+    args = [W1, W4, *R]
+    f = symkin.compile(law, args)
+    assert "_symkin_product_quotient" in f.source and "_symkin_product_difference" not in f.source
+    assert sp.simplify(st.plain_form(st.fuse_product_quotients(f.stable_exprs[0])) - law) == 0
+    rng = np.random.default_rng(9)
+    n = 3000
+    r1, r2, r3 = rng.uniform(0.1, 3, n), rng.uniform(0.1, 3, n), rng.uniform(0.1, 3, n)
+    r4 = rng.uniform(0.1, 3, n)
+    near = np.arange(n) % 100 == 0  # 1 point in 100 within 60 ulps of the pole r1 r3 = r2 r4
+    r4[near] = (r1 * r3 / r2 * (1 + rng.integers(-60, 61, n) * U64))[near]
+    w1, w4 = rng.uniform(1, 2, n), rng.uniform(-1, 0, n)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        got = f(w1, w4, r1, r2, r3, r4)
+    ref = symkin.compile(law, args, backend="mpmath", digits=50)(w1, w4, r1, r2, r3, r4)
+    ref = np.array([float(x) for x in ref])
+    finite = np.isfinite(ref)
+    assert np.all(np.isinf(got[~finite]) | np.isnan(got[~finite]))
+    err = np.abs(got[finite] - ref[finite]) / np.abs(ref[finite])
+    assert np.max(err[near[finite]]) <= 8 * U64  # near the pole: the relative accuracy of the far points
+    assert np.max(err) <= 1e-13  # (far points: zeros of the numerator make the relative error larger)
+
+
+def test_tooth_arrays_take_the_exact_paths_the_bound_calls_for():
+    aa = schemes.two_row("AA", teeth=True).ratio("H", "1", fixed="4")
+    f = symkin.compile(aa)
+
+    def exact(z1, z2, z3, z4):
+        return [float(Fraction(int(a) * int(c), int(a) * int(c) - int(b) * int(d))) for a, b, c, d in zip(z1, z2, z3, z4)]
+
+    # all >= 0 and small: the bitwise-or bound holds
+    z = [np.array([20, 31, 100]), np.array([30, 17, 99]), np.array([20, 40, 100]), np.array([70, 72, 101])]
+    assert list(f(*z)) == exact(*z)
+    # negative tooth numbers (internal gears written negative): the |z| bound
+    zn = [-v for v in z[:1]] + z[1:]
+    assert list(f(*zn)) == exact(*zn)
+    # or-bound too coarse (2^31 - 1) but the maximum 2^30 safe: int64, and the same values
+    big = [np.array([2**30, 2**30 - 1]), np.array([2**30 - 3, 5]), np.array([2**30, 7]), np.array([2**30 - 2, 11])]
+    assert list(f(*big)) == pytest.approx(exact(*big), rel=2 * U64)
+    # beyond int64's safe range: Python integers, exact
+    huge = [np.array([2**40, 3]), np.array([2**40 - 1, 2]), np.array([2**40, 5]), np.array([2**40 + 1, 7])]
+    assert list(f(*huge)) == exact(*huge)
+    # a pole of whole numbers is still a pole
+    with pytest.warns(symkin.PoleWarning):
+        assert np.isinf(f(np.array([10, 20]), np.array([10, 30]), np.array([10, 20]), np.array([10, 1]))[0])
+    # float tooth arrays that are not whole are still refused
+    with pytest.raises(symkin.InputError):
+        f(np.array([20.5, 30.0]), z[1][:2], z[2][:2], z[3][:2])
+
+
+def test_long_and_short_phases_of_one_array_are_reduced_branch_free():
+    w, t = sp.Symbol("w", positive=True), sp.Symbol("t", real=True)
+    r1, r2 = sp.symbols("r1 r2", positive=True)
+    law = sp.cos(w * r1 * t / (r1 + r2)) + sp.sin(w * r2 * t / (r1 + r2))
+    f = symkin.compile(law, [w, r1, r2, t])
+    ref = symkin.compile(law, [w, r1, r2, t], backend="mpmath", digits=50)
+    rng = np.random.default_rng(3)
+    ts = np.concatenate([rng.uniform(-5, 5, 50), rng.uniform(-1e6, 1e6, 50), [0.0, -0.0, 1e7, -1e7]])
+    got = f(0.7, 0.3, 0.1, ts)
+    want = np.array([float(x) for x in ref(0.7, 0.3, 0.1, ts)])
+    assert np.max(np.abs(got - want)) <= 1e-15
+    # non-finite times stay non-finite (and are reported as such)
+    with pytest.warns(symkin.NonFiniteInputWarning):
+        out = f(0.7, 0.3, 0.1, np.array([1.0, 20.0, np.inf, np.nan]))
+    assert np.all(np.isfinite(out[:2])) and np.all(np.isnan(out[2:]))
