@@ -322,8 +322,14 @@ def save(fig: Figure, path: Path, formats: Sequence[str] | None = None) -> list[
             if tight is None and target.suffix in (".png", ".pdf"):
                 _print_once(fig, tmp, target.suffix[1:], dpi)
             else:
-                fig.savefig(tmp, dpi=dpi, bbox_inches=tight, format=target.suffix[1:])
+                extra = {"pil_kwargs": dict(_PNG_OPTIONS)} if target.suffix == ".png" else {}
+                fig.savefig(tmp, dpi=dpi, bbox_inches=tight, format=target.suffix[1:], **extra)
     return targets
+
+
+#: zlib level 3 for PNGs: the same pixels as the default level 6 at about half the
+#: compression time, in files about 3 % larger (line art compresses well either way).
+_PNG_OPTIONS = {"compress_level": 3}
 
 
 def _print_once(fig: Figure, path: Path, fmt: str, dpi: float) -> None:
@@ -342,7 +348,7 @@ def _print_once(fig: Figure, path: Path, fmt: str, dpi: float) -> None:
     try:
         fig.dpi = dpi
         if fmt == "png":
-            FigureCanvasAgg(fig).print_png(path)
+            FigureCanvasAgg(fig).print_png(path, pil_kwargs=dict(_PNG_OPTIONS))
         else:
             FigureCanvasPdf(fig).print_pdf(path)
     finally:
