@@ -322,7 +322,7 @@ def save(fig: Figure, path: Path, formats: Sequence[str] | None = None) -> list[
             if tight is None and target.suffix in (".png", ".pdf"):
                 _print_once(fig, tmp, target.suffix[1:], dpi)
             else:
-                extra = {"pil_kwargs": dict(_PNG_OPTIONS)} if target.suffix == ".png" else {}
+                extra: dict[str, Any] = {"pil_kwargs": dict(_PNG_OPTIONS)} if target.suffix == ".png" else {}
                 fig.savefig(tmp, dpi=dpi, bbox_inches=tight, format=target.suffix[1:], **extra)
     return targets
 
