@@ -338,8 +338,9 @@ def _print_once(fig: Figure, path: Path, fmt: str, dpi: float) -> None:
     ``Figure.savefig`` draws a figure with a layout engine twice for each file: once with
     drawing switched off, to lay it out, and once to render it.  The format's own canvas
     lays the figure out in the draw that renders it, with the same renderer (hence the same
-    text metrics), so the file is the same at half the drawing.  The figure's canvas and dpi
-    are restored afterwards.
+    text metrics), so the file is the same at half the drawing.  The PDF canvas would lay the
+    page out with a renderer of its own, measuring (and parsing each math string) anew: it is
+    given the one that draws the page.  The figure's canvas and dpi are restored afterwards.
     """
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.backends.backend_pdf import FigureCanvasPdf
@@ -350,7 +351,18 @@ def _print_once(fig: Figure, path: Path, fmt: str, dpi: float) -> None:
         if fmt == "png":
             FigureCanvasAgg(fig).print_png(path, pil_kwargs=dict(_PNG_OPTIONS))
         else:
-            FigureCanvasPdf(fig).print_pdf(path)
+            pdf = FigureCanvasPdf(fig)
+            draw = fig.draw
+
+            def drawing(renderer: Any) -> None:
+                pdf.get_renderer = lambda: renderer  # type: ignore[attr-defined]
+                draw(renderer)
+
+            fig.draw = drawing  # type: ignore[method-assign]
+            try:
+                pdf.print_pdf(path)
+            finally:
+                del fig.draw
     finally:
         fig.set_canvas(canvas)
         fig.dpi = figure_dpi
