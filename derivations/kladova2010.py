@@ -221,7 +221,8 @@ def _section_11_checks() -> list[Check]:
     coax = {kd: HS.helical_coaxiality(kd) for kd in HS.SCHEMES}
     # the heading: which scheme do (1) and (2) describe?
     by_ratio = [kd for kd in HS.SCHEMES if compare_symbolic(law[kd], PUBLISHED["(1)"]).verdict.agrees]
-    by_coax = [kd for kd in HS.SCHEMES if _lambda_from_2(coax[kd]) is not None]
+    lams = {kd: _lambda_from_2(coax[kd]) for kd in HS.SCHEMES}
+    by_coax = [kd for kd in HS.SCHEMES if lams[kd] is not None]
     derived_scheme = by_ratio[0] if len(by_ratio) == 1 else f"{by_ratio}"
     coax_scheme = by_coax[0] if len(by_coax) == 1 else f"{by_coax}"
     same = lambda a_, b_: compare_claim(a_ == b_, f"{a_} and {b_}")  # noqa: E731
@@ -238,7 +239,7 @@ def _section_11_checks() -> list[Check]:
     out.append(_check("(1)", "ratio i_1H^(4) of the stepped planet in section 1.1 (the AI derivation)",
                       law["AI"], PUBLISHED["(1)"], compare_symbolic(law["AI"], PUBLISHED["(1)"])))
     # (2): lambda is not defined in the paper: solve for it; (2) has the derived form if it is a constant
-    lam_value = _lambda_from_2(coax["AI"])
+    lam_value = lams["AI"]
     pub = PUBLISHED["(2)"]
     out.append(_check(
         "(2)", "coaxiality a_w12 = a_w34 of helical meshes (AI); lambda, undefined in the paper, solved from the comparison",
