@@ -296,11 +296,14 @@ def _line_sources() -> list[tuple[str, str]]:
         "(4)": sp.Eq(z4, PUBLISHED["(4)"].subs(x, z2 / z3)),
     }
     found = []
+    # Z4 from each printed equation that has it, solved once (each is tried with every other);
+    # not simplified: the pair is decided on the expanded difference by exact means
+    z4_from = {n: (sp.solve(eq, z4, simplify=False) or (None,)) for n, eq in printed.items() if eq.has(z4)}
     for first, second in itertools.permutations(SECTION_EQUATIONS, 2):
         a_eq, b_eq = printed[first], printed[second]
         if not a_eq.has(P) or not b_eq.has(z4):
             continue
-        (z4_value,) = sp.solve(b_eq, z4) or (None,)
+        (z4_value,) = z4_from[second]
         if z4_value is None:
             continue
         result = sp.expand((a_eq.lhs - a_eq.rhs).subs(z4, z4_value))
@@ -316,7 +319,7 @@ def _six_checks(ch: dict, lam_value: sp.Expr | None) -> list[Check]:
     dw_ratio = HS.working_diameter_ratio(shifted=True)
     paper = {x: z2 / z3, lam: lam_value} if lam_value is not None else {x: z2 / z3}
     step_printed = PUBLISHED["(6) step"]
-    (step_solved,) = sp.solve(step_printed, z2)
+    (step_solved,) = sp.solve(step_printed, z2, simplify=False)  # compared exactly: its form does not matter
     derived_step = z2_derived.subs(delta, dw_ratio)
     out.append(_check(
         "(6) step", "AI: coaxiality with Z4 from (4), the product line before d_w2/d_w3 is introduced",
