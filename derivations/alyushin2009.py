@@ -231,7 +231,8 @@ def _coaxiality_checks(symbolic) -> list[Check]:
         pub = PUBLISHED_COAXIALITY.get(k, SINGLE_ROW_COAXIALITY)
         out.append(_check(
             f"coaxiality {k}", f"{k}: the planet axis is where both meshes put it", cond, pub,
-            compare_symbolic(sp.solve(cond, r4)[0], sp.solve(pub, r4)[0]),
+            # compared exactly, so solve's simplification of each r4 is not needed
+            compare_symbolic(sp.solve(cond, r4, simplify=False)[0], sp.solve(pub, r4, simplify=False)[0]),
             kind=Kind.PAPER if k in PUBLISHED_COAXIALITY else Kind.EXTENSION,
         ))
     return out
