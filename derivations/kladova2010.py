@@ -371,7 +371,7 @@ def _spur_by_hand(kind: str) -> sp.Expr:
         eqs = [zz1 + zz2 - (zz4 - zz3), ii - (1 + zz2 * zz4 / (zz1 * zz3)), dd - zz2 / zz3]
     else:
         eqs = [zz1 - zz2 - (zz4 - zz3), ii - (1 - zz2 * zz4 / (zz1 * zz3)), dd - zz2 / zz3]
-    (sol,) = sp.solve(eqs, [zz2, zz3, zz4], dict=True)
+    (sol,) = sp.solve(eqs, [zz2, zz3, zz4], dict=True, simplify=False)  # factored below
     return sp.factor(sol[zz2].subs({zz1: z1, ii: i, dd: delta}))
 
 
