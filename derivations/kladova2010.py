@@ -319,7 +319,7 @@ def _six_checks(ch: dict, lam_value: sp.Expr | None) -> list[Check]:
     dw_ratio = HS.working_diameter_ratio(shifted=True)
     paper = {x: z2 / z3, lam: lam_value} if lam_value is not None else {x: z2 / z3}
     step_printed = PUBLISHED["(6) step"]
-    (step_solved,) = sp.solve(step_printed, z2, simplify=False)  # compared exactly: its form does not matter
+    (step_solved,) = sp.solve(step_printed, z2)
     derived_step = z2_derived.subs(delta, dw_ratio)
     out.append(_check(
         "(6) step", "AI: coaxiality with Z4 from (4), the product line before d_w2/d_w3 is introduced",
