@@ -231,7 +231,8 @@ def _coaxiality_checks(symbolic) -> list[Check]:
         pub = PUBLISHED_COAXIALITY.get(k, SINGLE_ROW_COAXIALITY)
         out.append(_check(
             f"coaxiality {k}", f"{k}: the planet axis is where both meshes put it", cond, pub,
-            compare_symbolic(sp.solve(cond, r4)[0], sp.solve(pub, r4)[0]),
+            # compared exactly, so solve's simplification of each r4 is not needed
+            compare_symbolic(sp.solve(cond, r4, simplify=False)[0], sp.solve(pub, r4, simplify=False)[0]),
             kind=Kind.PAPER if k in PUBLISHED_COAXIALITY else Kind.EXTENSION,
         ))
     return out
@@ -649,7 +650,13 @@ def _ii_example() -> list[Check]:
     (cond,) = ii.coaxiality
     z4_of_z1 = sp.solve(cond.subs({z2: 99, z3: 100}), z4)[0]
     i_H1 = sp.cancel(1 / ii.ratio("1", "H", fixed="4").rhs.subs({z2: 99, z3: 100, z4: z4_of_z1}))
-    fits = [n for n in range(100, 1000) if compare_rounded(i_H1.subs(z1, n), "198").verdict.agrees]
+    # i_H1 at each three-digit z1, exactly: its numerator and denominator (polynomials in z1) at n,
+    # the same rational as i_H1.subs(z1, n) at a tenth of the cost; only the values within 1 of
+    # the printed whole number can round to it, and compare_rounded decides those
+    num, den = (sp.Poly(part, z1) for part in sp.fraction(i_H1))
+    at = {n: sp.Rational(num.eval(n), den.eval(n)) for n in range(100, 1000)}
+    printed = "198"
+    fits = [n for n, x in at.items() if abs(x - sp.Rational(printed)) < 1 and compare_rounded(x, printed).verdict.agrees]
     z1_derived = fits[0] if len(fits) == 1 else sp.nan
     z4_derived = z4_of_z1.subs(z1, z1_derived)
     how = (f"z1 from coaxiality (z4 = {z4_of_z1}) with z2 = 99, z3 = 100 and the printed i_H1 = 198: "

@@ -221,7 +221,8 @@ def _section_11_checks() -> list[Check]:
     coax = {kd: HS.helical_coaxiality(kd) for kd in HS.SCHEMES}
     # the heading: which scheme do (1) and (2) describe?
     by_ratio = [kd for kd in HS.SCHEMES if compare_symbolic(law[kd], PUBLISHED["(1)"]).verdict.agrees]
-    by_coax = [kd for kd in HS.SCHEMES if _lambda_from_2(coax[kd]) is not None]
+    lams = {kd: _lambda_from_2(coax[kd]) for kd in HS.SCHEMES}
+    by_coax = [kd for kd in HS.SCHEMES if lams[kd] is not None]
     derived_scheme = by_ratio[0] if len(by_ratio) == 1 else f"{by_ratio}"
     coax_scheme = by_coax[0] if len(by_coax) == 1 else f"{by_coax}"
     same = lambda a_, b_: compare_claim(a_ == b_, f"{a_} and {b_}")  # noqa: E731
@@ -238,7 +239,7 @@ def _section_11_checks() -> list[Check]:
     out.append(_check("(1)", "ratio i_1H^(4) of the stepped planet in section 1.1 (the AI derivation)",
                       law["AI"], PUBLISHED["(1)"], compare_symbolic(law["AI"], PUBLISHED["(1)"])))
     # (2): lambda is not defined in the paper: solve for it; (2) has the derived form if it is a constant
-    lam_value = _lambda_from_2(coax["AI"])
+    lam_value = lams["AI"]
     pub = PUBLISHED["(2)"]
     out.append(_check(
         "(2)", "coaxiality a_w12 = a_w34 of helical meshes (AI); lambda, undefined in the paper, solved from the comparison",
@@ -295,11 +296,14 @@ def _line_sources() -> list[tuple[str, str]]:
         "(4)": sp.Eq(z4, PUBLISHED["(4)"].subs(x, z2 / z3)),
     }
     found = []
+    # Z4 from each printed equation that has it, solved once (each is tried with every other);
+    # not simplified: the pair is decided on the expanded difference by exact means
+    z4_from = {n: (sp.solve(eq, z4, simplify=False) or (None,)) for n, eq in printed.items() if eq.has(z4)}
     for first, second in itertools.permutations(SECTION_EQUATIONS, 2):
         a_eq, b_eq = printed[first], printed[second]
         if not a_eq.has(P) or not b_eq.has(z4):
             continue
-        (z4_value,) = sp.solve(b_eq, z4) or (None,)
+        (z4_value,) = z4_from[second]
         if z4_value is None:
             continue
         result = sp.expand((a_eq.lhs - a_eq.rhs).subs(z4, z4_value))
@@ -367,7 +371,7 @@ def _spur_by_hand(kind: str) -> sp.Expr:
         eqs = [zz1 + zz2 - (zz4 - zz3), ii - (1 + zz2 * zz4 / (zz1 * zz3)), dd - zz2 / zz3]
     else:
         eqs = [zz1 - zz2 - (zz4 - zz3), ii - (1 - zz2 * zz4 / (zz1 * zz3)), dd - zz2 / zz3]
-    (sol,) = sp.solve(eqs, [zz2, zz3, zz4], dict=True)
+    (sol,) = sp.solve(eqs, [zz2, zz3, zz4], dict=True, simplify=False)  # factored below
     return sp.factor(sol[zz2].subs({zz1: z1, ii: i, dd: delta}))
 
 

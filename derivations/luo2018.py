@@ -23,7 +23,7 @@ from typing import Any
 
 import numpy as np
 import sympy as sp
-from sympy.calculus.util import maximum, minimum
+from sympy.calculus.util import function_range
 
 from symkin import symbols as S
 from symkin.drives import AngleLaw, ConstantSpeed, EllipticalGears
@@ -338,7 +338,9 @@ def _table1() -> list[Check]:
     T = slider.period()
     span = sp.Interval(0, T)
     laws = {"s": slider.displacement, "v": slider.velocity, "a": slider.acceleration}
-    derived = {k: (f.subs(t, 0), maximum(f, t, span), minimum(f, t, span)) for k, f in laws.items()}
+    # maximum and minimum are the sup and inf of function_range: one range per law gives both
+    ranges = {k: function_range(f, t, span) for k, f in laws.items()}
+    derived = {k: (f.subs(t, 0), ranges[k].sup, ranges[k].inf) for k, f in laws.items()}
     sampled, sampling_table = _sampled_extremes(slider, T)
     for q, names in (("s", "displacement"), ("v", "velocity"), ("a", "acceleration")):
         for which, value, printed in zip(("initial", "max", "min"), derived[q], TABLE1[q]):

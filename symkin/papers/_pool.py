@@ -49,7 +49,12 @@ def can_fork() -> bool:
             and threading.active_count() == 1)
 
 
-def run_task(modules: dict[str, Any], task: Task, figures_dir: Path) -> tuple[Any, float]:
+#: Called as ``prepare(task, value)`` on a task's value in the process that ran it, after
+#: the task is timed: work on the value that would otherwise fall to the calling process.
+Prepare = Callable[[Task, Any], None]
+
+
+def run_task(modules: dict[str, Any], task: Task, figures_dir: Path, prepare: Prepare | None = None) -> tuple[Any, float]:
     """Run one task in this process; returns its value and the seconds it took."""
     name, part = task
     mod = modules[name]
@@ -58,7 +63,10 @@ def run_task(modules: dict[str, Any], task: Task, figures_dir: Path) -> tuple[An
         value: Any = (list(mod.checks()), list(getattr(mod, "notes", lambda: [])()))
     else:
         value = list(mod.figures(figures_dir))
-    return value, time.perf_counter() - start
+    seconds = time.perf_counter() - start
+    if prepare is not None:
+        prepare(task, value)
+    return value, seconds
 
 
 def _die_with_parent(parent: int) -> None:
@@ -74,7 +82,7 @@ def _die_with_parent(parent: int) -> None:
         os._exit(1)
 
 
-def _worker(conn: Connection, parent: int, modules: dict[str, Any], figures_dir: Path) -> None:
+def _worker(conn: Connection, parent: int, modules: dict[str, Any], figures_dir: Path, prepare: Prepare | None) -> None:
     _die_with_parent(parent)
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # the parent handles Ctrl-C and ends its workers
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
@@ -84,7 +92,7 @@ def _worker(conn: Connection, parent: int, modules: dict[str, Any], figures_dir:
         if task is None:
             return
         try:
-            value, seconds = run_task(modules, task, figures_dir)
+            value, seconds = run_task(modules, task, figures_dir, prepare)
             message = pickle.dumps(("ok", task, value, seconds))
         except BaseException as err:  # sent to the parent, which raises it
             try:
@@ -101,14 +109,16 @@ def run_tasks(
     *,
     jobs: int,
     done: Callable[[Task, Any, float], None],
+    prepare: Prepare | None = None,
 ) -> None:
     """Run ``tasks`` on ``jobs`` worker processes (in this process when ``jobs`` is 1 or
     forking is not possible), calling ``done(task, value, seconds)`` in this process as each
-    one ends.  The first task to fail stops the others and its exception is raised here."""
+    one ends (and ``prepare(task, value)`` first, where the task ran).  The first task to fail
+    stops the others and its exception is raised here."""
     jobs = min(jobs, len(tasks))
     if jobs <= 1 or not can_fork():
         for task in tasks:
-            value, seconds = run_task(modules, task, figures_dir)
+            value, seconds = run_task(modules, task, figures_dir, prepare)
             done(task, value, seconds)
         return
     ctx = multiprocessing.get_context("fork")
@@ -123,7 +133,8 @@ def run_tasks(
         try:
             for _ in range(jobs):
                 here, there = ctx.Pipe()
-                proc = ctx.Process(target=_worker, args=(there, parent, modules, figures_dir), daemon=True)
+                proc = ctx.Process(target=_worker, args=(there, parent, modules, figures_dir, prepare),
+                                   daemon=True)
                 proc.start()
                 there.close()
                 workers.append((proc, here))

@@ -645,6 +645,30 @@ class Check:
         """The computed verdict of the check's comparison."""
         return self.comparison.verdict
 
+    def once(self, key: str, compute: Callable[[], Any]) -> Any:
+        """``compute()``, kept on the check after the first call under ``key`` (a check does not
+        change): the printed forms of its values, which ``symkin reproduce`` has the worker
+        process that derived the check make, and which travel with it to the report.
+
+        >>> c = Check.make("p", "(1)", "one", 1, 1, compare_exact(1, 1))
+        >>> c.once("x", lambda: "printed"), c.once("x", lambda: "again")
+        ('printed', 'printed')
+        """
+        kept = self.__dict__.setdefault("_kept", {})
+        if key not in kept:
+            kept[key] = compute()
+        return kept[key]
+
+    @property
+    def derived_text(self) -> str:
+        """The derived value as plain text (a sequence joined by ``; ``)."""
+        return str(self.once("derived_text", lambda: _plain(self.derived)))
+
+    @property
+    def published_text(self) -> str:
+        """The published value as plain text (a sequence joined by ``; ``)."""
+        return str(self.once("published_text", lambda: _plain(self.published)))
+
     def _repr_markdown_(self) -> str:
         """The check for Jupyter: its heading, derived and published as math, the verdict.
 
@@ -673,10 +697,10 @@ class Check:
             "kind": self.kind.value,
             "source": self.source,
             "description": self.description,
-            "derived": _plain(self.derived),
+            "derived": self.derived_text,
             "derived_latex": self.derived_latex,
             "derived_float": as_float(self.derived),
-            "published": _plain(self.published),
+            "published": self.published_text,
             "published_latex": self.published_latex,
             "published_float": as_float(self.published),
             "verdict": self.verdict.value,
@@ -684,16 +708,16 @@ class Check:
             "detail": self.comparison.detail,
             "alternative": None if alt is None else {
                 "assumption": alt.assumption,
-                "value": _plain(alt.value),
-                "value_latex": _tex(alt.value),
+                "value": self.once("alternative_text", lambda: _plain(alt.value)),
+                "value_latex": self.once("alternative_latex", lambda: _tex(alt.value)),
                 "value_float": as_float(alt.value),
                 "matches_published": alt.matches_published,
                 "detail": alt.comparison.detail,
             },
             "confirmation": None if conf is None else {
                 "route": conf.route,
-                "value": _plain(conf.value),
-                "value_latex": _tex(conf.value),
+                "value": self.once("confirmation_text", lambda: _plain(conf.value)),
+                "value_latex": self.once("confirmation_latex", lambda: _tex(conf.value)),
                 "value_float": as_float(conf.value),
                 "agrees_with_derived": conf.agrees_with_derived,
                 "detail": conf.comparison.detail,

@@ -137,10 +137,30 @@ def math_rows(value: Any, width: float = LINE_WIDTH) -> list[str]:
     return lines[:1] + [rf"\qquad {line}" for line in lines[1:]]
 
 
+def check_rows(check: Any) -> dict[str, list[str]]:
+    """The display-math rows of a check's derived and published values, and the gathered rows of
+    its alternative's and its confirmation's values: made once per check (kept on a
+    :class:`~symkin.papers.checks.Check`), so that the worker process that derived the check
+    can print them for the document (:func:`symkin.papers.reproduce.run`)."""
+
+    def make() -> dict[str, list[str]]:
+        rows = {"derived": math_rows(check.derived), "published": math_rows(check.published)}
+        for part in ("alternative", "confirmation"):
+            extra = getattr(check.comparison, part, None)
+            if extra is not None:
+                rows[part] = [_row(extra.value)]
+        return rows
+
+    once = getattr(check, "once", None)
+    rows: dict[str, list[str]] = once("document_rows", make) if once is not None else make()
+    return rows
+
+
 def _check_block(check: Any, anchor: str = "", figure: str = "") -> str:
     rows = []
-    for label, value in (("derived", check.derived), ("published", check.published)):
-        for n, row in enumerate(math_rows(value)):
+    printed = check_rows(check)
+    for label in ("derived", "published"):
+        for n, row in enumerate(printed[label]):
             head = rf"\text{{{label}:}}\quad " if n == 0 else ""
             rows.append(f"{head}& {row}")
     kind = getattr(check, "kind", "paper")
@@ -160,11 +180,11 @@ def _check_block(check: Any, anchor: str = "", figure: str = "") -> str:
     alt = getattr(check.comparison, "alternative", None)
     if alt is not None:
         state = "reproduces the published item" if alt.matches_published else "does not reproduce the published item"
-        lines += [rf"\textit{{Alternative}} ({escape(alt.assumption)}): \[ {_row(alt.value)} \] {escape(state)}.", ""]
+        lines += [rf"\textit{{Alternative}} ({escape(alt.assumption)}): \[ {printed['alternative'][0]} \] {escape(state)}.", ""]
     conf = getattr(check.comparison, "confirmation", None)
     if conf is not None:
         state = "agrees with the derived value" if conf.agrees_with_derived else "does not agree with the derived value"
-        lines += [rf"\textit{{Independent route}} ({escape(conf.route)}): \[ {_row(conf.value)} \] {escape(state)}.", ""]
+        lines += [rf"\textit{{Independent route}} ({escape(conf.route)}): \[ {printed['confirmation'][0]} \] {escape(state)}.", ""]
     return "\n".join(lines)
 
 

@@ -24,7 +24,7 @@ from symkin._util.progress import Progress
 from symkin._version import __version__
 from symkin.errors import InputError
 from symkin.papers.checks import Check, ItemResult, PrintedItem, Verdict
-from symkin.papers.document import equations_document
+from symkin.papers.document import check_rows, equations_document
 from symkin.papers.registry import load, paper_names
 from symkin.papers.summary import Summary, paper_items, summarize
 from symkin.papers.texbuild import compile_pdf, find_pdflatex
@@ -152,7 +152,9 @@ def run(
         # in the report already in ``out``, else the one with the most figures (the longest tasks)
         order = sorted(names, key=lambda n: (-previous.get(n, 0.0), -len(getattr(modules[n], "REPORT_FIGURES", {}))))
         tasks = [(n, "checks") for n in order] + [(n, "figures") for n in order]
-        _pool.run_tasks(modules, tasks, figures_dir, jobs=jobs, done=done)
+        if jobs > 1 and _pool.can_fork():
+            _import_figures()  # once here, not once in each worker
+        _pool.run_tasks(modules, tasks, figures_dir, jobs=jobs, done=done, prepare=_print_ahead)
         for name, mod in modules.items():
             (checks, notes), checks_seconds = found[(name, "checks")]
             figures, figures_seconds = found[(name, "figures")]
@@ -178,6 +180,27 @@ def run(
 
     write_atomically(out, build, version=__version__)
     return results
+
+
+def _import_figures() -> None:
+    """Import what the papers' figures are drawn with (matplotlib's figure, its PNG and PDF
+    backends: about 0.7 s of CPU) in the calling process, before the workers are forked."""
+    import matplotlib.backends.backend_agg
+    import matplotlib.backends.backend_pdf  # noqa: F401
+
+    import symkin.viz.figures  # noqa: F401
+
+
+def _print_ahead(task: tuple[str, str], value: Any) -> None:
+    """Print a checks task's checks for the report (their text for report.json and
+    report.txt, their rows for equations.tex) where they were derived: in a worker process
+    that is in parallel with the other papers, not after them all in the calling process."""
+    if task[1] != "checks":
+        return
+    for check in value[0]:
+        if isinstance(check, Check):
+            check.to_json()
+            check_rows(check)
 
 
 def _previous_seconds(out: Path) -> dict[str, float]:
@@ -269,7 +292,7 @@ def format_table(results: list[PaperResult]) -> str:
     rows = [("paper", "kind", "result", "derived", "published", "verdict")]
     for r in results:
         for c in r.checks:
-            rows.append((r.key, c.kind.value, c.label, _short(_plain(c.derived), 38), _short(_plain(c.published), 38),
+            rows.append((r.key, c.kind.value, c.label, _short(c.derived_text, 38), _short(c.published_text, 38),
                          c.verdict.value))
     widths = [max(len(row[i]) for row in rows) for i in range(len(rows[0]))]
     lines = ["  ".join(cell.ljust(w) for cell, w in zip(row, widths)).rstrip() for row in rows]
@@ -289,9 +312,3 @@ def format_table(results: list[PaperResult]) -> str:
         lines.append("printed items not checked:")
         lines += [f"  {key} {i.item.item} ({i.item.what}): {i.item.not_checked or 'no reason given'}" for key, i in unchecked]
     return "\n".join(lines) + "\n"
-
-
-def _plain(value: Any) -> str:
-    if isinstance(value, (list, tuple)):
-        return "; ".join(_plain(v) for v in value)
-    return str(value)

@@ -318,5 +318,51 @@ def save(fig: Figure, path: Path, formats: Sequence[str] | None = None) -> list[
     tight = None if fig.get_layout_engine() is not None else "tight"
     with replacing(*targets) as temps:
         for tmp, target in zip(temps, targets):
-            fig.savefig(tmp, dpi=200 if target.suffix == ".png" else 150, bbox_inches=tight, format=target.suffix[1:])
+            dpi = 200 if target.suffix == ".png" else 150
+            if tight is None and target.suffix in (".png", ".pdf"):
+                _print_once(fig, tmp, target.suffix[1:], dpi)
+            else:
+                extra: dict[str, Any] = {"pil_kwargs": dict(_PNG_OPTIONS)} if target.suffix == ".png" else {}
+                fig.savefig(tmp, dpi=dpi, bbox_inches=tight, format=target.suffix[1:], **extra)
     return targets
+
+
+#: zlib level 3 for PNGs: the same pixels as the default level 6 at about half the
+#: compression time, in files about 3 % larger (line art compresses well either way).
+_PNG_OPTIONS = {"compress_level": 3}
+
+
+def _print_once(fig: Figure, path: Path, fmt: str, dpi: float) -> None:
+    """Write ``fig`` (which has a layout engine) as PNG or PDF with one layout and one draw.
+
+    ``Figure.savefig`` draws a figure with a layout engine twice for each file: once with
+    drawing switched off, to lay it out, and once to render it.  The format's own canvas
+    lays the figure out in the draw that renders it, with the same renderer (hence the same
+    text metrics), so the file is the same at half the drawing.  The PDF canvas would lay the
+    page out with a renderer of its own, measuring (and parsing each math string) anew: it is
+    given the one that draws the page.  The figure's canvas and dpi are restored afterwards.
+    """
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.backends.backend_pdf import FigureCanvasPdf
+
+    canvas, figure_dpi = fig.canvas, fig.dpi
+    try:
+        fig.dpi = dpi
+        if fmt == "png":
+            FigureCanvasAgg(fig).print_png(path, pil_kwargs=dict(_PNG_OPTIONS))
+        else:
+            pdf = FigureCanvasPdf(fig)
+            draw = fig.draw
+
+            def drawing(renderer: Any) -> None:
+                pdf.get_renderer = lambda: renderer  # type: ignore[attr-defined]
+                draw(renderer)
+
+            fig.draw = drawing  # type: ignore[method-assign]
+            try:
+                pdf.print_pdf(path)
+            finally:
+                del fig.draw
+    finally:
+        fig.set_canvas(canvas)
+        fig.dpi = figure_dpi
