@@ -517,7 +517,7 @@ STATIC = """## What the float backends guarantee (tested, not measured here)
   phase of the call is reduced, branch-free (tests/test_numeric_fast_paths.py).
 - Where the products of `a b - c d` may cancel is decided per call from `g = a b/(a b - c d)`: its minimum
   and maximum in [-0.499, 1.499] certify every point (the plain difference is within 3 units there); only
-  uncertified points are redone in double-double. A law `x a b/(a b - c d)` uses `g` itself (one division).
+  uncertified points are redone in double-double.
 - Tooth-number arrays are bounded by one bitwise-or reduction each (all >= 0: the or bounds the maximum); only
   where that bound could overflow int64 are |z| and its maximum taken, and beyond it Python integers are used.
 - Speed, what lambdify keeps ahead on: small calls. A call of 1 to about 10^4 points pays fixed costs

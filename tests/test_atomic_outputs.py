@@ -8,16 +8,19 @@ from matplotlib import animation
 from matplotlib.figure import Figure
 
 from symkin.cli import main
+from symkin.viz import figures
 from symkin.viz.figures import save
 
 AI1 = ["AI1", "--teeth", "20,30,80", "--omega", "4=0", "--omega", "H=1"]
-#: command line, files it writes (relative to the working folder), the writer to break
+#: command line, files it writes (relative to the working folder), the writers to break (a figure is written by
+#: savefig, or with one layout and one draw by figures._print_once)
+FIGURE_WRITERS = ((Figure, "savefig"), (figures, "_print_once"))
 WRITERS = {
-    "trajectory": (["trajectory", *AI1, "--out", "t.png"], ["t.png"], (Figure, "savefig")),
-    "curves": (["curves", *AI1, "--out", "c.pdf"], ["c.pdf"], (Figure, "savefig")),
-    "animate": (["animate", *AI1, "--frames", "3", "--dpi", "20", "--out", "a.gif"], ["a.gif"], (animation.Animation, "save")),
+    "trajectory": (["trajectory", *AI1, "--out", "t.png"], ["t.png"], FIGURE_WRITERS),
+    "curves": (["curves", *AI1, "--out", "c.pdf"], ["c.pdf"], FIGURE_WRITERS),
+    "animate": (["animate", *AI1, "--frames", "3", "--dpi", "20", "--out", "a.gif"], ["a.gif"], ((animation.Animation, "save"),)),
     "split --plot": (["split", "--total", "100", "--stages", "2", "--umin", "2", "--umax", "12", "--model", "1 + u/10",
-                      "--plot", "s.png"], ["s.png"], (Figure, "savefig")),
+                      "--plot", "s.png"], ["s.png"], FIGURE_WRITERS),
 }
 MAGIC = {".png": b"\x89PNG", ".pdf": b"%PDF", ".gif": b"GIF8"}
 
@@ -30,7 +33,7 @@ def leftovers(folder: Path) -> list[str]:
 @pytest.mark.parametrize("failure, code", [(KeyboardInterrupt, 130), (RuntimeError("disk on fire"), 3)],
                          ids=["interrupted", "failing"])
 def test_a_broken_write_keeps_the_previous_file(name, failure, code, tmp_path, monkeypatch, capsys):
-    argv, files, (owner, method) = WRITERS[name]
+    argv, files, writers = WRITERS[name]
     monkeypatch.chdir(tmp_path)
     for f in files:
         (tmp_path / f).write_bytes(b"previous")
@@ -42,7 +45,8 @@ def test_a_broken_write_keeps_the_previous_file(name, failure, code, tmp_path, m
         path.write_bytes(b"half a fi")  # a partial file, then the failure
         raise failure
 
-    monkeypatch.setattr(owner, method, broken)
+    for owner, method in writers:
+        monkeypatch.setattr(owner, method, broken)
     assert main(argv) == code
     err = capsys.readouterr().err
     assert len(err.strip().splitlines()) == 1

@@ -130,3 +130,20 @@ def test_cli_bad_input(tmp_path, capsys, monkeypatch, argv, message):
     code, _, err = cli(capsys, *argv)
     assert code == 2 and message in err and len(err.strip().splitlines()) == 1
     assert not list(tmp_path.iterdir())
+
+
+def test_save_follows_the_user_s_savefig_settings(tmp_path):
+    # a figure with a layout engine is written with one draw (figures._print_once) unless the user set savefig.*
+    # options that only savefig applies; then it goes through savefig, and the setting shows in the file
+    import matplotlib as mpl
+    from matplotlib.figure import Figure
+    from matplotlib.image import imread
+
+    from symkin.viz.figures import save
+
+    for rc, corner in (({}, [1.0, 1.0, 1.0, 1.0]), ({"savefig.facecolor": "red"}, [1.0, 0.0, 0.0, 1.0])):
+        with mpl.rc_context(rc):
+            fig = Figure(layout="constrained")
+            fig.add_subplot().plot([0, 1], [1, 0])
+            (png,) = save(fig, tmp_path / f"f{len(rc)}.png")
+        assert imread(png)[0, 0].tolist() == corner

@@ -36,7 +36,7 @@ from symkin._util.parsing import parse_number
 from symkin.errors import InputError, PoleError, PrecisionWarning, UnsupportedError
 from symkin.numeric import runtime
 from symkin.numeric.codegen import ExactPrinter, FloatPrinter, ScalarPrinter, kernel_source, phase_sources
-from symkin.numeric.stable import ExactRatio, fuse_product_quotients, plain_form
+from symkin.numeric.stable import ExactRatio, plain_form
 
 __all__ = ["Plan", "BACKENDS", "NumpyBackend", "NumbaBackend", "MpmathBackend", "ExactBackend", "numba_available"]
 
@@ -260,8 +260,6 @@ class NumpyBackend:
         self.integer_syms = self._exact_integer_symbols(plan)
         self.twins = {s: sp.Symbol(f"_int_{s.name}", integer=True) for s in self.integer_syms}
         exprs = [self._twin(e) for e in plan.stable]
-        if plan.precision == "float64":  # x a b/(a b - c d): one division (the cancellation test's ratio)
-            exprs = [fuse_product_quotients(e) for e in exprs]
         printer = FloatPrinter(plan.precision)
         self.phases = {name: runtime.dd_function(text, name) for name, text in phase_sources(plan.stable).items()}
         modules = [{**runtime.NAMESPACE[plan.precision], **self.phases}, "numpy"]

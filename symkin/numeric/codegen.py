@@ -27,7 +27,6 @@ from symkin.numeric.stable import (
     Group,
     LongPhase,
     ProductDifference,
-    ProductQuotient,
     ReducedPhase,
     plain_form,
 )
@@ -114,9 +113,6 @@ class FloatPrinter(NumPyPrinter):
 
     def _print_ProductDifference(self, expr: ProductDifference) -> str:
         return f"_symkin_product_difference({', '.join(self._print(a) for a in expr.args)})"
-
-    def _print_ProductQuotient(self, expr: ProductQuotient) -> str:
-        return f"_symkin_product_quotient({', '.join(self._print(a) for a in expr.args)})"
 
     def _print_ReducedPhase(self, expr: ReducedPhase) -> str:
         p, q, *xs = expr.args

@@ -24,7 +24,7 @@ from typing import Any
 import mpmath
 import numpy as np
 
-__all__ = ["exact_ratio", "reduced_phase", "product_difference", "product_quotient", "long_phase", "dd_source", "TWO_PI_PARTS", "NAMESPACE"]
+__all__ = ["exact_ratio", "reduced_phase", "product_difference", "long_phase", "dd_source", "TWO_PI_PARTS", "NAMESPACE"]
 
 _SPLIT = 134217729.0  # 2^27 + 1, Dekker's splitter for float64
 
@@ -93,7 +93,7 @@ def _product_ratio(a: Any, b: Any, c: Any, d: Any) -> tuple[Any, Any, Any]:
     diff = p - c * d
     g = p / diff
     lo, hi = _CERTIFIED
-    if lo <= np.minimum.reduce(g, axis=None) and np.maximum.reduce(g, axis=None) <= hi:  # (nan: False)
+    if g.size == 0 or (lo <= np.minimum.reduce(g, axis=None) and np.maximum.reduce(g, axis=None) <= hi):  # nan: False
         return p, diff, g
     if g.ndim == 0:
         exact = _product_difference_core(a, b, c, d)
@@ -144,18 +144,6 @@ def product_difference(a: Any, b: Any, c: Any, d: Any) -> Any:
 def _product_difference_quiet(a: Any, b: Any, c: Any, d: Any) -> Any:
     """:func:`product_difference` for generated code (inside ``np.errstate(all="ignore")``)."""
     return _product_ratio(*_arrays(a, b, c, d))[1]
-
-
-def product_quotient(a: Any, b: Any, c: Any, d: Any) -> Any:
-    """``a b / (a b - c d)`` with the difference of :func:`product_difference`: the ratio the
-    cancellation test computes anyway (a law ``x a b / (a b - c d)`` costs no division more)."""
-    with np.errstate(all="ignore"):
-        return _product_ratio(*_arrays(a, b, c, d))[2]
-
-
-def _product_quotient_quiet(a: Any, b: Any, c: Any, d: Any) -> Any:
-    """:func:`product_quotient` for generated code (inside ``np.errstate(all="ignore")``)."""
-    return _product_ratio(*_arrays(a, b, c, d))[2]
 
 
 def product_difference_scalar(a: float, b: float, c: float, d: float) -> float:
@@ -258,7 +246,7 @@ SCALAR_NAMESPACE = {
 NAMESPACE = {
     "float64": {
         "_symkin_exact_ratio": _exact_ratio_quiet, "_symkin_reduced_phase": reduced_phase,
-        "_symkin_product_difference": _product_difference_quiet, "_symkin_product_quotient": _product_quotient_quiet,
+        "_symkin_product_difference": _product_difference_quiet,
     },
     "float32": {
         "_symkin_exact_ratio": exact_ratio_f32, "_symkin_reduced_phase": reduced_phase_f32,
@@ -459,25 +447,33 @@ def _split_turns(u: tuple[float, ...]) -> tuple[float, float]:
 
 
 def _reduce_turns_all(u: tuple[float, ...], t: np.ndarray) -> np.ndarray:
-    """:func:`_reduce_turns` for a whole array of times, branch-free and in place (15 passes, no
-    gather or scatter): ``t = th + tl`` split exactly (26 bits each), ``uh th`` exact, its whole
-    turns removed exactly, then ``uh tl`` (exact) and ``ul t`` (about 2^-26 of the phase) added to
-    the fraction; the same error as :func:`_reduce_turns` (about 2^-52 pi below 2^27 turns)."""
-    uh, ul = u[2:] if len(u) == 4 else _split_turns(u)  # (split once by _turns)
+    """:func:`_reduce_turns` for a whole array of times, branch-free (no gather or scatter):
+    ``t = th + tl`` and ``u[0] = uh + ul`` split exactly (Veltkamp), the three products
+    ``uh th``, ``uh tl``, ``ul th`` exact, each with its whole turns removed exactly, then the
+    small ``ul tl + u[1] t`` added; within about 2^-52 pi at any phase below 2^53 turns."""
+    u0, u1 = u[0], u[1]
+    cu = _SPLIT * u0
+    uh = cu - (cu - u0)
+    ul = u0 - uh
     c = np.multiply(t, _SPLIT)
     th = np.subtract(c, t)
     np.subtract(c, th, out=th)  # th = c - (c - t)
     tl = np.subtract(t, th, out=c)
-    y = np.multiply(th, uh, out=th)  # exact
-    k = np.rint(y)
-    np.subtract(y, k, out=y)  # the fraction of uh th, exact
-    np.multiply(tl, uh, out=tl)  # exact
-    np.multiply(t, ul, out=k)
-    np.add(tl, k, out=tl)
-    np.add(y, tl, out=y)  # the phase in turns, within a few turns of 0
-    np.multiply(y, _TWO_PI_LO, out=tl)
+    y = np.multiply(th, uh)  # exact
+    p = np.rint(y)
+    np.subtract(y, p, out=y)  # the fraction of uh th, exact
+    for a, b in ((tl, uh), (th, ul)):
+        np.multiply(a, b, out=p)  # exact
+        np.subtract(p, np.rint(p), out=p)
+        np.add(y, p, out=y)
+    np.multiply(tl, ul, out=p)
+    np.add(y, p, out=y)
+    np.multiply(t, u1, out=p)
+    np.add(y, p, out=y)  # the phase in turns, within a few turns of 0
+    np.subtract(y, np.rint(y), out=y)
+    np.multiply(y, _TWO_PI_LO, out=p)
     np.multiply(y, _TWO_PI_HI, out=y)
-    return np.add(y, tl, out=y)
+    return np.add(y, p, out=y)
 
 
 def long_phase(x: Any, fn: Any, t: Any, *args: Any) -> Any:

@@ -60,8 +60,6 @@ __all__ = [
     "ReducedPhase",
     "LongPhase",
     "ProductDifference",
-    "ProductQuotient",
-    "fuse_product_quotients",
     "stable_form",
     "relative_form",
     "exact_integer_parts",
@@ -234,56 +232,6 @@ class ProductDifference(_Deferred):
         return a * b - c * d
 
 
-class ProductQuotient(_Deferred):
-    """``a*b / (a*b - c*d)``, the difference as :class:`ProductDifference` evaluates it: the
-    ratio ``g`` its cancellation test computes (NumPy float64 code, see
-    :func:`fuse_product_quotients`), so that a law ``x a b/(a b - c d)`` pays no division more."""
-
-    nargs = 4
-    is_real = True
-
-    def doit(self, **hints: Any) -> sp.Expr:
-        """The plain quotient ``a b / (a b - c d)``."""
-        a, b, c, d = self.args
-        return a * b / (a * b - c * d)
-
-
-def fuse_product_quotients(expr: sp.Expr) -> sp.Expr:
-    """Write a product ``x a b / ProductDifference(a, b, c, d)`` (``a``, ``b`` symbols) as
-    ``x ProductQuotient(a, b, c, d)``: the NumPy float64 code then divides once where it
-    divided twice (the cancellation test's ``a b/(a b - c d)`` is the law's own factor).
-
-    >>> r1, r2, r3, r4, w = sp.symbols("r1:5 w", positive=True)
-    >>> fuse_product_quotients(w*r1*r3/ProductDifference(r1, r3, r2, r4))
-    w*ProductQuotient(r1, r3, r2, r4)
-    """
-
-    def rewrite(node: sp.Expr) -> sp.Expr:
-        powers: dict[sp.Expr, sp.Expr] = {}
-        for f in node.args:
-            base, e = f.as_base_exp()
-            powers[base] = powers.get(base, 0) + e
-        for base, e in powers.items():
-            if not (isinstance(base, ProductDifference) and e == -1):
-                continue
-            a, b = base.args[:2]
-            if not (a.is_Symbol and b.is_Symbol):
-                continue
-            need = {a: 1} if a != b else {a: 2}
-            if b != a:
-                need[b] = 1
-            if not all(powers.get(s, 0).is_Integer and powers.get(s, 0) >= k for s, k in need.items()):
-                continue
-            rest = dict(powers)
-            del rest[base]
-            for s, k in need.items():
-                rest[s] = rest[s] - k
-            return sp.Mul(*(x**k for x, k in rest.items() if k != 0)) * ProductQuotient(*base.args)
-        return node
-
-    return expr.replace(lambda n: n.is_Mul and n.has(ProductDifference), rewrite)
-
-
 def plain_form(expr: sp.Expr) -> sp.Expr:
     """``expr`` with every :class:`ExactRatio` and :class:`ReducedPhase` written out.
 
@@ -291,7 +239,7 @@ def plain_form(expr: sp.Expr) -> sp.Expr:
     >>> plain_form(ExactRatio(z - 1, z))
     (z - 1)/z
     """
-    return expr.replace(lambda e: isinstance(e, (Group, ExactRatio, ReducedPhase, ProductDifference, ProductQuotient, LongPhase)), lambda e: e.doit())
+    return expr.replace(lambda e: isinstance(e, (Group, ExactRatio, ReducedPhase, ProductDifference, LongPhase)), lambda e: e.doit())
 
 
 # --------------------------------------------------------------------------- signs

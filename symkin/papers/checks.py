@@ -661,12 +661,12 @@ class Check:
 
     @property
     def derived_text(self) -> str:
-        """The derived value as plain text (a sequence joined by ``; ``)."""
+        """The derived value as plain text (the items of a sequence joined by a semicolon and a space)."""
         return str(self.once("derived_text", lambda: _plain(self.derived)))
 
     @property
     def published_text(self) -> str:
-        """The published value as plain text (a sequence joined by ``; ``)."""
+        """The published value as plain text (the items of a sequence joined by a semicolon and a space)."""
         return str(self.once("published_text", lambda: _plain(self.published)))
 
     def _repr_markdown_(self) -> str:

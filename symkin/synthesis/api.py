@@ -100,8 +100,9 @@ def synthesize(
         ``efficiency``): ``"default"`` (the train file's value where a mesh has one, else 0.98
         external and 0.99 internal), one number, or ``{"a-b": value}``; rational numbers (a
         decimal, a fraction), since the order is exact. The values used are in
-        :attr:`SynthesisResult.mesh_efficiency`; a design whose efficiency is zero or below
-        (:attr:`Design.locks`: the driver cannot drive the driven) ranks after the rest.
+        :attr:`SynthesisResult.mesh_efficiency`; a design whose efficiency is zero or below is
+        marked (:attr:`Design.locks`: the driver cannot drive the driven) and, with efficiency
+        the first key, ranks after every design that drives.
 
     Raises
     ------

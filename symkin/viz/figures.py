@@ -319,7 +319,7 @@ def save(fig: Figure, path: Path, formats: Sequence[str] | None = None) -> list[
     with replacing(*targets) as temps:
         for tmp, target in zip(temps, targets):
             dpi = 200 if target.suffix == ".png" else 150
-            if tight is None and target.suffix in (".png", ".pdf"):
+            if tight is None and target.suffix in (".png", ".pdf") and _savefig_defaults():
                 _print_once(fig, tmp, target.suffix[1:], dpi)
             else:
                 extra: dict[str, Any] = {"pil_kwargs": dict(_PNG_OPTIONS)} if target.suffix == ".png" else {}
@@ -330,6 +330,16 @@ def save(fig: Figure, path: Path, formats: Sequence[str] | None = None) -> list[
 #: zlib level 3 for PNGs: the same pixels as the default level 6 at about half the
 #: compression time, in files about 3 % larger (line art compresses well either way).
 _PNG_OPTIONS = {"compress_level": 3}
+
+
+def _savefig_defaults() -> bool:
+    """Whether the ``savefig.*`` settings :func:`_print_once` does not apply are matplotlib's
+    defaults (a user's ``savefig.facecolor`` or ``transparent`` sends the figure through ``savefig``)."""
+    import matplotlib as mpl
+
+    return all(mpl.rcParams[k] == mpl.rcParamsDefault[k] for k in
+               ("savefig.facecolor", "savefig.edgecolor", "savefig.transparent", "savefig.bbox",
+                "savefig.orientation"))
 
 
 def _print_once(fig: Figure, path: Path, fmt: str, dpi: float) -> None:
