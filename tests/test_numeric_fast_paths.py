@@ -19,6 +19,7 @@ import mpmath
 import numpy as np
 import pytest
 import sympy as sp
+from test_numeric_scalar import _exact_difference  # a b - c d at 60 digits
 
 import symkin
 from symkin import schemes
@@ -28,11 +29,6 @@ from symkin.numeric import runtime
 U64 = 2.0**-53
 W1, W4 = S.omega("1"), S.omega("4")
 R = [S.radius(i) for i in "1234"]
-
-
-def _exact_difference(a, b, c, d):
-    with mpmath.workdps(60):
-        return float(mpmath.mpf(a) * mpmath.mpf(b) - mpmath.mpf(c) * mpmath.mpf(d))
 
 
 def test_near_points_among_far_ones_are_redone_and_the_margin_too():
