@@ -78,7 +78,7 @@ def _product_difference_core(a: Any, b: Any, c: Any, d: Any) -> Any:
 #: far from cancellation: ``g`` in [-1/2, 3/2] is ``2 |a b - c d| >= |a b + c d|`` (the ratio
 #: ``c d / a b`` outside (1/3, 3)), where the plain difference is within 3 units of 2^-53; the
 #: bounds are pulled in by 1/1000 so that the rounding of ``g`` cannot move a point across.
-_CERTIFIED = (-0.499, 1.499)
+_CERTIFIED = _LO, _HI = (-0.499, 1.499)
 
 
 def _product_ratio(a: Any, b: Any, c: Any, d: Any) -> tuple[Any, Any, Any]:
@@ -150,7 +150,7 @@ def product_difference_scalar(a: float, b: float, c: float, d: float) -> float:
     """:func:`product_difference` of Python floats (the scalar path of a compiled law)."""
     p = a * b
     r = p - c * d
-    if r == 0 or not (-0.499 <= p / r <= 1.499):  # not certified (see _CERTIFIED): double-double
+    if r == 0 or not (_LO <= p / r <= _HI):  # not certified (see _CERTIFIED): double-double
         exact = _product_difference_core(a, b, c, d)
         if exact == exact:
             return exact
@@ -302,7 +302,7 @@ def numba_namespace(precision: str) -> dict[str, Any]:
             a, b, c, d = np.float64(a), np.float64(b), np.float64(c), np.float64(d)
             p = a * b
             r = p - c * d
-            if r == 0 or not (-0.499 <= p / r <= 1.499):  # the products may cancel: double-double (see product_difference)
+            if r == 0 or not (_LO <= p / r <= _HI):  # the products may cancel: double-double (see product_difference)
                 e = core(a, b, c, d)
                 if e == e:  # else the splitting overflowed: the plain form
                     r = e
@@ -415,20 +415,19 @@ def _two_pi_dd() -> tuple[float, float]:
 _TWO_PI_HI, _TWO_PI_LO = _two_pi_dd()
 
 
-def _turns(fn: Any, args: tuple[float, ...]) -> tuple[float, ...]:
+def _turns(fn: Any, args: tuple[float, ...]) -> tuple[float, float]:
     """``c / (2 pi)`` in double-double (turns per unit of t) for ``c = fn(*args)``; the last
     coefficient is remembered on ``fn`` (a sweep of t with the same other inputs computes it once)."""
     memo = getattr(fn, "_symkin_memo", None)
     if memo is not None and memo[0] == args:
         return memo[1]
     ch, cl = fn(*args)
-    pair = _dd_div(float(ch), float(cl), _TWO_PI_HI, _TWO_PI_LO)
-    u = (*pair, *_split_turns(pair))  # (hi, lo) and its 26-bit split (hi26, rest), for _reduce_turns_all
+    u = _dd_div(float(ch), float(cl), _TWO_PI_HI, _TWO_PI_LO)
     fn._symkin_memo = (args, u)  # one assignment: another thread sees the old pair or the new one
     return u
 
 
-def _reduce_turns(u: tuple[float, ...], t: Any) -> Any:
+def _reduce_turns(u: tuple[float, float], t: Any) -> Any:
     """``2 pi frac(u t)`` for the double-double ``u`` (turns) and float ``t``: the product split
     exactly, the whole turns removed exactly (Sterbenz), one rounding in the fraction."""
     y, e = _two_prod(u[0], t)
@@ -438,15 +437,7 @@ def _reduce_turns(u: tuple[float, ...], t: Any) -> Any:
     return f * _TWO_PI_HI + f * _TWO_PI_LO
 
 
-def _split_turns(u: tuple[float, ...]) -> tuple[float, float]:
-    """The double-double ``u`` as ``uh + ul`` with ``uh`` of 26 significant bits (Veltkamp),
-    so that ``uh`` times a 26-bit part of a float is exact."""
-    c = _SPLIT * u[0]
-    uh = c - (c - u[0])
-    return uh, (u[0] - uh) + u[1]
-
-
-def _reduce_turns_all(u: tuple[float, ...], t: np.ndarray) -> np.ndarray:
+def _reduce_turns_all(u: tuple[float, float], t: np.ndarray) -> np.ndarray:
     """:func:`_reduce_turns` for a whole array of times, branch-free (no gather or scatter):
     ``t = th + tl`` and ``u[0] = uh + ul`` split exactly (Veltkamp), the three products
     ``uh th``, ``uh tl``, ``ul th`` exact, each with its whole turns removed exactly, then the
