@@ -129,6 +129,7 @@ def run_synthesize(args: Any) -> int:
     meshes = dict(result.mesh_efficiency)
     if args.efficiency is not None and "efficiency" not in result.rank:
         from symkin.statics.power import mesh_efficiencies
+        from symkin.synthesis.result import locks
 
         etas = [_efficiency(d, mesh) for d in result.designs]
         meshes = mesh_efficiencies(result.problem.train, mesh)
@@ -137,7 +138,7 @@ def run_synthesize(args: Any) -> int:
         design["check"] = check.to_json()
         if etas is not None:
             design["efficiency"] = exact_json(etas[i])
-            design["locks"] = etas[i] is not None and bool(etas[i] <= 0)
+            design["locks"] = locks(etas[i])
     emit(args, _text(result, checks, args.latex, etas, meshes), data)
     return 0 if all(c.passed for c in checks) else 1
 

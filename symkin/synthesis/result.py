@@ -162,7 +162,7 @@ class Design:
     @property
     def locks(self) -> bool:
         """Whether the ranked efficiency is zero or below: the driver cannot drive the driven (the train locks)."""
-        return self.ranked_efficiency is not None and bool(self.ranked_efficiency <= 0)
+        return locks(self.ranked_efficiency)
 
     @property
     def values(self) -> dict[str, int]:
@@ -558,11 +558,16 @@ def empty_reason(plan: Plan, merged: ChunkResult) -> str:
     return "no design"  # pragma: no cover - some stage is empty when nothing is found
 
 
+def locks(eta: Any) -> bool:
+    """Whether an efficiency (None where there is none) is zero or below: the driver cannot drive the driven."""
+    return eta is not None and bool(eta <= 0)
+
+
 def efficiency_text(eta: Any) -> str:
     """An efficiency for a table: five decimals, "(locks)" at zero or below, "-" where there is none."""
     if eta is None:
         return "-"
-    return f"{float(eta):.5f}" + (" (locks)" if eta <= 0 else "")
+    return f"{float(eta):.5f}" + (" (locks)" if locks(eta) else "")
 
 
 def describe_designs(designs: Sequence[Design]) -> list[str]:
