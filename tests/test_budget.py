@@ -139,11 +139,7 @@ def test_the_cardan_path_for_a_slow_angle_is_decided_within_the_budget():
     assert path.kind == "line off the guide"
 
 
-def test_an_interrupt_that_is_swallowed_comes_again():
-    # the first interrupt can land where Python drops exceptions (a __del__, a gc callback) or in a
-    # bare except; the budget must still stop the work
-    swallowed = []
-
+def _stubborn(swallowed):
     def stubborn(expr):
         deadline = time.perf_counter() + 30
         while time.perf_counter() < deadline:
@@ -156,7 +152,26 @@ def test_an_interrupt_that_is_swallowed_comes_again():
                 swallowed.append(type(exc).__name__)
         return expr
 
+    return stubborn
+
+
+def test_an_interrupt_that_is_swallowed_comes_again():
+    # the first interrupt can land where Python drops exceptions (a __del__, a gc callback) or in a
+    # bare except; the budget must still stop the work
+    swallowed = []
     start = time.perf_counter()
     with pytest.warns(SimplificationBudgetWarning, match="longer than 0.2 s"):
-        simplify_within(sp.Integer(1), seconds=0.2, simplifier=stubborn)
+        simplify_within(sp.Integer(1), seconds=0.2, simplifier=_stubborn(swallowed))
     assert swallowed == ["_OutOfTime"] and time.perf_counter() - start < 5
+
+
+def test_off_the_main_thread_a_swallowed_interrupt_comes_again():
+    # the watchdog raised once: an interrupt dropped in a weakref callback during SymPy's simplify
+    # ("Exception ignored in: WeakSet._remove") left the simplification running for 42 s
+    swallowed = []
+    out, seconds, caught = _in_a_thread(lambda: simplify_within(sp.Integer(1), seconds=0.2, simplifier=_stubborn(swallowed)))
+    assert swallowed == ["_OutOfTime"] and seconds < 5
+    assert [w.category for w in caught] == [SimplificationBudgetWarning]
+    # and nothing is left pending in the thread: a quick simplification after it is undisturbed
+    out, seconds, caught = _in_a_thread(lambda: simplify_within(sp.sin(sp.Symbol("x")) ** 2 + sp.cos(sp.Symbol("x")) ** 2))
+    assert out == 1 and not caught

@@ -13,7 +13,8 @@ harness's, say) is kept and re-armed.  Off the main thread (a Dask worker, a Jup
 background thread, a web server's request thread), or where the platform has no interval
 timer, signals cannot be used: there a watchdog thread raises the same exception in the
 working thread when the time is up (CPython's ``PyThreadState_SetAsyncExc``), again at no
-cost per call.  Where that is not available (another Python implementation) a call
+cost per call.  Both routes raise it again every 0.1 s until the work has stopped, since one
+interrupt can land where Python drops exceptions (a weakref callback) or a bare ``except``.  Where that is not available (another Python implementation) a call
 tracer (:func:`sys.settrace`, for the calling thread only) looks at the clock every few
 hundred Python calls; it about doubles the time of the simplification
 (``benchmarks/bench_budget.py``) and suspends a debugger's tracer in that thread while
@@ -189,29 +190,50 @@ def _set_async_exc() -> Any:
         return None
 
 
+def _checkpoint() -> None:
+    """A Python call, nothing more: CPython raises a pending asynchronous exception on entering it.
+
+    (Clearing it with ``PyThreadState_SetAsyncExc(id, NULL)`` instead leaves CPython 3.11's
+    eval-breaker flag set for good, and a later call tracer never gets to run: not used.)
+    """
+
+
 @contextmanager
 def _watchdog_time_limit(seconds: float) -> Iterator[None]:
-    """A time limit without signals: a timer thread raises _OutOfTime in this thread when the time is up."""
+    """A time limit without signals: a watchdog thread raises _OutOfTime in this thread when the time is up.
+
+    As with the timer signal, the exception is raised again every ``_REFIRE`` seconds until the
+    block has stopped: one that lands where Python drops exceptions (a weakref or gc callback,
+    "Exception ignored in ...") would otherwise leave the block running to its end.
+    """
     import ctypes
 
-    target = threading.get_ident()
+    target = ctypes.c_ulong(threading.get_ident())
     lock = threading.Lock()
-    done = False
+    done = threading.Event()
 
     def expire() -> None:
-        with lock:
-            if not done:
-                _set_async_exc()(ctypes.c_ulong(target), ctypes.py_object(_OutOfTime))
+        wait = seconds
+        while not done.wait(wait):
+            with lock:
+                if not done.is_set():
+                    _set_async_exc()(target, ctypes.py_object(_OutOfTime))
+            wait = _REFIRE
 
-    timer = threading.Timer(seconds, expire)
-    timer.daemon = True
-    timer.start()
+    watchdog = threading.Thread(target=expire, name="symkin-time-limit", daemon=True)
+    watchdog.start()
     try:
         yield
     finally:
-        with lock:
-            done = True
-        timer.cancel()
+        while True:  # an interrupt may land in this clause too: then stop the watchdog again
+            try:
+                with lock:
+                    done.set()
+                _checkpoint()  # an interrupt set before done.set() but not yet raised is raised here
+                break
+            except _OutOfTime:
+                continue
+        watchdog.join()
 
 
 @contextmanager
