@@ -24,6 +24,21 @@ from symkin.papers.reproduce import run
 from symkin.papers.texbuild import compile_pdf
 
 
+@pytest.fixture(autouse=True, scope="module")
+def _alyushin2009_derived_once():
+    """These tests run ``reproduce alyushin2009`` a dozen times for the folder it writes, not for
+    what it derives (tests/test_reproduce.py and tests/test_verdicts.py test that): its checks are
+    derived once, here in the test process, and every run (and every worker it forks) reuses them.
+    Runs in a new process (the kill and signal tests) derive them as a user's run does."""
+    from symkin.derivations import alyushin2009
+
+    derived = alyushin2009.checks()
+    patch = pytest.MonkeyPatch()
+    patch.setattr(alyushin2009, "checks", lambda: list(derived))
+    yield
+    patch.undo()
+
+
 def previous_report(folder: Path) -> Path:
     """A folder symkin wrote earlier (its manifest lists its files), with a marker file among them."""
     folder.mkdir()
@@ -173,7 +188,7 @@ def test_an_interrupt_inside_the_run_leaves_the_previous_report(tmp_path, capsys
         raise KeyboardInterrupt
 
     monkeypatch.setattr(alyushin2009, "figures", interrupted)
-    code, _stdout, err = cli(capsys, "reproduce", "--out", str(out))
+    code, _stdout, err = cli(capsys, "reproduce", "alyushin2009", "--out", str(out))
     assert code == 130 and "interrupted; nothing was written" in err
     assert_untouched(out)
 
