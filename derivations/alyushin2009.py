@@ -193,7 +193,7 @@ def _scheme(kind: str, **kw):
 def coaxial_substitution(mech) -> dict:
     """{r_4: ...}: the engine's coaxiality condition solved for the ring radius."""
     (cond,) = mech.coaxiality
-    (value,) = sp.solve(cond, r4)
+    (value,) = sp.solve(cond, r4, simplify=False)  # linear, r_4 with coefficient 1: a plain sum of radii
     return {r4: value}
 
 
