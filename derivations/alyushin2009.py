@@ -15,6 +15,7 @@ the engine's (y, 0) and the paper's V_x is the engine's -V_y (a quarter turn clo
 
 from __future__ import annotations
 
+import functools
 import warnings
 from pathlib import Path
 from typing import Any
@@ -192,7 +193,7 @@ def _scheme(kind: str, **kw):
 def coaxial_substitution(mech) -> dict:
     """{r_4: ...}: the engine's coaxiality condition solved for the ring radius."""
     (cond,) = mech.coaxiality
-    (value,) = sp.solve(cond, r4)
+    (value,) = sp.solve(cond, r4, simplify=False)  # linear, r_4 with coefficient 1: a plain sum of radii
     return {r4: value}
 
 
@@ -492,6 +493,20 @@ def basic_train_law(mech, driver: str, driven: str) -> sp.Expr:
     return law
 
 
+@functools.cache
+def teeth_law(kind: str, driver: str, driven: str) -> sp.Expr:
+    """:func:`basic_train_law` of scheme ``kind`` in its symbolic tooth numbers, derived once
+    per process (several checks read it, some at given tooth numbers: :func:`law_at`)."""
+    return basic_train_law(_scheme(kind, teeth=True), driver, driven)
+
+
+def law_at(kind: str, teeth: tuple[int, int, int, int], driver: str, driven: str) -> sp.Expr:
+    """The efficiency law of scheme ``kind`` with tooth numbers ``teeth``: the statics derived
+    once in symbols (:func:`teeth_law`) with the numbers substituted (a branch of the law
+    chosen by its condition), cancelled."""
+    return sp.cancel(teeth_law(kind, driver, driven).subs(dict(zip((z1, z2, z3, z4), teeth))))
+
+
 def default_basic_efficiency(mech) -> sp.Expr:
     """eta_0 with symkin's default mesh efficiencies (0.98 external, 0.99 internal)."""
     return sp.Mul(*mesh_efficiencies(mech, "default").values())
@@ -526,8 +541,7 @@ def _decide_ai_efficiency():
     i = sp.Symbol("i", positive=True)
     laws = {}
     for k in ("AI1", "AI"):
-        m = _scheme(k, teeth=True)
-        law = basic_train_law(m, "1", "H")
+        law = teeth_law(k, "1", "H")
         ratio = PUBLISHED_RATIO_TEETH[k][1]  # checked as (13a), (13b): i_1H = 1 + z2 z4/(z1 z3), 1 + z4/z1
         zfree = z4  # eliminate z4 through the ratio
         (z4_of_i,) = sp.solve(sp.Eq(ratio, i), zfree)
@@ -563,7 +577,7 @@ def _ii_efficiency_check() -> Check:
 
 def _decide_ii_efficiency():
     m = _scheme("II", teeth=(200, 99, 100, 201))
-    up, down = basic_train_law(m, "1", "H"), basic_train_law(m, "H", "1")
+    up, down = law_at("II", (200, 99, 100, 201), "1", "H"), law_at("II", (200, 99, 100, 201), "H", "1")
     eta0 = default_basic_efficiency(m)
     (limit,) = sp.solve(sp.Eq(up, sp.Rational(1, 100)), ETA0)  # below it, gear 1 driving gives < 1 %
     (limit_down,) = sp.solve(sp.Eq(down, sp.Rational(1, 100)), ETA0)
@@ -588,7 +602,7 @@ def _ii_against_aa_check() -> Check:
 
 
 def _decide_ii_against_aa():
-    laws = {k: {d: basic_train_law(_scheme(k, teeth=True), *d) for d in (("1", "H"), ("H", "1"))} for k in ("AA", "II")}
+    laws = {k: {d: teeth_law(k, *d) for d in (("1", "H"), ("H", "1"))} for k in ("AA", "II")}
     same = all(compare_symbolic(laws["AA"][d], laws["II"][d]).verdict.agrees for d in laws["AA"])
     # each branch rises with eta_0, on its own side of the basic ratio K = z2 z4/(z1 z3) = 1
     rising = all(_rises_with_eta0(law) for law in laws["AA"].values())
@@ -627,7 +641,7 @@ def _conditions_check() -> Check:
     clear = [k for k in range(2, 13) if bool(2 * arm * sp.sin(sp.pi / k) > tips)]
     both = sorted(set(assembled) & set(clear))
     grid = [sp.Rational(n, 100) for n in range(50, 100)]
-    law = basic_train_law(m, "H", "1")  # the carrier driving gear 1, gear 4 held
+    law = law_at("AA", z, "H", "1")  # the carrier driving gear 1, gear 4 held
     moving = all(bool(law.subs(ETA0, eta0) > 0) for eta0 in grid)
     derived = (f"coaxial: {coaxial}; assembles with k = {assembled}; tips clear for k = {clear}; both for k = {both}; "
                f"carrier driving: eta = {law}, positive (no self-locking) for eta0 = 0.50 ... 0.99: {moving} "

@@ -525,7 +525,7 @@ def steady_share(v: np.ndarray, tolerance: float = 0.1) -> float:
 
     n = len(v)
     band = tolerance * float(v.max() - v.min())
-    vv = np.concatenate([v, v])
+    vv = np.concatenate([v, v]).tolist()  # Python floats: the loop indexes every sample several times
     highs: deque[int] = deque()
     lows: deque[int] = deque()
     start, best = 0, 0

@@ -297,19 +297,21 @@ def tooth_equations(scheme: str) -> ToothEquations:
         asm,
     )
     # eliminate one unknown per equation, each linear in it: Z3 from x, Z4 from the
-    # ratio, Z1 from assembly, Z2 from coaxiality
-    (z3_of_z2,) = sp.solve(equations[1].lhs - equations[1].rhs, z3)
-    (z4_of_z1,) = sp.solve(sp.numer(sp.together((law - RATIO).subs(z2, X * z3))), z4)
-    (z1_of_asm,) = sp.solve(sp.numer(sp.together((asm.lhs - asm.rhs).subs(z2, X * z3))), z1)
+    # ratio, Z1 from assembly, Z2 from coaxiality (roots not simplified by sp.solve: each
+    # is factored below, which gives one form whatever form the root comes in)
+    (z3_of_z2,) = sp.solve(equations[1].lhs - equations[1].rhs, z3, simplify=False)
+    (z4_of_z1,) = sp.solve(sp.numer(sp.together((law - RATIO).subs(z2, X * z3))), z4, simplify=False)
+    (z1_of_asm,) = sp.solve(sp.numer(sp.together((asm.lhs - asm.rhs).subs(z2, X * z3))), z1, simplify=False)
     coax = working_coaxiality(scheme).subs({z3: z2 / X, z4: z4_of_z1})
-    (z2_of_z1,) = sp.solve(sp.numer(sp.together(coax)), z2)
+    (z2_of_z1,) = sp.solve(sp.numer(sp.together(coax)), z2, simplify=False)
     chain = {z1: sp.factor(z1_of_asm), z4: sp.factor(z4_of_z1), z2: sp.factor(z2_of_z1), z3: z3_of_z2}
     solution = {z1: chain[z1]}
     solution[z4] = sp.factor(chain[z4].subs(z1, solution[z1]))
     solution[z2] = sp.factor(chain[z2].subs(z1, solution[z1]))
     solution[z3] = sp.factor(chain[z3].subs(z2, solution[z2]))
-    for eq in equations:  # the solution satisfies all four conditions
-        if sp.simplify(sp.together((eq.lhs - eq.rhs).subs(solution))) != 0:
+    for eq in equations:  # the solution satisfies all four conditions (cancelled first: zero decides)
+        residual = sp.together((eq.lhs - eq.rhs).subs(solution))
+        if sp.cancel(residual) != 0 and sp.simplify(residual) != 0:
             raise UnsupportedError(f"{scheme}: the tooth numbers do not satisfy {eq}")  # pragma: no cover
     return ToothEquations(scheme, equations, solution, chain)
 
