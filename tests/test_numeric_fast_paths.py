@@ -5,7 +5,7 @@
   in double-double (against mpmath at 50 digits), including the points just outside the certified
   interval; the II differential divides once (``ProductQuotient``).
 - Tooth arrays are bounded by one bitwise-or reduction each: negative values, values whose bound
-  is too coarse and values beyond int64's safe range still take the exact paths.
+  is too coarse, values beyond int64's safe range and -2^63 still take the exact paths.
 - Long phases with numbers as coefficient inputs are reduced for every point of the call,
   branch-free: short and long phases of one array, negative times, against mpmath.
 """
@@ -94,6 +94,10 @@ def test_tooth_arrays_take_the_exact_paths_the_bound_calls_for():
     # beyond int64's safe range: Python integers, exact
     huge = [np.array([2**40, 3]), np.array([2**40 - 1, 2]), np.array([2**40, 5]), np.array([2**40 + 1, 7])]
     assert list(f(*huge)) == exact(*huge)
+    # -2^63 among small values: |z| is taken without int64's abs (which leaves -2^63 negative
+    # and let the maximum be 2, so the products wrapped: -1.0 instead of 1.0)
+    edge = [np.array([-2**63, 2]), np.array([3, 3]), np.array([5, 5]), np.array([7, 7])]
+    assert list(f(*edge)) == exact(*edge)
     # a pole of whole numbers is still a pole
     with pytest.warns(symkin.PoleWarning):
         assert np.isinf(f(np.array([10, 20]), np.array([10, 30]), np.array([10, 20]), np.array([10, 1]))[0])

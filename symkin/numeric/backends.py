@@ -467,9 +467,8 @@ class NumpyBackend:
         else:
             big = [int(np.bitwise_or.reduce(i, axis=None)) if i.size and i.dtype.kind in "iu" else -1 for i in ints]
         if any(b < 0 for b in big) or self._over_bound(big):
-            big = [int(np.maximum.reduce(np.abs(i), axis=None)) if i.size else 0 for i in ints]
-            if any(b < 0 for b in big):  # |-2^63| wraps to -2^63 in int64
-                return True
+            # |z| from the extremes in Python integers (np.abs wraps -2^63 to itself in int64)
+            big = [max(int(i.max()), -int(i.min())) if i.size else 0 for i in ints]
             return self._over_bound(big)
         return False
 
