@@ -158,3 +158,15 @@ def test_small_calls_skip_the_chunk_machinery_and_give_the_same_numbers(monkeypa
     ox, oc, oy = both(a, np.ones(3))
     assert np.array_equal(ox, a) and not np.shares_memory(ox, a)  # a copy, not the input itself
     assert np.array_equal(oc, [2.0, 2.0, 2.0]) and oy.dtype == np.float64
+
+
+@pytest.mark.parametrize("backend", [*FLOAT_BACKENDS, "mpmath"])
+def test_equal_laws_come_back_as_separate_arrays(backend):
+    # [x y, x y] is one array in the generated code: before, both outputs were that array, and
+    # writing into one changed the other
+    x, y = sp.symbols("x y")
+    xs = np.arange(3.0)
+    first, second, third = symkin.compile([x * y, x * y, x], backend=backend)(xs, 2.0)
+    first[0] = 99.0
+    assert list(second) == [0.0, 2.0, 4.0] and not np.shares_memory(first, second)
+    assert not np.shares_memory(third, xs)  # nor is an output the caller's input

@@ -154,6 +154,8 @@ class NumericFunction:
         if out is not None:
             shaped = [o for o in out]
         else:
+            if len(results) > 1:
+                results = _distinct(results)
             shaped = [r if r.shape == shape else r.reshape(shape) for r in results]
             if shape == ():
                 shaped = [r[()] for r in shaped]
@@ -304,3 +306,14 @@ def _rebuild(token: str, payload: bytes) -> NumericFunction:
         function._token = token
         _REBUILT[token] = function
     return _REBUILT[token]
+
+
+def _distinct(results: Sequence[np.ndarray]) -> list[np.ndarray]:
+    """The results with a copy of any array already among them: equal laws (``[x*y, x*y]``)
+    come out of the generated code as one array, and a caller writing into one would change both."""
+    seen: set[int] = set()
+    out = []
+    for r in results:
+        out.append(r.copy() if id(r) in seen else r)
+        seen.add(id(r))
+    return out
