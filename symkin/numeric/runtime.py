@@ -478,7 +478,7 @@ def long_phase(x: Any, fn: Any, t: Any, *args: Any) -> Any:
         if not abs(x) > LONG_PHASE:
             return x
         return _reduce_turns(_turns(fn, tuple(float(a) for a in args)), float(t))
-    if x.max() <= LONG_PHASE and x.min() >= -LONG_PHASE:  # (two passes, no temporary)
+    if not x.size or (x.max() <= LONG_PHASE and x.min() >= -LONG_PHASE):  # (two passes, no temporary)
         return x
     shape = x.shape
     if all(isinstance(a, float) or np.ndim(a) == 0 for a in args):  # (np.float64 is a float)
