@@ -184,7 +184,8 @@ def test_locking_and_degenerate_designs_from_the_command_line(capsys, tmp_path):
 
     path = tmp_path / "ii.toml"
     path.write_text(TWO_ROW_II)
-    base = ["synthesize", "--train", str(path), "--driver", "A", "--driven", "H", "--ratio-range=-0.03,0.03",
+    # "--ratio-range -0.03,0.03" as two tokens: argparse alone would take "-0.03,0.03" for an option
+    base = ["synthesize", "--train", str(path), "--driver", "A", "--driven", "H", "--ratio-range", "-0.03,0.03",
             "--planets", "1", "--zmin", "20", "--zmax", "30", "--top", "all", "--efficiency", "0.99", "--quiet"]
     eta0 = Fraction(99, 100) ** 2
     for extra in ([], ["--rank", "efficiency"]):

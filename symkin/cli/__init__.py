@@ -108,6 +108,26 @@ def one_line(message: object, word: int = 80) -> str:
     return " ".join(w if len(w) <= word else f"{w[: word * 3 // 4]}...({len(w)} characters)" for w in words)
 
 
+def _negative_lists_attached(argv: list[str]) -> list[str]:
+    """``--ratio-range -120,-30`` read as ``--ratio-range=-120,-30``.
+
+    argparse takes a token that begins with ``-`` for an option unless it is one plain
+    negative number, so a list that starts with a negative number would be refused as an
+    unknown option; a minus, a digit and later a comma never make an option's name.
+
+    >>> _negative_lists_attached(["synthesize", "--ratio-range", "-120,-30", "--ratio", "-3"])
+    ['synthesize', '--ratio-range=-120,-30', '--ratio', '-3']
+    """
+    out: list[str] = []
+    for token in argv:
+        if (out and out[-1].startswith("--") and out[-1] != "--" and "=" not in out[-1]
+                and len(token) > 2 and token[0] == "-" and token[1].isdigit() and "," in token):
+            out[-1] = f"{out[-1]}={token}"
+        else:
+            out.append(token)
+    return out
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; returns the exit status.
 
@@ -119,7 +139,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     says what went wrong.  A command line argparse refuses raises :class:`UsageExit`
     (a ``SystemExit`` with status 2) after the same output.
     """
-    argv = list(sys.argv[1:] if argv is None else argv)
+    argv = _negative_lists_attached(list(sys.argv[1:] if argv is None else argv))
     wants_json = "--json" in argv
     parser = build_parser(_command(argv))
     try:

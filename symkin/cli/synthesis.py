@@ -37,7 +37,7 @@ def register(sub: Any) -> None:
     p.add_argument("--state", help="instead of --driver/--driven/--fixed: a gear state of the train file")
     p.add_argument("--ratio", help="target ratio omega_driver/omega_driven, exact (2.4, 12/5, -3)")
     p.add_argument("--tolerance", default="0.01", help="relative ratio tolerance (default 0.01 = 1 %%)")
-    p.add_argument("--ratio-range", metavar="LO,HI", help="instead of --ratio: every ratio from LO to HI (LO negative: --ratio-range=-120,-30)")
+    p.add_argument("--ratio-range", metavar="LO,HI", help="instead of --ratio: every ratio from LO to HI (-120,-30 for a negative range)")
     p.add_argument("--planets", "-k", required=True,
                    help="equally spaced planets of each kind, or 'file' for each planet's count in the train file")
     p.add_argument("--zmin", help="least tooth number of every unknown gear (default: the least without undercut)")
