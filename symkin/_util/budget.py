@@ -13,8 +13,9 @@ harness's, say) is kept and re-armed.  Off the main thread (a Dask worker, a Jup
 background thread, a web server's request thread), or where the platform has no interval
 timer, signals cannot be used: there a watchdog thread raises the same exception in the
 working thread when the time is up (CPython's ``PyThreadState_SetAsyncExc``), again at no
-cost per call.  Both routes raise it again every 0.1 s until the work has stopped, since one
-interrupt can land where Python drops exceptions (a weakref callback) or a bare ``except``.  Where that is not available (another Python implementation) a call
+cost per call.  Both raise it again every 0.1 s until the work has stopped, since one
+interrupt can land where Python drops exceptions (a weakref callback) or in a bare
+``except``.  Where neither is available (another Python implementation) a call
 tracer (:func:`sys.settrace`, for the calling thread only) looks at the clock every few
 hundred Python calls; it about doubles the time of the simplification
 (``benchmarks/bench_budget.py``) and suspends a debugger's tracer in that thread while
