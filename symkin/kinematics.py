@@ -551,9 +551,12 @@ def _coefficient_table(mech: Mechanism, names: tuple[str, ...]) -> dict[str, tup
     return mech._memo(("coefficients", names), build)[0]
 
 
-def _factored_coefficient(mech: Mechanism, names: tuple[str, ...], link: str, known: str) -> sp.Expr:
-    """d omega_link / d omega_known as the block solve composed it (a product of the stages'
-    factors for a train in series), for laws that factor it anyway (ratios)."""
+def _factored_coefficient(mech: Mechanism, known_links: Sequence[str], link: str, known: str) -> sp.Expr:
+    """d omega_link / d omega_known, the links in ``known_links`` given (no clutch joined), as the
+    block solve composed it (a product of the stages' factors for a train in series), for laws
+    that factor it anyway (ratios, a multistage train's speeds)."""
+    names = tuple(sorted(_resolve(mech, k) for k in known_links))  # the table's key, as solve_speeds makes it
+    link, known = _resolve(mech, link), _resolve(mech, known)
     _coefficient_table(mech, names)
     factored = mech._memo(("coefficients", names), lambda: None)[1]
     return factored[link][names.index(known)]
@@ -1023,7 +1026,7 @@ def _ratio(mech: Mechanism, a: str, b: str, cs: tuple[str, ...]) -> Law:
 
     def coefficient(of: str, by: str) -> sp.Expr:  # d omega_of / d omega_by, as composed (factored)
         solve_speeds(mech, {**known, by: S.omega(by)})
-        return _factored_coefficient(mech, tuple(sorted((*fixed_links, by))), of, by)
+        return _factored_coefficient(mech, (*fixed_links, by), of, by)
 
     if drives(a):  # the usual case: omega_b = c omega_a
         c = coefficient(b, a)

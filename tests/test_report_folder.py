@@ -33,10 +33,9 @@ def _alyushin2009_derived_once():
     from symkin.derivations import alyushin2009
 
     derived = alyushin2009.checks()
-    patch = pytest.MonkeyPatch()
-    patch.setattr(alyushin2009, "checks", lambda: list(derived))
-    yield
-    patch.undo()
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(alyushin2009, "checks", lambda: list(derived))
+        yield
 
 
 def previous_report(folder: Path) -> Path:

@@ -185,9 +185,7 @@ def train_speeds(train: Any) -> dict[str, sp.Expr]:
     speeds = train.speeds({"s1": w, "4": 0})
     # factored from the product of the stages' factors the engine composed (each factor alone),
     # not from the cancelled coefficient (one multivariate factorisation of n stages, 0.5 s at n = 5)
-    known = tuple(sorted(train.link(k).name for k in ("s1", "4")))
-    sun = train.link("s1").name
-    return {name: sp.factor(_factored_coefficient(train, known, name, sun)) * w for name in speeds}
+    return {name: sp.factor(_factored_coefficient(train, ("s1", "4"), name, "s1")) * w for name in speeds}
 
 
 @lru_cache(maxsize=16)
