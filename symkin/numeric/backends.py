@@ -767,37 +767,74 @@ class NumbaBackend(NumpyBackend):
     def source(self, value: str) -> None:
         pass
 
+    def _common_call(self, values: Sequence[Any]) -> tuple[int, list[np.ndarray], list[int]] | None:
+        """``(n, inputs, steps)`` for the common call, without conversions: every argument a
+        flat contiguous array of one length (int64 for tooth numbers, the working float type
+        otherwise) or, in float64, a float for a real argument; None for any other call."""
+        n = -1
+        inputs: list[np.ndarray] = []
+        steps: list[int] = []
+        dt = self._np_dtype
+        wide = self.dtype is np.float64
+        for v, integer in zip(values, self.integer_flags):
+            kind = type(v)
+            if kind is np.ndarray:
+                if v.ndim != 1 or v.dtype is not (_INT64 if integer else dt) or v.strides[0] != v.itemsize:
+                    return None
+                if n < 0:
+                    n = v.shape[0]
+                elif v.shape[0] != n:
+                    return None
+                inputs.append(v)
+                steps.append(1)
+            elif wide and not integer and (kind is float or kind is np.float64):
+                inputs.append(np.full(1, v))
+                steps.append(0)
+            else:
+                return None
+        return (n, inputs, steps) if n >= 0 else None
+
     def evaluate(
         self, values: Sequence[Any], outs: Sequence[np.ndarray] | None = None
     ) -> tuple[tuple[int, ...], list[np.ndarray], bool]:
         """Evaluate the laws at ``values`` in one fused loop; returns the broadcast shape, the outputs and whether any is not finite."""
-        plan = self.plan
-        arrays = [as_array(v, s.name) for v, s in zip(values, plan.args)]
-        conv = [
-            (a if a.dtype.kind == "i" or (a.dtype == np.float64 and a.ndim) else _as_integers(a, s.name))
-            if s in self.twins else _as_floats(a, s.name, plan.dtype)
-            for a, s in zip(arrays, plan.args)
-        ]  # narrow signed integers pass as they are (Numba computes integer products in int64), float64
-        # tooth arrays too (checked and cast in the loop)
-        if any(c.dtype == object for c in conv):
+        if self.broken:
             return super().evaluate(values, outs)
-        shape, flat = broadcast_flat(conv, [s.name for s in plan.args])
-        n = math.prod(shape)
-        results = _allocate(outs, len(plan.stable), n, plan.dtype)
-        flat = [_as_integers(f, s.name) if f.ndim == 0 and f.dtype.kind == "f" and s in self.twins else f for f, s in zip(flat, plan.args)]
-        scalar = tuple(f.ndim == 0 for f in flat)
-        float_integers = tuple(f.dtype.kind == "f" and s in self.twins for f, s in zip(flat, plan.args))
+        plan = self.plan
+        common = self._common_call(values) if outs is None else None
+        if common is not None:
+            n, inputs, steps = common
+            shape: tuple[int, ...] = (n,)
+            float_integers = (False,) * len(inputs)
+            results = [np.empty(n, dtype=plan.dtype) for _ in plan.stable]
+            flat: list[np.ndarray] = inputs
+        else:
+            arrays = [as_array(v, s.name) for v, s in zip(values, plan.args)]
+            conv = [
+                (a if a.dtype.kind == "i" or (a.dtype == np.float64 and a.ndim) else _as_integers(a, s.name))
+                if integer else _as_floats(a, s.name, plan.dtype)
+                for a, s, integer in zip(arrays, plan.args, self.integer_flags)
+            ]  # narrow signed integers pass as they are (Numba computes integer products in int64), float64
+            # tooth arrays too (checked and cast in the loop)
+            if any(c.dtype == object for c in conv):
+                return super().evaluate(values, outs)
+            shape, flat = broadcast_flat(conv, self.names)
+            n = math.prod(shape)
+            results = _allocate(outs, len(plan.stable), n, plan.dtype)
+            flat = [_as_integers(f, s.name) if f.ndim == 0 and f.dtype.kind == "f" and integer else f
+                    for f, s, integer in zip(flat, plan.args, self.integer_flags)]
+            float_integers = tuple(f.dtype.kind == "f" and integer for f, integer in zip(flat, self.integer_flags))
+            inputs = [f.reshape(1) if f.ndim == 0 else f for f in flat]
+            steps = [0 if f.ndim == 0 else 1 for f in flat]
         import numba
 
         parallel = n >= _PARALLEL_FROM and (plan.threads or numba.get_num_threads()) > 1
-        if self.broken:
-            return super().evaluate(values, outs)
-        inputs = [f.reshape(1) if f.ndim == 0 else f for f in flat]
-        steps = [0 if sc else 1 for sc in scalar]
-        before = numba.get_num_threads()
-        switch = bool(plan.threads and parallel and plan.threads != before)
+        switch = False
+        if parallel and plan.threads:
+            before = numba.get_num_threads()
+            switch = plan.threads != before
         try:
-            kernel = self._kernel(parallel, float_integers)
+            kernel = self.kernels.get((parallel, float_integers)) or self._kernel(parallel, float_integers)
             if switch:
                 # numba.core.config defines its settings at run time (globals().update), which
                 # numba's inline types (py.typed) do not show

@@ -87,6 +87,7 @@ class NumericFunction:
         self.outputs: tuple[str, ...] = plan.names
         self.backend = backend
         self.precision = plan.precision if backend not in ("mpmath",) else f"{plan.digits} digits"
+        self._narrow = self.precision == "float32"
         self.notes = tuple(notes)
         if on_pole not in ON_POLE:
             raise InputError(f"on_pole must be one of {', '.join(map(repr, ON_POLE))}, got {on_pole!r}")
@@ -138,9 +139,8 @@ class NumericFunction:
             raise InputError(f"this function takes {len(self.args)} arguments ({', '.join(self.args)}), got {len(values)}")
         if out is None:
             # (the float backends' scalar path checks the types itself: no loop here)
-            if (self._scalar_typed and not (values and type(values[0]) is np.ndarray)) or (
-                self._scalar is not None and not any(isinstance(v, _ARRAYS) for v in values)
-            ):
+            if (not (values and type(values[0]) is np.ndarray) if self._scalar_typed else (
+                    self._scalar is not None and not any(isinstance(v, _ARRAYS) for v in values))):
                 point = self._scalar(values)
                 if point is not None:
                     return point[0] if len(point) == 1 else tuple(point)
@@ -149,13 +149,17 @@ class NumericFunction:
         shape, results, flagged = self._evaluator.evaluate(values, out)
         if flagged and self.on_pole != "return":
             self._check_poles(values, shape, results)
-        if self.precision == "float32":
+        if self._narrow:
             self._check_float32(values, shape, results)
         if out is not None:
             shaped = [o for o in out]
+        elif len(results) == 1:  # (the common call: one output)
+            r = results[0]
+            if r.shape != shape:
+                r = r.reshape(shape)
+            return r[()] if shape == () else r
         else:
-            if len(results) > 1:
-                results = _distinct(results)
+            results = _distinct(results)
             shaped = [r if r.shape == shape else r.reshape(shape) for r in results]
             if shape == ():
                 shaped = [r[()] for r in shaped]
