@@ -134,7 +134,7 @@ from symkin import schemes
 f = symkin.compile(schemes.two_row("AA").ratio("H", "1", fixed="4"), backend="numba")
 x = np.linspace(1, 2, 1000)
 values = [f(x, 0.3, 2.0, 0.5), f(x, x, 2.0, 0.5), f(1.5, x, x, 0.5), f(1.5, 0.3, x, 0.5)]  # four mixes of scalars and arrays
-kernels = list(f._evaluator.kernels.values())
+kernels = [k for k, _redo in f._evaluator.kernels.values()]
 print(len(kernels), sum(sum(k.stats.cache_hits.values()) for k in kernels), sum(sum(k.stats.cache_misses.values()) for k in kernels))
 print(float(values[0][0]), float(values[3][-1]))
 """

@@ -35,7 +35,7 @@ import sympy as sp
 from symkin._util.parsing import parse_number
 from symkin.errors import InputError, PoleError, PrecisionWarning, UnsupportedError
 from symkin.numeric import runtime
-from symkin.numeric.codegen import ExactPrinter, FloatPrinter, ScalarPrinter, kernel_source, phase_sources
+from symkin.numeric.codegen import KERNEL_BLOCK, ExactPrinter, FloatPrinter, ScalarPrinter, kernel_source, phase_sources
 from symkin.numeric.stable import ExactRatio, plain_form
 
 __all__ = ["Plan", "BACKENDS", "NumpyBackend", "NumbaBackend", "MpmathBackend", "ExactBackend", "numba_available"]
@@ -679,12 +679,15 @@ _F = numpy.{precision}
 
 {source}
 _jit = njit(parallel={parallel}, error_model="numpy", fastmath=False, nogil=True, cache=True)(_kernel)
+_jit_redo = (njit(parallel={parallel}, error_model="numpy", fastmath=False, nogil=True, cache=True)(_kernel_redo)
+             if "_kernel_redo" in globals() else None)  # compiled on its first call
 """
 
 
 def _kernel_from_file(source: str, precision: str, parallel: bool) -> Any:
-    """The kernel of ``source`` jitted with ``cache=True`` from a module file named by its
-    digest (Numba caches only functions defined in files), or None without a cache folder."""
+    """The kernel of ``source`` and its redo pass (or None) jitted with ``cache=True`` from a
+    module file named by its digest (Numba caches only functions defined in files), or None
+    without a cache folder."""
     import hashlib
     import importlib.util
     import sys
@@ -698,7 +701,7 @@ def _kernel_from_file(source: str, precision: str, parallel: bool) -> Any:
     digest = hashlib.sha256(f"{numba.__version__}\n{text}".encode()).hexdigest()[:32]
     name = f"symkin_kernel_{digest}"
     if name in sys.modules:
-        return sys.modules[name]._jit
+        return sys.modules[name]._jit, sys.modules[name]._jit_redo
     path = folder / f"{name}.py"
     try:
         if not path.exists() or path.read_text() != text:
@@ -718,7 +721,7 @@ def _kernel_from_file(source: str, precision: str, parallel: bool) -> Any:
     except Exception:
         del sys.modules[name]
         raise
-    return module._jit
+    return module._jit, module._jit_redo
 
 
 class NumbaBackend(NumpyBackend):
@@ -737,9 +740,10 @@ class NumbaBackend(NumpyBackend):
         self.namespace = runtime.numba_namespace(plan.precision)
 
     def _kernel(self, parallel: bool, float_integers: tuple[bool, ...] = ()) -> Any:
-        """The compiled loop: one per law, threading and float tooth arrays, for every mix
-        of scalar and array arguments (a step of 0 or 1 each), cached on disk (see
-        :func:`_kernel_from_file`) so that another process loads it instead of compiling."""
+        """The compiled loop and its redo pass (or None): one per law, threading and float
+        tooth arrays, for every mix of scalar and array arguments (a step of 0 or 1 each),
+        cached on disk (see :func:`_kernel_from_file`) so that another process loads it
+        instead of compiling."""
         key = (parallel, float_integers)
         if key not in self.kernels:
             import numba
@@ -754,7 +758,8 @@ class NumbaBackend(NumpyBackend):
                 if kernel is None:  # no writable cache folder: compiled in this process only
                     ns: dict[str, Any] = {"numpy": np, "prange": numba.prange, "_F": plan.dtype, **self.namespace}
                     exec(compile(src, "<symkin kernel>", "exec"), ns)  # generated from SymPy, no user text
-                    kernel = numba.njit(parallel=parallel, error_model="numpy", fastmath=False, nogil=True)(ns["_kernel"])
+                    jit = numba.njit(parallel=parallel, error_model="numpy", fastmath=False, nogil=True)
+                    kernel = jit(ns["_kernel"]), (jit(ns["_kernel_redo"]) if "_kernel_redo" in ns else None)
                 self.kernels[key] = kernel
         return self.kernels[key]
 
@@ -788,11 +793,16 @@ class NumbaBackend(NumpyBackend):
                 inputs.append(v)
                 steps.append(1)
             elif wide and not integer and (kind is float or kind is np.float64):
-                inputs.append(np.full(1, v))
+                inputs.append(v)  # (made a block of copies below)
                 steps.append(0)
             else:
                 return None
-        return (n, inputs, steps) if n >= 0 else None
+        if n < 0:
+            return None
+        if 0 in steps:
+            block = min(n, KERNEL_BLOCK)
+            inputs = [v if step else np.full(block, v) for v, step in zip(inputs, steps)]
+        return n, inputs, steps
 
     def evaluate(
         self, values: Sequence[Any], outs: Sequence[np.ndarray] | None = None
@@ -824,7 +834,7 @@ class NumbaBackend(NumpyBackend):
             flat = [_as_integers(f, s.name) if f.ndim == 0 and f.dtype.kind == "f" and integer else f
                     for f, s, integer in zip(flat, plan.args, self.integer_flags)]
             float_integers = tuple(f.dtype.kind == "f" and integer for f, integer in zip(flat, self.integer_flags))
-            inputs = [f.reshape(1) if f.ndim == 0 else f for f in flat]
+            inputs = [np.full(min(n, KERNEL_BLOCK), f) if f.ndim == 0 else f for f in flat]  # a scalar: a block of copies
             steps = [0 if f.ndim == 0 else 1 for f in flat]
         import numba
 
@@ -834,12 +844,14 @@ class NumbaBackend(NumpyBackend):
             before = numba.get_num_threads()
             switch = plan.threads != before
         try:
-            kernel = self.kernels.get((parallel, float_integers)) or self._kernel(parallel, float_integers)
+            kernel, redo = self.kernels.get((parallel, float_integers)) or self._kernel(parallel, float_integers)
             if switch:
                 # numba.core.config defines its settings at run time (globals().update), which
                 # numba's inline types (py.typed) do not show
                 numba.set_num_threads(min(plan.threads, numba.config.NUMBA_NUM_THREADS))  # type: ignore[attr-defined]
-            bad, nonwhole = kernel(*inputs, *results, n, *steps)
+            bad, nonwhole, uncertain = kernel(*inputs, *results, n, *steps)
+            if uncertain:  # points near a pole: their differences of products again, in double-double
+                bad += redo(*inputs, *results, n, *steps)
         except numba.core.errors.NumbaError as err:  # a construct Numba cannot compile: NumPy instead
             self.broken = True
             warnings.warn(

@@ -188,22 +188,24 @@ def kernel_source(
     steps: bool = False,
 ) -> str:
     """Source of ``_kernel(A0, ..., O0, ..., n)``: one fused loop over n points writing
-    every output, returning how many output values are not finite and how many integer
-    inputs given as floats are not whole numbers.
+    every output, returning how many output values are not finite, how many integer
+    inputs given as floats are not whole numbers and how many points a second pass must
+    redo (below).
 
     Integer arguments arrive as int64 (their float values are ``_f_<name>``), or, where
     ``float_integers`` says so, as float64 arrays checked and cast in the loop; scalar
     arguments arrive as numbers.  With ``steps`` every argument arrives as an array and
     the kernel takes one step per argument after ``n`` (``_kernel(A0, ..., O0, ..., n,
-    S0, ...)``): 0 for a scalar given as an array of one value, 1 for an array, so that
-    one compiled kernel serves every mix of scalars and arrays.  That kernel runs over
-    blocks of :data:`KERNEL_BLOCK` points, each argument read as a contiguous slice (a
-    scalar from a block of copies of it), so that the compiler vectorises the inner loop.
-    In float64 its first pass takes every difference of products ``a b - c d`` plainly,
-    counting the points where that is not certified (the test of
-    :func:`symkin.numeric.runtime.product_difference`); only when it counts any does a
-    second pass redo those points with the double-double form (a branch the compiler
-    cannot vectorise).  Elsewhere both passes compute the same operations.
+    S0, ...)``): 0 for a scalar, given as an array of at least ``min(n, KERNEL_BLOCK)``
+    copies of it, 1 for an array, so that one compiled kernel serves every mix of scalars
+    and arrays.  That kernel runs over blocks of :data:`KERNEL_BLOCK` points, each
+    argument read as a contiguous slice, so that the compiler vectorises the inner loop.
+    In float64 it takes every difference of products ``a b - c d`` plainly, counting the
+    points where that is not certified (the test of
+    :func:`symkin.numeric.runtime.product_difference`); ``_kernel_redo`` (same arguments,
+    compiled only when a call needs it) redoes those points with the double-double form (a
+    branch the compiler cannot vectorise) and returns the change in the count of
+    non-finite outputs.  Elsewhere both compute the same operations.
     """
     float_integers = tuple(float_integers) or (False,) * len(args)
     if steps:
@@ -315,19 +317,15 @@ def kernel_source(
                     lines.append(f"    {FLOAT_TWIN}{nm} = _F({nm})")
         lines += ["    _lb = 0", "    _lnw = 0", "    for _i in prange(n):"]
         lines += body("        ", lambda k: f"{names[k].upper()}[_i]", "")
-        lines += ["    _bad += _lb", "    _nonwhole += _lnw", "    return _bad, _nonwhole"]
+        lines += ["    _bad += _lb", "    _nonwhole += _lnw", "    return _bad, _nonwhole, 0"]
         return "\n".join(lines) + "\n"
-
-    lines.append(f"    _B = {KERNEL_BLOCK}")
-    for k, nm in enumerate(names):
-        # a scalar as a block of copies of it (same type as a slice of an array): every read contiguous
-        lines.append(f"    F{k} = numpy.full(min(_B, n), {nm.upper()}[0]) if S{k} == 0 and n > 0 else {nm.upper()}[:0]")
 
     def block_loop(mode: str) -> list[str]:
         out = ["    for _b in prange((n + _B - 1) // _B):",
                "        _s = _b * _B",
                "        _e = min(n, _s + _B)"]
-        out += [f"        V{k} = {nm.upper()}[_s:_e] if S{k} else F{k}[:_e - _s]" for k, nm in enumerate(names)]
+        # a scalar arrives as a block of copies of it: every read is contiguous
+        out += [f"        V{k} = {nm.upper()}[_s:_e] if S{k} else {nm.upper()}[:_e - _s]" for k, nm in enumerate(names)]
         out += [f"        W{k} = O{k}[_s:_e]" for k in range(len(reduced))]
         out += ["        _lb = 0", "        _lnw = 0"] + (["        _lu = 0"] if mode == "plain" else [])
         out.append("        for _j in range(_e - _s):")
@@ -339,15 +337,20 @@ def kernel_source(
             out.append("        _uncertain += _lu")
         return out
 
+    head = next(x for x in lines if x.startswith("def _kernel("))
+    lines.append(f"    _B = {KERNEL_BLOCK}")
     if two_pass:
         lines.append("    _uncertain = 0")
         lines += block_loop("plain")
-        lines += ["    if _uncertain == 0:", "        return _bad, _nonwhole"]
-        lines += ["    # points whose differences of products the plain form does not certify: redone"]
+        lines += ["    return _bad, _nonwhole, _uncertain", ""]
+        lines += [head.replace("def _kernel(", "def _kernel_redo("),
+                  "    # the points whose differences of products the plain form does not certify",
+                  "    _bad = 0", "    _nonwhole = 0", f"    _B = {KERNEL_BLOCK}"]
         lines += block_loop("redo")
+        lines.append("    return _bad")
     else:
         lines += block_loop("")
-    lines.append("    return _bad, _nonwhole")
+        lines.append("    return _bad, _nonwhole, 0")
     return "\n".join(lines) + "\n"
 
 
