@@ -176,3 +176,29 @@ def test_laws_are_fast_to_derive_and_compile():
     slider = CardanSlider.build(sp.Rational(1, 50), drive=EllipticalGears(sp.Rational(4, 5) * sp.pi, sp.Rational(2, 5), 2))
     slider.evaluate(np.linspace(0, 2.5, 1000))
     assert time.process_time() - start < 2.0  # typically ~0.1 s
+
+
+def test_a_number_far_from_whole_turns_is_decided_without_simplifying_it():
+    # a carrier angle nested 30 functions deep: simplifying the installation condition would use up
+    # its whole budget; 50 digits say at once that the pin angle 0 is not a whole number of turns
+    # from the one the guide needs, so the pin draws a line off the guide
+    import time
+
+    import mpmath
+
+    nested = sp.sympify("sin(" * 30 + "1" + ")" * 30)
+    slider = CardanSlider.build(1, drive=1, pin_angle=0, carrier_angle=nested)
+    start = time.process_time()
+    assert slider.conditions_met()["installation"] is False
+    assert time.process_time() - start < 1.0  # (the simplification budget is 2 s)
+    turns = float(((0 - slider.required_pin_angle) / (2 * sp.pi)).evalf(30))
+    with mpmath.workdps(30):
+        x = mpmath.mpf(1)
+        for _ in range(30):
+            x = mpmath.sin(x)
+    # the pin angle the guide needs is 2 theta_2 - 2 theta_H0 (Luo 2018), here -2 x: 0 is x/pi turns from it
+    assert turns == pytest.approx(float(x / mpmath.pi), rel=1e-12)
+    assert abs(turns - round(turns)) > 0.01
+    # a whole number of turns in disguise is still recognised (by simplification)
+    exact = CardanSlider.build(1, drive=1, pin_angle=4 * sp.pi * (sp.sin(1) ** 2 + sp.cos(1) ** 2))
+    assert exact.conditions_met()["installation"] is True

@@ -255,7 +255,11 @@ def _decide(expr: sp.Expr, what: str = "a condition") -> bool | None:
 
 
 def _is_multiple(expr: sp.Expr, period: sp.Expr, what: str = "a condition") -> bool | None:
-    q = simplify_within(expr / period, simplifier=lambda e: sp.nsimplify(sp.simplify(e)), what=what)
+    """True/False when ``expr`` is decidably / decidably not a whole multiple of ``period``, else None."""
+    q = expr / period
+    if not q.free_symbols and _clearly_fractional(q):  # a number, no simplification needed to say no
+        return False
+    q = simplify_within(q, simplifier=lambda e: sp.nsimplify(sp.simplify(e)), what=what)
     if q.is_number:
         integer = q.is_integer
         if integer is None:  # not simplified in time: 50 digits decide unless q is within 1e-30 of a whole number
@@ -264,6 +268,19 @@ def _is_multiple(expr: sp.Expr, period: sp.Expr, what: str = "a condition") -> b
                 return False
         return None if integer is None else bool(integer)
     return None
+
+
+def _clearly_fractional(q: sp.Expr) -> bool:
+    """True when the number ``q`` is, to 50 digits, more than 1e-30 from every whole number
+    (decided only for |q| < 1e15, where those digits leave 35 after the point; evaluation
+    given up past 500 digits of working precision counts as undecided)."""
+    try:
+        value = q.evalf(50, maxn=500)
+    except (ValueError, TypeError, ArithmeticError):
+        return False
+    if not (value.is_Float and abs(value) < 10**15):
+        return False
+    return bool(abs(value - round(value)) > sp.Rational(1, 10**30))
 
 
 def _in(value: Any, unit: str, what: str) -> Any:
