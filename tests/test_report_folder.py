@@ -391,3 +391,10 @@ def test_the_workers_leave_what_the_parent_loaded_to_their_collector_s_permanent
     (frozen, thresholds), _notes = found["p", "checks"]
     assert frozen and tuple(thresholds) == _pool._WORKER_GC_THRESHOLDS
     assert gc.get_freeze_count() == before  # this process collects as before
+    # one job: the tasks run here, collected as in a worker, and the collector is restored after
+    settings = gc.get_threshold()
+    _pool.run_tasks({"p": paper}, [("p", "checks")], tmp_path, jobs=1,
+                    done=lambda task, value, seconds: found.__setitem__(task, value))
+    (frozen, thresholds), _notes = found["p", "checks"]
+    assert frozen and tuple(thresholds) == _pool._WORKER_GC_THRESHOLDS
+    assert gc.get_freeze_count() == before and gc.get_threshold() == settings

@@ -11,6 +11,7 @@ tasks run in the calling process, one after the other.
 
 from __future__ import annotations
 
+import contextlib
 import gc
 import multiprocessing
 import os
@@ -19,7 +20,7 @@ import signal
 import sys
 import time
 import traceback
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from multiprocessing.connection import Connection, wait
 from pathlib import Path
 from typing import Any, cast
@@ -74,6 +75,21 @@ def run_task(modules: dict[str, Any], task: Task, figures_dir: Path, prepare: Pr
     return value, seconds
 
 
+@contextlib.contextmanager
+def _collecting_as_a_worker() -> Iterator[None]:
+    """The tasks run in this process with the garbage collector as in a worker: what exists
+    now frozen, :data:`_WORKER_GC_THRESHOLDS`; both as before afterwards."""
+    frozen_before, thresholds = gc.get_freeze_count(), gc.get_threshold()
+    gc.freeze()
+    gc.set_threshold(*_WORKER_GC_THRESHOLDS)
+    try:
+        yield
+    finally:
+        gc.set_threshold(*thresholds)
+        if not frozen_before:
+            gc.unfreeze()
+
+
 def _die_with_parent(parent: int) -> None:
     """Ask Linux to kill this worker when the process that forked it ends (PR_SET_PDEATHSIG)."""
     try:
@@ -123,9 +139,10 @@ def run_tasks(
     stops the others and its exception is raised here."""
     jobs = min(jobs, len(tasks))
     if jobs <= 1 or not can_fork():
-        for task in tasks:
-            value, seconds = run_task(modules, task, figures_dir, prepare)
-            done(task, value, seconds)
+        with _collecting_as_a_worker():
+            for task in tasks:
+                value, seconds = run_task(modules, task, figures_dir, prepare)
+                done(task, value, seconds)
         return
     ctx = multiprocessing.get_context("fork")
     parent = os.getpid()
