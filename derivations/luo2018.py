@@ -520,30 +520,31 @@ def _curves():
 def steady_share(v: np.ndarray, tolerance: float = 0.1) -> float:
     """The longest stretch of one period (samples over [0, T), periodic) in which v stays
     within ``tolerance`` of its full range, as a share of the period: the flat part of
-    the velocity curve."""
-    from collections import deque
+    the velocity curve.
 
+    For every start at once, the longest stretch is grown by halving steps (2^k samples,
+    k falling, each step taken while the stretch stays within the band and one period
+    long), on tables of the largest and smallest value of every 2^k samples.
+    """
+    v = np.asarray(v, dtype=float)
     n = len(v)
     band = tolerance * float(v.max() - v.min())
-    vv = np.concatenate([v, v]).tolist()  # Python floats: the loop indexes every sample several times
-    highs: deque[int] = deque()
-    lows: deque[int] = deque()
-    start, best = 0, 0
-    for j in range(2 * n):
-        while highs and vv[highs[-1]] <= vv[j]:
-            highs.pop()
-        highs.append(j)
-        while lows and vv[lows[-1]] >= vv[j]:
-            lows.pop()
-        lows.append(j)
-        while vv[highs[0]] - vv[lows[0]] > band or j - start >= n:
-            start += 1
-            if highs[0] < start:
-                highs.popleft()
-            if lows[0] < start:
-                lows.popleft()
-        best = max(best, j - start + 1)
-    return best / n
+    highs, lows = [np.concatenate([v, v])], [np.concatenate([v, v])]  # level k: max/min of w[i : i + 2^k]
+    while 2 ** len(highs) <= n:
+        half = 2 ** (len(highs) - 1)
+        highs.append(np.maximum(highs[-1][:-half], highs[-1][half:]))
+        lows.append(np.minimum(lows[-1][:-half], lows[-1][half:]))
+    starts = np.arange(n)
+    length = np.zeros(n, dtype=np.int64)
+    high, low = np.full(n, -np.inf), np.full(n, np.inf)
+    for k in range(len(highs) - 1, -1, -1):
+        step = 2**k
+        at = np.minimum(starts + length, len(highs[k]) - 1)
+        new_high, new_low = np.maximum(high, highs[k][at]), np.minimum(low, lows[k][at])
+        grow = (length + step <= n) & (new_high - new_low <= band)
+        length = np.where(grow, length + step, length)
+        high, low = np.where(grow, new_high, high), np.where(grow, new_low, low)
+    return int(length.max()) / n
 
 
 def _stats(data, period: float) -> dict[str, float]:

@@ -1,7 +1,5 @@
 """``python -m symkin``: the command line."""
 
-import sys
+from symkin.cli import console_main
 
-from symkin.cli import main
-
-sys.exit(main())
+console_main()

@@ -76,6 +76,20 @@ def test_console_script_runs_as_a_process():
     assert proc.returncode == 0 and "= 25/4 = 6.25" in proc.stdout  # 1 + 30*70/(20*20)
 
 
+def test_the_program_ends_without_teardown_but_with_its_status_output_and_exit_handlers(tmp_path):
+    # console_main skips Python's teardown (os._exit) once the command is done: the status,
+    # everything printed (to a pipe, block-buffered) and the atexit handlers are kept
+    marker = tmp_path / "atexit-ran"
+    code = ("import atexit, pathlib, sys; from symkin.cli import console_main; "
+            f"atexit.register(pathlib.Path({str(marker)!r}).write_text, 'yes'); sys.argv[1:] = sys.argv[2:]; console_main()")
+    ok = subprocess.run([sys.executable, "-c", code, "-", "ratio", "AI", "--teeth", "20,30,20,70", "--driver", "1",
+                         "--driven", "H", "--fixed", "4"], capture_output=True, text=True, timeout=120)
+    assert ok.returncode == 0 and "= 25/4 = 6.25" in ok.stdout and marker.read_text() == "yes"
+    bad = subprocess.run([sys.executable, "-c", code, "-", "ratio", "AA", "--teeth", "1,2,3,4"], capture_output=True,
+                         text=True, timeout=120)
+    assert bad.returncode == 2 and "required" in bad.stderr and bad.stdout == ""
+
+
 # ---- conventions shared by every command (symkin.cli.common)
 def test_with_json_an_error_is_also_json_on_stdout(capsys):
     code, out, err = run(capsys, "ratio", "AA", "--teeth", "100,100,101,99", "--driver", "Q", "--driven", "1", "--fixed", "4",

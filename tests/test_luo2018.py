@@ -104,6 +104,22 @@ def test_steady_share_measures_the_flat_stretch():
     assert luo2018.steady_share(flat) >= 2 / (2 * np.pi)
 
 
+def test_steady_share_is_the_longest_periodic_stretch_within_the_band():
+    # against the definition, every start and length tried (the function grows all starts at once)
+    import numpy as np
+
+    def by_definition(v, tolerance):
+        n, w = len(v), np.concatenate([v, v])
+        band = tolerance * float(v.max() - v.min())
+        return max(max(k for k in range(1, n + 1) if w[s:s + k].max() - w[s:s + k].min() <= band) for s in range(n)) / n
+
+    rng = np.random.default_rng(7)
+    for n in (1, 2, 3, 7, 8, 9, 64, 101):
+        for v in (rng.normal(size=n).cumsum(), np.round(rng.normal(size=n), 1), np.zeros(n)):
+            for tolerance in (0.0, 0.1, 0.5, 1.0):
+                assert luo2018.steady_share(v, tolerance) == by_definition(v, tolerance)
+
+
 def test_reproduce_luo2018_writes_report_and_figures(tmp_path):
     out = tmp_path / "report"
     start = time.process_time()  # CPU time: a loaded machine slows the wall clock, not the work

@@ -374,3 +374,27 @@ def test_a_kill_while_building_leaves_the_previous_report_and_the_next_run_remov
     code, _, err = cli(capsys, "reproduce", "alyushin2009", "--out", str(out), "--no-pdf", "--quiet")
     assert code == 0, err
     assert sorted(p.name for p in tmp_path.iterdir()) == ["report"]
+
+
+def test_the_workers_leave_what_the_parent_loaded_to_their_collector_s_permanent_generation(tmp_path):
+    import gc
+
+    from symkin.papers import _pool
+
+    if not _pool.can_fork():
+        pytest.skip("worker processes cannot be forked here")
+    paper = SimpleNamespace(checks=lambda: [gc.get_freeze_count() > 0, gc.get_threshold()], figures=lambda folder: [])
+    found = {}
+    before = gc.get_freeze_count()
+    _pool.run_tasks({"p": paper}, [("p", "checks"), ("p", "figures")], tmp_path, jobs=2,
+                    done=lambda task, value, seconds: found.__setitem__(task, value))
+    (frozen, thresholds), _notes = found["p", "checks"]
+    assert frozen and tuple(thresholds) == _pool._WORKER_GC_THRESHOLDS
+    assert gc.get_freeze_count() == before  # this process collects as before
+    # one job: the tasks run here, collected as in a worker, and the collector is restored after
+    settings = gc.get_threshold()
+    _pool.run_tasks({"p": paper}, [("p", "checks")], tmp_path, jobs=1,
+                    done=lambda task, value, seconds: found.__setitem__(task, value))
+    (frozen, thresholds), _notes = found["p", "checks"]
+    assert frozen and tuple(thresholds) == _pool._WORKER_GC_THRESHOLDS
+    assert gc.get_freeze_count() == before and gc.get_threshold() == settings
