@@ -376,25 +376,41 @@ def test_a_kill_while_building_leaves_the_previous_report_and_the_next_run_remov
     assert sorted(p.name for p in tmp_path.iterdir()) == ["report"]
 
 
+_GC_CHECK = """
+import gc, json, pathlib, sys
+from types import SimpleNamespace
+from symkin.papers import _pool
+assert _pool.can_fork()
+folder = pathlib.Path(sys.argv[1])
+paper = SimpleNamespace(checks=lambda: [gc.get_freeze_count() > 0, list(gc.get_threshold())], figures=lambda folder: [])
+found, out = {}, {}
+before = gc.get_freeze_count()
+_pool.run_tasks({"p": paper}, [("p", "checks"), ("p", "figures")], folder, jobs=2,
+                done=lambda task, value, seconds: found.__setitem__(task, value))
+out["workers"] = found["p", "checks"][0]
+out["parent_unfrozen"] = gc.get_freeze_count() == before
+settings = gc.get_threshold()
+_pool.run_tasks({"p": paper}, [("p", "checks")], folder, jobs=1,
+                done=lambda task, value, seconds: found.__setitem__(task, value))
+out["one_job"] = found["p", "checks"][0]
+out["restored"] = gc.get_freeze_count() == before and gc.get_threshold() == settings
+print(json.dumps(out))
+"""
+
+
 def test_the_workers_leave_what_the_parent_loaded_to_their_collector_s_permanent_generation(tmp_path):
-    import gc
+    # in a process of its own: a test worker of pytest-xdist runs threads, and forks only from one thread
+    import json
+    import subprocess
+    import sys
 
     from symkin.papers import _pool
 
-    if not _pool.can_fork():
-        pytest.skip("worker processes cannot be forked here")
-    paper = SimpleNamespace(checks=lambda: [gc.get_freeze_count() > 0, gc.get_threshold()], figures=lambda folder: [])
-    found = {}
-    before = gc.get_freeze_count()
-    _pool.run_tasks({"p": paper}, [("p", "checks"), ("p", "figures")], tmp_path, jobs=2,
-                    done=lambda task, value, seconds: found.__setitem__(task, value))
-    (frozen, thresholds), _notes = found["p", "checks"]
-    assert frozen and tuple(thresholds) == _pool._WORKER_GC_THRESHOLDS
-    assert gc.get_freeze_count() == before  # this process collects as before
-    # one job: the tasks run here, collected as in a worker, and the collector is restored after
-    settings = gc.get_threshold()
-    _pool.run_tasks({"p": paper}, [("p", "checks")], tmp_path, jobs=1,
-                    done=lambda task, value, seconds: found.__setitem__(task, value))
-    (frozen, thresholds), _notes = found["p", "checks"]
-    assert frozen and tuple(thresholds) == _pool._WORKER_GC_THRESHOLDS
-    assert gc.get_freeze_count() == before and gc.get_threshold() == settings
+    proc = subprocess.run([sys.executable, "-c", _GC_CHECK, str(tmp_path)], capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 0, proc.stderr
+    out = json.loads(proc.stdout.strip().splitlines()[-1])
+    thresholds = list(_pool._WORKER_GC_THRESHOLDS)
+    assert out["workers"] == [True, thresholds]  # what the parent loaded is frozen; the worker's thresholds
+    assert out["parent_unfrozen"]  # the parent collects as before
+    assert out["one_job"] == [True, thresholds]  # one job: the tasks run here, collected as in a worker,
+    assert out["restored"]  # and the collector is restored after
