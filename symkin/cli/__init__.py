@@ -190,7 +190,9 @@ def console_main() -> NoReturn:
     """
     import gc
 
-    gc.set_threshold(10_000, 10, 10)
+    from symkin._util import GC_THRESHOLDS
+
+    gc.set_threshold(*GC_THRESHOLDS)
     try:
         code: Any = main()
     except SystemExit as exc:

@@ -21,7 +21,7 @@ import sympy as sp
 from sympy.printing.numpy import NumPyPrinter
 from sympy.printing.pycode import PythonCodePrinter
 
-from symkin.numeric.runtime import _CERTIFIED, LONG_PHASE
+from symkin.numeric.runtime import LONG_PHASE
 from symkin.numeric.stable import (
     ExactRatio,
     Group,
@@ -30,8 +30,6 @@ from symkin.numeric.stable import (
     ReducedPhase,
     plain_form,
 )
-
-_CERTIFIED_LO, _CERTIFIED_HI = _CERTIFIED
 
 __all__ = ["FloatPrinter", "ScalarPrinter", "ExactPrinter", "kernel_source", "abs_bound", "phase_sources"]
 
@@ -287,13 +285,9 @@ def kernel_source(
         if mode:
             if mode == "redo":
                 out.append("_lu = 0")
-            for sym, node in branches:  # the operations of runtime's difference(), without its branch
-                a, b, c, d = (printer.doprint(x) for x in node.args)
-                out += [
-                    f"{sym}_p = numpy.float64({a}) * numpy.float64({b})",
-                    f"{sym} = {sym}_p - numpy.float64({c}) * numpy.float64({d})",
-                    f"_lu += not ({sym} != 0 and {_CERTIFIED_LO!r} <= {sym}_p / {sym} <= {_CERTIFIED_HI!r})",
-                ]
+            for sym, node in branches:  # runtime's difference() without its branch
+                out += [f"{sym}, _ok = _symkin_plain_difference({', '.join(printer.doprint(x) for x in node.args)})",
+                        "_lu += not _ok"]
             if mode == "redo":
                 out.append("if _lu == 0:")
                 out.append("    continue")

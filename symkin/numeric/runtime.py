@@ -295,21 +295,32 @@ def numba_namespace(precision: str) -> dict[str, Any]:
         def difference(a, b, c, d):  # pragma: no cover - compiled
             return dtype(np.float64(a) * np.float64(b) - np.float64(c) * np.float64(d))
 
+        @numba.njit(inline="always")
+        def plain_difference(a, b, c, d):  # pragma: no cover - compiled
+            return difference(a, b, c, d), True
+
     else:
 
         @numba.njit(inline="always")
-        def difference(a, b, c, d):  # pragma: no cover - compiled
+        def plain_difference(a, b, c, d):  # pragma: no cover - compiled
+            """``(a b - c d, certified)``: the plain difference, and whether it is within 3 units
+            (see product_difference); no branch, so that a loop of it vectorises."""
             a, b, c, d = np.float64(a), np.float64(b), np.float64(c), np.float64(d)
             p = a * b
             r = p - c * d
-            if r == 0 or not (_LO <= p / r <= _HI):  # the products may cancel: double-double (see product_difference)
-                e = core(a, b, c, d)
+            return r, r != 0 and _LO <= p / r <= _HI
+
+        @numba.njit(inline="always")
+        def difference(a, b, c, d):  # pragma: no cover - compiled
+            r, certified = plain_difference(a, b, c, d)
+            if not certified:  # the products may cancel: double-double (see product_difference)
+                e = core(np.float64(a), np.float64(b), np.float64(c), np.float64(d))
                 if e == e:  # else the splitting overflowed: the plain form
                     r = e
             return r
 
     return {"_symkin_exact_ratio": ratio, "_symkin_reduced_phase": phase, "_symkin_product_difference": difference,
-            **_numba_dd_helpers(numba)}
+            "_symkin_plain_difference": plain_difference, **_numba_dd_helpers(numba)}
 
 
 def _numba_dd_helpers(numba: Any) -> dict[str, Any]:

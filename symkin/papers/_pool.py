@@ -25,16 +25,15 @@ from multiprocessing.connection import Connection, wait
 from pathlib import Path
 from typing import Any, cast
 
+from symkin._util import GC_THRESHOLDS
 from symkin.errors import ToolError
 
 #: A task: (paper, "checks" or "figures").
 Task = tuple[str, str]
 #: The signals that stop a run.
 _STOP = {signal.SIGINT, signal.SIGTERM}
-#: The garbage collector's thresholds in a worker: SymPy allocates (and drops) objects by the
-#: million, and collecting every 700 net allocations (Python's default) spent about 1 s of a
-#: run's CPU in the collector; every 10,000 about half that, with the same results.
-_WORKER_GC_THRESHOLDS = (10_000, 10, 10)
+#: The garbage collector's thresholds in a worker (see :data:`symkin._util.GC_THRESHOLDS`).
+_WORKER_GC_THRESHOLDS = GC_THRESHOLDS
 
 
 def cores() -> int:
