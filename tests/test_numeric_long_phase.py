@@ -54,6 +54,27 @@ def test_planet_laws_at_a_million_seconds_keep_1e13_by_default(reference, backen
     assert max(normwise(g, r) for g, r in zip(plain, ref)) > 1e-11  # what the reduction avoids (1.6e-10)
 
 
+@pytest.mark.parametrize("backend", FLOAT_BACKENDS)
+def test_a_coefficient_whose_inputs_change_from_point_to_point_is_computed_for_each_point(backend):
+    """The numba kernel keeps a long phase's double-double coefficient while its inputs repeat
+    (runs of equal speeds, a scalar radius): runs, changes back, short phases between, and one
+    radius changing alone must each give the coefficient of their own point."""
+    laws = planet_laws()
+    rng = np.random.default_rng(5)
+    n = 2600  # three blocks of the kernel's loop
+    w = np.repeat(rng.choice([2.0, 3.0, -1.25], 260), 10)
+    r3 = np.where(np.arange(n) % 7 == 3, 1.25, 1.0)  # one input alone differs now and then
+    t = 1e6 + rng.uniform(0, 20, n)
+    t[::11] = rng.uniform(0, 1, t[::11].size)  # short phases: the plain product, nothing kept
+    values = [w, 2.0, 1.5, r3, 4.5, t]
+    got = symkin.compile(laws, ARGS, backend=backend)(*values)
+    pick = np.r_[0:40, 1020:1040, rng.choice(n, 60, replace=False)]
+    ref = symkin.compile(laws, ARGS, backend="mpmath", digits=50)(w[pick], 2.0, 1.5, r3[pick], 4.5, t[pick])
+    for g, r in zip(got, ref):
+        r = np.array([float(x) for x in r])
+        assert normwise(g[pick], r) <= 1e-13
+
+
 def test_the_scalar_path_reduces_the_phase_too(reference):
     laws, values, ref = reference
     f = symkin.compile(laws, ARGS)

@@ -52,6 +52,18 @@ def _print_long_phase(printer: Any, expr: LongPhase, kernel: bool) -> str:
     _key, coeff, t, *syms = expr.args
     plain = f"({printer._print(coeff)})*{printer._print(t)}"
     call = f"_dd_reduce_pair({expr.name}({', '.join(printer._print(a) for a in syms)}), {printer._print(t)})"
+    memo = getattr(printer, "phase_memo", None) if kernel else None
+    if memo is not None:  # a kernel's loop: the coefficient kept while its inputs repeat (below)
+        k = memo.setdefault(expr.name, len(memo))
+        args = [printer._print(a) for a in syms]
+        same = " and ".join([f"_mv{k}"] + [f"{a} == _mk{k}_{i}" for i, a in enumerate(args)])
+        lines = [f"if not abs({plain}) <= {LONG_PHASE!r} and not ({same}):",
+                 f"    _mh{k}, _ml{k} = {expr.name}({', '.join(args)})",
+                 f"    _mv{k} = True"]
+        lines += [f"    _mk{k}_{i} = {a}" for i, a in enumerate(args)]
+        if lines[0] not in printer.pending:
+            printer.pending += lines
+        return f"(({plain}) if abs({plain}) <= {LONG_PHASE!r} else _dd_reduce(_mh{k}, _ml{k}, {printer._print(t)}))"
     if kernel:  # one point: the double-double path only where the phase is long (see runtime.LONG_PHASE)
         return f"(({plain}) if abs({plain}) <= {LONG_PHASE!r} else {call})"
     return f"_symkin_long_phase({plain}, {expr.name}, {', '.join(printer._print(a) for a in (t, *syms))})"
@@ -65,6 +77,10 @@ class FloatPrinter(NumPyPrinter):
         self.precision = precision
         self.kernel = kernel
         self._integer_mode = False
+        #: In a kernel's blocked loop: the long phases met, by name -> index of their memo
+        #: variables (``None``: no memo), and the statements to put before the line printed.
+        self.phase_memo: dict[str, int] | None = None
+        self.pending: list[str] = []
 
     # numbers: a float32 kernel wraps constants so that Numba keeps float32
     def _wrap(self, text: str) -> str:
@@ -203,7 +219,10 @@ def kernel_source(
     :func:`symkin.numeric.runtime.product_difference`); ``_kernel_redo`` (same arguments,
     compiled only when a call needs it) redoes those points with the double-double form (a
     branch the compiler cannot vectorise) and returns the change in the count of
-    non-finite outputs.  Elsewhere both compute the same operations.
+    non-finite outputs.  Elsewhere both compute the same operations.  A long phase's
+    double-double coefficient is computed at the first point of a block that needs it and
+    kept while its inputs are the same as that point's (a scalar radius, a run of equal
+    speeds): a sweep of t pays for it once per block, not at every point.
     """
     float_integers = tuple(float_integers) or (False,) * len(args)
     if steps:
@@ -233,6 +252,7 @@ def kernel_source(
                 ratios[node] = sp.Symbol(f"_r{len(ratios)}")
     exprs = [e.xreplace(ratios) for e in exprs]
     phases = phase_sources(exprs)
+    phase_args = {node.name: node.args[3:] for e in exprs for node in sp.preorder_traversal(e) if isinstance(node, LongPhase)}
     blocked = steps
     two_pass = blocked and precision == "float64"
     branches: list[tuple[sp.Symbol, sp.Expr]] = []
@@ -280,23 +300,34 @@ def kernel_source(
                 out.append(f"{nm} = {at(k)}")
                 if is_int:
                     out.append(f"{FLOAT_TWIN}{nm} = _F({nm})")
+        def printed(node: sp.Expr) -> str:
+            text = printer.doprint(node)
+            out.extend(printer.pending)  # a long phase's coefficient, kept while its inputs repeat
+            printer.pending.clear()
+            return text
+
+        def assign(target: str, node: sp.Expr) -> None:
+            text = printed(node)
+            out.append(f"{target} = {text}")
+
         for node, sym in ratios.items():
-            out.append(f"{sym} = {printer.doprint(node)}")
+            assign(str(sym), node)
         if mode:
             if mode == "redo":
                 out.append("_lu = 0")
             for sym, node in branches:  # runtime's difference() without its branch
-                out += [f"{sym}, _ok = _symkin_plain_difference({', '.join(printer.doprint(x) for x in node.args)})",
-                        "_lu += not _ok"]
+                args = ", ".join(printed(x) for x in node.args)
+                out += [f"{sym}, _ok = _symkin_plain_difference({args})", "_lu += not _ok"]
             if mode == "redo":
                 out.append("if _lu == 0:")
                 out.append("    continue")
         if mode != "plain":
-            out += [f"{sym} = {printer.doprint(node)}" for sym, node in branches]
+            for sym, node in branches:
+                assign(str(sym), node)
         for sym, value in repl:
-            out.append(f"{sym} = {printer.doprint(value)}")
+            assign(str(sym), value)
         for k, e in enumerate(reduced):
-            out.append(f"_v = {printer.doprint(e) if not e.is_Number else printer.doprint(sp.Float(e))}")
+            assign("_v", e if not e.is_Number else sp.Float(e))
             if mode == "redo":
                 out.append(f"_lb -= not numpy.isfinite(W{k}[_j])")
             out.append(f"W{k}[_j] = _v" if blocked else f"O{k}[_i] = _v")
@@ -322,8 +353,14 @@ def kernel_source(
         out += [f"        V{k} = {nm.upper()}[_s:_e] if S{k} else {nm.upper()}[:_e - _s]" for k, nm in enumerate(names)]
         out += [f"        W{k} = O{k}[_s:_e]" for k in range(len(reduced))]
         out += ["        _lb = 0", "        _lnw = 0"] + (["        _lu = 0"] if mode == "plain" else [])
+        printer.phase_memo = {}
+        inner = body("            ", lambda k: f"V{k}[_j]", mode)
+        for name, k in printer.phase_memo.items():  # no coefficient yet in this block
+            out += [f"        _mv{k} = False", f"        _mh{k} = 0.0", f"        _ml{k} = 0.0"]
+            out += [f"        _mk{k}_{i} = 0.0" for i in range(len(phase_args[name]))]
+        printer.phase_memo = None
         out.append("        for _j in range(_e - _s):")
-        out += body("            ", lambda k: f"V{k}[_j]", mode)
+        out += inner
         out.append("        _bad += _lb")
         if mode != "redo":  # (the redo reads the same inputs again)
             out.append("        _nonwhole += _lnw")

@@ -332,6 +332,7 @@ def _numba_dd_helpers(numba: Any) -> dict[str, Any]:
         exec(compile(inspect.getsource(fn), f"<symkin {fn.__name__}>", "exec"), ns)
         ns[fn.__name__] = numba.njit(inline="always")(ns[fn.__name__])
     out = {name: ns[name] for name in DD_HELPERS}
+    out["_dd_reduce"] = ns["_dd_reduce"]  # a kernel's long phase from its kept coefficient
     out["_f64"] = np.float64
     out["_njit_inline"] = numba.njit(inline="always")
     return out
