@@ -29,6 +29,7 @@ from symkin import schemes
 from symkin import symbols as S
 from symkin.mechanisms.helical import synthesis as HS
 from symkin.mechanisms.helical.synthesis import DELTA, LAMBDA, RATIO, K, P, Q, X, Z
+from symkin.numeric import compile
 from symkin.papers.checks import (
     Check,
     Comparison,
@@ -606,7 +607,7 @@ def _region_figure(folder: Path) -> list[Path]:
             k_end = b.upper if free_end is b.lower else b.lower
 
             def curve(expr, kk=3, d=d):
-                v = sp.lambdify(DELTA, expr.subs(K, kk), "numpy")(d) * np.ones_like(d)
+                v = compile(expr.subs(K, kk), [DELTA], stable=False, on_pole="return")(d) * np.ones_like(d)
                 return np.where(np.abs(v) < 1e3, v, np.nan)  # do not join the branches of a pole
 
             ax.fill_between(d, curve(free_end), curve(k_end), color=style.PALETTE[5], alpha=0.25, lw=0,

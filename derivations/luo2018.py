@@ -841,8 +841,9 @@ def _branch_figure(folder: Path) -> list[Path]:
 
     values = {omega: TABLE1_OMEGA, e: BASE_E, m: 2, theta_H0: 0}
     ts = np.linspace(0, 2.5, 1001)
-    derived = sp.lambdify(t, (EllipticalGears(omega, e, m).angle(t)).subs(values))(ts)
-    published = sp.lambdify(t, PUBLISHED_27.subs(values))(ts)
+    derived = compile((EllipticalGears(omega, e, m).angle(t)).subs(values), [t])(ts)
+    # as printed: no stable rewriting (which would unwrap the principal arctan's jumps)
+    published = compile(PUBLISHED_27.subs(values), [t], stable=False, on_pole="return")(ts)
     fig = style.new_figure(style.COLUMN * 1.5, 3.6)
     ax = fig.add_subplot()
     style.style_axes(ax)

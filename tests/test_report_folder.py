@@ -414,3 +414,43 @@ def test_the_workers_leave_what_the_parent_loaded_to_their_collector_s_permanent
     assert out["parent_unfrozen"]  # the parent collects as before
     assert out["one_job"] == [True, thresholds]  # one job: the tasks run here, collected as in a worker,
     assert out["restored"]  # and the collector is restored after
+
+
+
+_TASKS_CHECK = """
+import json, pathlib, sys
+from types import SimpleNamespace
+from symkin.papers import _pool
+assert _pool.can_fork()
+folder = pathlib.Path(sys.argv[1])
+
+def paper(name):
+    return SimpleNamespace(checks=lambda: [name], figures=lambda folder: [name + " drawn"])
+
+found = {}
+_pool.run_tasks({"p": paper("p"), "q": paper("q"), "r": paper("r")},
+                [("p", "checks"), ("q", "checks"), ("r", "checks"), ("p", "figures")], folder, jobs=2,
+                done=lambda task, value, seconds: found.__setitem__(" ".join(task), value))
+out = {"found": found}
+failing = SimpleNamespace(checks=lambda: 1 / 0, figures=lambda folder: [])
+try:
+    _pool.run_tasks({"p": paper("p"), "x": failing}, [("p", "checks"), ("x", "checks")], folder, jobs=2,
+                    done=lambda task, value, seconds: None)
+except ZeroDivisionError as err:
+    out["error"] = str(err)
+print(json.dumps(out))
+"""
+
+
+def test_every_task_reports_once_from_the_workers_and_a_failure_is_raised_in_the_parent(tmp_path):
+    # in a process of its own (see above)
+    import json
+    import subprocess
+    import sys
+
+    proc = subprocess.run([sys.executable, "-c", _TASKS_CHECK, str(tmp_path)], capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 0, proc.stderr
+    out = json.loads(proc.stdout.strip().splitlines()[-1])
+    assert out["found"] == {"p checks": [["p"], []], "q checks": [["q"], []], "r checks": [["r"], []],
+                            "p figures": ["p drawn"]}
+    assert out["error"] == "division by zero"
