@@ -147,3 +147,29 @@ def test_save_follows_the_user_s_savefig_settings(tmp_path):
             fig.add_subplot().plot([0, 1], [1, 0])
             (png,) = save(fig, tmp_path / f"f{len(rc)}.png")
         assert imread(png)[0, 0].tolist() == corner
+
+
+def test_a_figure_saved_in_two_formats_is_laid_out_once_and_both_files_share_that_layout(tmp_path, monkeypatch):
+    # the constrained layout (as costly as a draw) runs for the first file only; the PDF keeps the
+    # axes where the PNG's layout put them, and the figure gets its layout engine back afterwards
+    from matplotlib.figure import Figure
+    from matplotlib.layout_engine import ConstrainedLayoutEngine
+
+    from symkin.viz.figures import save
+
+    runs = []
+    execute = ConstrainedLayoutEngine.execute
+    monkeypatch.setattr(ConstrainedLayoutEngine, "execute", lambda self, fig: (runs.append(fig), execute(self, fig))[1])
+    fig = Figure(figsize=(4, 3), layout="constrained")
+    ax = fig.add_subplot()
+    ax.plot([0, 1], [1, 0])
+    ax.set_ylabel("a label long enough to move the axes")
+    start = ax.get_position().bounds
+    positions = []
+    draw = Figure.draw
+    monkeypatch.setattr(Figure, "draw", lambda self, renderer: (draw(self, renderer), positions.append(ax.get_position().bounds))[0])
+    written = save(fig, tmp_path / "f")
+    assert [p.suffix for p in written] == [".png", ".pdf"] and all(p.stat().st_size > 0 for p in written)
+    assert len(runs) == 1  # one layout, for the PNG
+    assert len(positions) == 2 and positions[0] == positions[1] != start  # the PDF drawn where the PNG's layout put the axes
+    assert isinstance(fig.get_layout_engine(), ConstrainedLayoutEngine)

@@ -14,7 +14,8 @@ straight line.
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Mapping, Sequence
+import contextlib
+from collections.abc import Iterable, Iterator, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -295,7 +296,8 @@ def save(fig: Figure, path: Path, formats: Sequence[str] | None = None) -> list[
 
     The format is the suffix of ``path`` when it is one of :data:`FORMATS` (``.pdf``, ``.svg``
     and ``.eps`` are vector files, ``.png`` is raster at 200 dpi); a path without one gets a PNG
-    and a PDF, or each suffix in ``formats``.  The files appear together when all are
+    and a PDF, or each suffix in ``formats``.  A figure with a layout engine is laid out once,
+    for the first file; the others keep that layout.  The files appear together when all are
     written (:func:`symkin._util.atomic.replacing`): a failure leaves any earlier ones as they were.
 
     >>> import tempfile
@@ -317,10 +319,14 @@ def save(fig: Figure, path: Path, formats: Sequence[str] | None = None) -> list[
     # draw to find a tight box (which doubles the time of saving)
     tight = None if fig.get_layout_engine() is not None else "tight"
     with replacing(*targets) as temps:
-        for tmp, target in zip(temps, targets):
+        for k, (tmp, target) in enumerate(zip(temps, targets)):
             dpi = 200 if target.suffix == ".png" else 150
             if tight is None and target.suffix in (".png", ".pdf") and _savefig_defaults():
-                _print_once(fig, tmp, target.suffix[1:], dpi)
+                if k == 0:
+                    _print_once(fig, tmp, target.suffix[1:], dpi)
+                else:  # the layout of the first file: the axes stay where it put them (a layout costs as much as a draw)
+                    with _layout_kept(fig):
+                        _print_once(fig, tmp, target.suffix[1:], dpi)
             else:
                 extra: dict[str, Any] = {"pil_kwargs": dict(_PNG_OPTIONS)} if target.suffix == ".png" else {}
                 fig.savefig(tmp, dpi=dpi, bbox_inches=tight, format=target.suffix[1:], **extra)
@@ -330,6 +336,18 @@ def save(fig: Figure, path: Path, formats: Sequence[str] | None = None) -> list[
 #: zlib level 3 for PNGs: the same pixels as the default level 6 at about half the
 #: compression time, in files about 3 % larger (line art compresses well either way).
 _PNG_OPTIONS = {"compress_level": 3}
+
+
+@contextlib.contextmanager
+def _layout_kept(fig: Figure) -> Iterator[None]:
+    """``fig`` drawn as it is laid out now: its layout engine set aside (for a placeholder
+    that keeps its compatibility with colorbars), then restored."""
+    engine = fig.get_layout_engine()
+    fig.set_layout_engine("none")
+    try:
+        yield
+    finally:
+        fig.set_layout_engine(engine)
 
 
 def _savefig_defaults() -> bool:
