@@ -189,17 +189,20 @@ def run_tasks(
             for ready in wait(list(busy)):
                 conn = cast(Connection, ready)
                 try:
-                    status, task, value, extra = pickle.loads(conn.recv_bytes())
+                    message = conn.recv_bytes()
                 except EOFError:
                     proc = next(p for p, c in workers if c is conn)
                     proc.join(5)
                     raise ToolError(f"a worker process ended during {busy[conn][0]}'s {busy[conn][1]} "
                                     f"(exit code {proc.exitcode})") from None
                 del busy[conn]
+                # its next task first: rebuilding the value here (the SymPy objects of a paper's
+                # checks: up to 0.15 s) must not keep the worker waiting
+                give(conn)
+                status, task, value, extra = pickle.loads(message)
                 if status == "error":
                     raise value
                 done(task, value, extra)
-                give(conn)
     finally:
         for proc, conn in workers:
             if proc.is_alive():
