@@ -524,8 +524,10 @@ STATIC = """## What the float backends guarantee (tested, not measured here)
   argument read as a contiguous slice (a scalar as a block of copies of it), so that LLVM vectorises the
   inner loop; there `a b - c d` is taken plainly, the certification test of each point counting the
   uncertified ones, which a second kernel, compiled on the first call that needs it, redoes in double-double
-  (tests/test_numeric_near_poles.py). Rational laws (ratios, differentials) gain most; laws with sin or cos
-  call the scalar libm functions, which NumPy's own vectorised ones outrun (the planet law above). The first
+  (tests/test_numeric_near_poles.py). A long phase's double-double coefficient is computed at the first
+  point of a block that needs it and kept while its inputs repeat (tests/test_numeric_long_phase.py); the
+  reduction itself is still done at every point, and sin and cos are libm's scalar functions (as fast here
+  as NumPy's), so laws in time gain least (the planet law above). Rational laws gain most. The first
   call of a law compiles its kernel (about 1-5 s on this machine) and caches it on disk (`$SYMKIN_CACHE_DIR`,
   else `~/.cache/symkin/kernels`): another process loads it in about 10 ms.
 - Speed, what lambdify keeps ahead on: small calls. A call of 1 to about 10^4 points pays fixed costs
