@@ -61,18 +61,40 @@ def test_a_coefficient_whose_inputs_change_from_point_to_point_is_computed_for_e
     radius changing alone must each give the coefficient of their own point."""
     laws = planet_laws()
     rng = np.random.default_rng(5)
-    n = 2600  # three blocks of the kernel's loop
-    w = np.repeat(rng.choice([2.0, 3.0, -1.25], 260), 10)
-    r3 = np.where(np.arange(n) % 7 == 3, 1.25, 1.0)  # one input alone differs now and then
-    t = 1e6 + rng.uniform(0, 20, n)
-    t[::11] = rng.uniform(0, 1, t[::11].size)  # short phases: the plain product, nothing kept
-    values = [w, 2.0, 1.5, r3, 4.5, t]
-    got = symkin.compile(laws, ARGS, backend=backend)(*values)
-    pick = np.r_[0:40, 1020:1040, rng.choice(n, 60, replace=False)]
-    ref = symkin.compile(laws, ARGS, backend="mpmath", digits=50)(w[pick], 2.0, 1.5, r3[pick], 4.5, t[pick])
-    for g, r in zip(got, ref):
-        r = np.array([float(x) for x in r])
-        assert normwise(g[pick], r) <= 1e-13
+    f = symkin.compile(laws, ARGS, backend=backend)
+    reference = symkin.compile(laws, ARGS, backend="mpmath", digits=50)
+    for n in (2600, 40_000):  # three blocks of the kernel's loop; enough points for its threads
+        w = np.repeat(rng.choice([2.0, 3.0, -1.25], n // 10), 10)
+        r3 = np.where(np.arange(n) % 7 == 3, 1.25, 1.0)  # one input alone differs now and then
+        t = 1e6 + rng.uniform(0, 20, n)
+        t[::11] = rng.uniform(0, 1, t[::11].size)  # short phases: the plain product, nothing kept
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")  # no quiet fallback to NumPy
+            got = f(w, 2.0, 1.5, r3, 4.5, t)
+        pick = np.r_[0:40, 1020:1040, rng.choice(n, 60, replace=False)]
+        ref = reference(w[pick], 2.0, 1.5, r3[pick], 4.5, t[pick])
+        for g, r in zip(got, ref):
+            r = np.array([float(x) for x in r])
+            assert normwise(g[pick], r) <= 1e-13
+    if backend == "numba":
+        assert "_mv0" in f.source  # the kept coefficient is in the kernel
+
+
+@pytest.mark.parametrize("backend", FLOAT_BACKENDS)
+def test_a_tooth_number_in_a_long_phase_s_coefficient(backend):
+    # the coefficient holds an exact ratio of tooth numbers; its double-double code takes the
+    # inputs themselves (the numba kernel generated it from a ratio variable and failed)
+    w, t = sp.Symbol("w", positive=True), sp.Symbol("t", real=True)
+    z = sp.Symbol("z", integer=True, positive=True)
+    law = sp.sin(w * z / (z + 3) * t)
+    f = symkin.compile(law, [w, z, t], backend=backend)
+    ts = np.array([0.5, 1e6, 3e7, 1e6 + 0.25])
+    zs = np.array([20, 20, 21, 97])
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        got = f(2.0, zs, ts)
+    ref = symkin.compile(law, [w, z, t], backend="mpmath", digits=50)(2.0, zs, ts)
+    assert np.max(np.abs(got - np.array([float(x) for x in ref]))) <= 4e-16
 
 
 def test_the_scalar_path_reduces_the_phase_too(reference):

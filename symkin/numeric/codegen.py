@@ -232,6 +232,9 @@ def kernel_source(
     for s, nm in zip(args, names):
         ren[s] = sp.Symbol(nm)  # in ExactRatio: the integer value; elsewhere: its float twin
     exprs = [e.xreplace(ren) for e in exprs]
+    # each long phase's double-double coefficient, from the inputs themselves (the renamings
+    # below put float twins and ratio variables into its coefficient)
+    phases = phase_sources(exprs)
     float_ren = {sp.Symbol(nm): sp.Symbol(FLOAT_TWIN + nm) for nm, is_int in zip(names, integer_args) if is_int}
 
     def floats_outside_exact(e: sp.Expr) -> sp.Expr:
@@ -251,7 +254,6 @@ def kernel_source(
             if isinstance(node, ExactRatio) and node not in ratios:
                 ratios[node] = sp.Symbol(f"_r{len(ratios)}")
     exprs = [e.xreplace(ratios) for e in exprs]
-    phases = phase_sources(exprs)
     phase_args = {node.name: node.args[3:] for e in exprs for node in sp.preorder_traversal(e) if isinstance(node, LongPhase)}
     blocked = steps
     two_pass = blocked and precision == "float64"
