@@ -445,3 +445,19 @@ def test_dask_array_and_bag_on_a_local_cluster():
             bag = db.from_sequence([(1.0, 0.5, 3.0, 1.0, 2.0), (2.0, 0.5, 3.0, 1.0, 2.0)], npartitions=2)
             assert dask_map(f, bag).compute() == [float(expected[0]), float(expected[-1])]
             assert len(client.scheduler_info()["workers"]) == 2
+
+
+@pytest.mark.parametrize("precision", ["float64", "float32"])
+def test_laws_with_max_min_and_functions_numpy_lacks_evaluate_on_arrays(precision):
+    # SymPy's NumPy printer writes Max/Min through functools.reduce and erf or gamma as math.<name>:
+    # both used to fail on arrays with a NameError (the scalar path worked)
+    x, y = sp.symbols("x y", real=True)
+    laws = [sp.Max(x, y, 1), sp.Min(x, y) * sp.erf(x), sp.gamma(x) + y]
+    f = symkin.compile(laws, [x, y], precision=precision)
+    ref = symkin.compile(laws, [x, y], backend="mpmath", digits=30)
+    xs, ys = np.array([0.25, 1.5, 2.0, 3.5]), np.array([1.25, 0.5, 3.0, -1.0])
+    tol = 1e-15 if precision == "float64" else 1e-6
+    for got, exact in zip(f(xs, ys), ref(xs, ys)):
+        exact = np.array([float(v) for v in exact])
+        assert np.allclose(got, exact, rtol=tol, atol=0)
+    assert all(np.isclose(g, float(e), rtol=tol) for g, e in zip(f(0.25, 1.25), ref(0.25, 1.25)))

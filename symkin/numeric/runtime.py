@@ -242,15 +242,33 @@ SCALAR_NAMESPACE = {
     "_symkin_product_difference": product_difference_scalar,
 }
 
+class _ElementwiseMath:
+    """The ``math`` module applied element by element: SymPy's NumPy printer writes functions
+    NumPy lacks (``erf``, ``gamma``, ...) as ``math.<name>``, which takes one number only.
+
+    >>> _ElementwiseMath().erf(np.array([0.0, 1.0])).round(6).tolist()
+    [0.0, 0.842701]
+    """
+
+    def __getattr__(self, name: str) -> Any:
+        fn = np.vectorize(getattr(math, name), otypes=[np.float64])
+        setattr(self, name, fn)  # found as an attribute from now on
+        return fn
+
+
+#: What the generated NumPy code names besides ``numpy`` (SymPy's printer writes Max and Min
+#: as ``functools.reduce(numpy.maximum, ...)``).
+_MODULES = {"functools": functools, "math": _ElementwiseMath()}
+
 #: Names the generated NumPy code calls, by precision.
 NAMESPACE = {
     "float64": {
         "_symkin_exact_ratio": _exact_ratio_quiet, "_symkin_reduced_phase": reduced_phase,
-        "_symkin_product_difference": _product_difference_quiet,
+        "_symkin_product_difference": _product_difference_quiet, **_MODULES,
     },
     "float32": {
         "_symkin_exact_ratio": exact_ratio_f32, "_symkin_reduced_phase": reduced_phase_f32,
-        "_symkin_product_difference": product_difference_f32,
+        "_symkin_product_difference": product_difference_f32, **_MODULES,
     },
 }
 
