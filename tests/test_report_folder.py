@@ -454,3 +454,42 @@ def test_every_task_reports_once_from_the_workers_and_a_failure_is_raised_in_the
     assert out["found"] == {"p checks": [["p"], []], "q checks": [["q"], []], "r checks": [["r"], []],
                             "p figures": ["p drawn"]}
     assert out["error"] == "division by zero"
+
+
+_HANDOVER_CHECK = """
+import json, pathlib, sys, time
+from types import SimpleNamespace
+from symkin.papers import _pool
+folder = pathlib.Path(sys.argv[1])
+rebuilt = []
+
+def slow_to_rebuild(value):
+    time.sleep(0.5)  # a value the parent takes long to rebuild (as the SymPy objects of a paper's checks)
+    rebuilt.append(time.time())
+    return value
+
+class Slow:
+    def __reduce__(self):
+        return slow_to_rebuild, (1,)
+
+papers = {"p": SimpleNamespace(checks=lambda: [Slow()]),
+          "q": SimpleNamespace(checks=lambda: [time.sleep(1.5)]),  # keeps the other worker busy
+          "r": SimpleNamespace(checks=lambda: [time.time()])}
+found = {}
+_pool.run_tasks(papers, [("p", "checks"), ("q", "checks"), ("r", "checks")], folder, jobs=2,
+                done=lambda task, value, seconds: found.__setitem__(task[0], value[0][0]))
+print(json.dumps({"r_started": found["r"], "p_rebuilt": rebuilt[0]}))
+"""
+
+
+def test_a_worker_is_given_its_next_task_before_the_parent_rebuilds_what_it_sent(tmp_path):
+    # in a process of its own (see above); the parent needs 0.5 s to rebuild p's value, and the
+    # worker that sent it starts r meanwhile, not after
+    import json
+    import subprocess
+    import sys
+
+    proc = subprocess.run([sys.executable, "-c", _HANDOVER_CHECK, str(tmp_path)], capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 0, proc.stderr
+    out = json.loads(proc.stdout.strip().splitlines()[-1])
+    assert out["r_started"] < out["p_rebuilt"] - 0.3
