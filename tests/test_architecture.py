@@ -172,15 +172,22 @@ def test_command_line_modules_import_no_sympy_at_module_level():
                 assert not any(n.split(".")[0] == "sympy" for n in names), f"{m}:{node.lineno} imports SymPy"
 
 
+def _imported_after(code: str, modules: str) -> str:
+    """Which of ``modules`` (a Python expression of a set of names) a fresh interpreter has
+    imported after running ``code`` (a sorted list, printed)."""
+    import subprocess
+    import sys
+
+    code += f"\nprint(sorted(m for m in {modules} if m in sys.modules or m in {{n.split('.')[0] for n in sys.modules}}))\n"
+    return subprocess.run([sys.executable, "-c", "import sys\n" + code], capture_output=True, text=True, check=True).stdout.strip()
+
+
 def test_help_and_the_parser_load_no_sympy():
     # `symkin --help` and building any command's parser stay light: what a command's
     # module imports at module level (directly or through symkin.cli.common, symkin._util,
     # symkin.papers.registry) is checked by running it, not only by reading its imports
-    import subprocess
-    import sys
-
     code = (
-        "import sys, io, contextlib\n"
+        "import io, contextlib\n"
         "from symkin.cli import COMMANDS, build_parser, main\n"
         "build_parser()\n"
         "with contextlib.redirect_stdout(io.StringIO()):\n"
@@ -188,26 +195,19 @@ def test_help_and_the_parser_load_no_sympy():
         "        main(['--help'])\n"
         "    except SystemExit:\n"
         "        pass\n"
-        "print(sorted({m.split('.')[0] for m in sys.modules} & {'sympy', 'numpy', 'mpmath', 'matplotlib', 'scipy'}))\n"
     )
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
-    assert out.strip() == "[]", out
+    assert _imported_after(code, "('sympy', 'numpy', 'mpmath', 'matplotlib', 'scipy')") == "[]"
 
 
 def test_compiling_a_law_imports_no_more_of_numpy_than_it_calls():
     # the NumPy code of a compiled law runs in a namespace holding the numpy module itself:
     # sympy.lambdify(modules="numpy") runs `from numpy import *`, which imports numpy.f2py and
     # what it needs (about 0.1 s in every process that compiles a law)
-    import subprocess
-    import sys
-
     code = (
-        "import sys, numpy as np, sympy as sp, symkin\n"
+        "import numpy as np, sympy as sp, symkin\n"
         "x, y = sp.symbols('x y')\n"
         "f = symkin.compile([sp.sin(x) * y / (x - y), sp.atan2(y, x)], [x, y])\n"
         "f(np.linspace(0.1, 1, 5), 2.0)\n"
         "f(0.5, 2.0)\n"
-        "print(sorted(m for m in ('numpy.f2py', 'numpy.testing', 'scipy') if m in sys.modules))\n"
     )
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
-    assert out.strip() == "[]", out
+    assert _imported_after(code, "('numpy.f2py', 'numpy.testing', 'scipy')") == "[]"
