@@ -202,3 +202,33 @@ def test_a_number_far_from_whole_turns_is_decided_without_simplifying_it():
     # a whole number of turns in disguise is still recognised (by simplification)
     exact = CardanSlider.build(1, drive=1, pin_angle=4 * sp.pi * (sp.sin(1) ** 2 + sp.cos(1) ** 2))
     assert exact.conditions_met()["installation"] is True
+
+
+def test_a_pin_radius_far_from_the_arm_is_decided_without_simplifying_it_and_its_description_is_quick():
+    # a pin radius nested 30 functions deep: 50 digits say at once that it is off the pitch circle (the
+    # lengths condition and the JSON's pin_on_pitch_circle), and the texts' tidier angles get a short budget
+    import time
+    import warnings
+
+    import mpmath
+
+    nested = sp.sympify("sin(" * 30 + "1" + ")" * 30)
+    slider = CardanSlider.build(sp.Rational(1, 50), teeth=(20, 40), drive=1, pin_radius=nested)
+    start = time.process_time()
+    assert slider.conditions_met()["lengths"] is False
+    assert time.process_time() - start < 1.0  # (the simplification budget is 2 s)
+    x = mpmath.mpf(1)
+    with mpmath.workdps(30):
+        for _ in range(30):
+            x = mpmath.sin(x)
+        assert abs(x - mpmath.mpf(1) / 50) > 0.1  # independently: the pin is far off the pitch circle
+    on_circle = sp.Rational(1, 50) * (sp.sin(1) ** 2 + sp.cos(1) ** 2)  # on it, in disguise: still recognised
+    assert CardanSlider.build(sp.Rational(1, 50), teeth=(20, 40), drive=1, pin_radius=on_circle).conditions_met()["lengths"] is True
+    # a carrier angle as deep: the path's description tidies two angles for its text, within 0.5 s each
+    slider = CardanSlider.build(1, drive=1, pin_angle=0, carrier_angle=nested)
+    start = time.process_time()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # (a budget used up says so)
+        path = slider.path()
+    assert path.kind == "line off the guide"
+    assert time.process_time() - start < 2.5  # it took two budgets of 2 s before

@@ -248,8 +248,15 @@ class StrokeTimes:
 
 
 
+#: Seconds a simplification only for the text of a result may take (the tidier form of an
+#: angle the description prints); a decision keeps the full budget of simplify_within.
+_DISPLAY_SECONDS = 0.5
+
+
 def _decide(expr: sp.Expr, what: str = "a condition") -> bool | None:
     """True/False when ``expr`` is decidably zero / non-zero, else None."""
+    if not expr.free_symbols and _clearly_away_from(expr, 0):  # a number: no simplification needed to say no
+        return False
     zero = simplify_within(expr, what=what).is_zero
     return None if zero is None else bool(zero)
 
@@ -274,13 +281,24 @@ def _clearly_fractional(q: sp.Expr) -> bool:
     """True when the number ``q`` is, to 50 digits, more than 1e-30 from every whole number
     (decided only for |q| < 1e15, where those digits leave 35 after the point; evaluation
     given up past 500 digits of working precision counts as undecided)."""
+    return _clearly_away_from(q, None)
+
+
+def _clearly_away_from(q: sp.Expr, target: int | None) -> bool:
+    """True when the number ``q`` is, to 50 digits, more than 1e-30 from ``target`` (None:
+    from every whole number); see :func:`_clearly_fractional`.
+
+    >>> _clearly_away_from(sp.sin(sp.sin(1)) - sp.Rational(1, 50), 0), _clearly_away_from(sp.sin(1)**2 + sp.cos(1)**2 - 1, 0)
+    (True, False)
+    """
     try:
         value = q.evalf(50, maxn=500)
     except (ValueError, TypeError, ArithmeticError):
         return False
     if not (value.is_Float and abs(value) < 10**15):
         return False
-    return bool(abs(value - round(value)) > sp.Rational(1, 10**30))
+    nearest = round(value) if target is None else target
+    return bool(abs(value - nearest) > sp.Rational(1, 10**30))
 
 
 def _in(value: Any, unit: str, what: str) -> Any:
@@ -489,7 +507,7 @@ class CardanSlider:
         """The installation angle theta_1(0) that keeps the pin on this guide (mod 2 pi)."""
         rule = line_conditions().installation
         return simplify_within(rule.rhs.subs({theta_2: self.guide_angle, theta_H0: self.carrier_angle0}),
-                               what="the required pin angle")
+                               _DISPLAY_SECONDS, what="the required pin angle")
 
     def path(self) -> Path:
         """The curve the pin traces, and whether the slider can follow it.
@@ -509,7 +527,7 @@ class CardanSlider:
                 "a hypotrochoid (an ellipse or a line off the guide when the ratio is 2)",
             )
         if met["ratio"]:
-            direction = simplify_within(self.carrier_angle0 + self.pin_angle / 2, what="the ellipse's direction")
+            direction = simplify_within(self.carrier_angle0 + self.pin_angle / 2, _DISPLAY_SECONDS, what="the ellipse's direction")
             if not met["lengths"]:
                 major, minor = lh + l1, sp.Abs(lh - l1)
                 return Path(
@@ -719,8 +737,7 @@ class SliderTable:
                 "length": exact_json(sl.arm),
                 "teeth": [int(z) for z in sl.teeth],
                 "pin_radius": exact_json(sl.pin_radius),
-                "pin_on_pitch_circle": bool(simplify_within(sl.pin_radius - sl.mechanism.gear("1").radius,
-                                                            what="the pin radius") == 0),
+                "pin_on_pitch_circle": _decide(sl.pin_radius - sl.mechanism.gear("1").radius, "the pin radius") is True,
                 "pin_angle_rad": exact_json(sl.pin_angle),
                 "guide_angle_rad": exact_json(sl.guide_angle),
                 "carrier_angle_rad": exact_json(sl.carrier_angle0),
