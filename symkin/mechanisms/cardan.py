@@ -264,7 +264,7 @@ def _decide(expr: sp.Expr, what: str = "a condition") -> bool | None:
 def _is_multiple(expr: sp.Expr, period: sp.Expr, what: str = "a condition") -> bool | None:
     """True/False when ``expr`` is decidably / decidably not a whole multiple of ``period``, else None."""
     q = expr / period
-    if not q.free_symbols and _clearly_fractional(q):  # a number, no simplification needed to say no
+    if not q.free_symbols and _clearly_away_from(q, None):  # a number, no simplification needed to say no
         return False
     q = simplify_within(q, simplifier=lambda e: sp.nsimplify(sp.simplify(e)), what=what)
     if q.is_number:
@@ -277,16 +277,10 @@ def _is_multiple(expr: sp.Expr, period: sp.Expr, what: str = "a condition") -> b
     return None
 
 
-def _clearly_fractional(q: sp.Expr) -> bool:
-    """True when the number ``q`` is, to 50 digits, more than 1e-30 from every whole number
-    (decided only for |q| < 1e15, where those digits leave 35 after the point; evaluation
-    given up past 500 digits of working precision counts as undecided)."""
-    return _clearly_away_from(q, None)
-
-
 def _clearly_away_from(q: sp.Expr, target: int | None) -> bool:
     """True when the number ``q`` is, to 50 digits, more than 1e-30 from ``target`` (None:
-    from every whole number); see :func:`_clearly_fractional`.
+    from every whole number); decided only for |q| < 1e15, where those digits leave 35 after
+    the point; evaluation given up past 500 digits of working precision counts as undecided.
 
     >>> _clearly_away_from(sp.sin(sp.sin(1)) - sp.Rational(1, 50), 0), _clearly_away_from(sp.sin(1)**2 + sp.cos(1)**2 - 1, 0)
     (True, False)

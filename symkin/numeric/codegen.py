@@ -51,11 +51,11 @@ def phase_sources(exprs: Sequence[sp.Expr]) -> dict[str, str]:
 def _print_long_phase(printer: Any, expr: LongPhase, kernel: bool) -> str:
     _key, coeff, t, *syms = expr.args
     plain = f"({printer._print(coeff)})*{printer._print(t)}"
-    call = f"_dd_reduce_pair({expr.name}({', '.join(printer._print(a) for a in syms)}), {printer._print(t)})"
+    args = [printer._print(a) for a in syms]
+    call = f"_dd_reduce_pair({expr.name}({', '.join(args)}), {printer._print(t)})"
     memo = getattr(printer, "phase_memo", None) if kernel else None
     if memo is not None:  # a kernel's loop: the coefficient kept while its inputs repeat (below)
-        k = memo.setdefault(expr.name, len(memo))
-        args = [printer._print(a) for a in syms]
+        k = memo.setdefault(expr.name, (len(memo), len(args)))[0]
         same = " and ".join([f"_mv{k}"] + [f"{a} == _mk{k}_{i}" for i, a in enumerate(args)])
         lines = [f"if not abs({plain}) <= {LONG_PHASE!r} and not ({same}):",
                  f"    _mh{k}, _ml{k} = {expr.name}({', '.join(args)})",
@@ -77,9 +77,10 @@ class FloatPrinter(NumPyPrinter):
         self.precision = precision
         self.kernel = kernel
         self._integer_mode = False
-        #: In a kernel's blocked loop: the long phases met, by name -> index of their memo
-        #: variables (``None``: no memo), and the statements to put before the line printed.
-        self.phase_memo: dict[str, int] | None = None
+        #: In a kernel's blocked loop: the long phases met, by name -> (index of their memo
+        #: variables, number of coefficient inputs) (``None``: no memo), and the statements
+        #: to put before the line printed.
+        self.phase_memo: dict[str, tuple[int, int]] | None = None
         self.pending: list[str] = []
 
     # numbers: a float32 kernel wraps constants so that Numba keeps float32
@@ -254,7 +255,6 @@ def kernel_source(
             if isinstance(node, ExactRatio) and node not in ratios:
                 ratios[node] = sp.Symbol(f"_r{len(ratios)}")
     exprs = [e.xreplace(ratios) for e in exprs]
-    phase_args = {node.name: node.args[3:] for e in exprs for node in sp.preorder_traversal(e) if isinstance(node, LongPhase)}
     blocked = steps
     two_pass = blocked and precision == "float64"
     branches: list[tuple[sp.Symbol, sp.Expr]] = []
@@ -357,9 +357,9 @@ def kernel_source(
         out += ["        _lb = 0", "        _lnw = 0"] + (["        _lu = 0"] if mode == "plain" else [])
         printer.phase_memo = {}
         inner = body("            ", lambda k: f"V{k}[_j]", mode)
-        for name, k in printer.phase_memo.items():  # no coefficient yet in this block
+        for k, inputs in printer.phase_memo.values():  # no coefficient yet in this block
             out += [f"        _mv{k} = False", f"        _mh{k} = 0.0", f"        _ml{k} = 0.0"]
-            out += [f"        _mk{k}_{i} = 0.0" for i in range(len(phase_args[name]))]
+            out += [f"        _mk{k}_{i} = 0.0" for i in range(inputs)]
         printer.phase_memo = None
         out.append("        for _j in range(_e - _s):")
         out += inner
