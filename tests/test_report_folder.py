@@ -493,3 +493,31 @@ def test_a_worker_is_given_its_next_task_before_the_parent_rebuilds_what_it_sent
     assert proc.returncode == 0, proc.stderr
     out = json.loads(proc.stdout.strip().splitlines()[-1])
     assert out["r_started"] < out["p_rebuilt"] - 0.3
+
+
+_CTRL_C_AT_THE_FOLDER = """
+import os, pathlib, signal, sys, tempfile
+from symkin._util.atomic import write_atomically
+parent = pathlib.Path(sys.argv[1])
+made = tempfile.mkdtemp
+
+def mkdtemp_then_ctrl_c(*args, **kwargs):
+    folder = made(*args, **kwargs)
+    os.kill(os.getpid(), signal.SIGINT)  # Ctrl-C the moment the folder exists
+    return folder
+
+tempfile.mkdtemp = mkdtemp_then_ctrl_c
+try:
+    write_atomically(parent / "report", lambda tmp: (tmp / "a.txt").write_text("x"))
+    print("not interrupted")
+except KeyboardInterrupt:
+    print(sorted(p.name for p in parent.iterdir()))
+"""
+
+
+def test_a_ctrl_c_the_moment_the_partial_folder_exists_leaves_nothing(tmp_path):
+    # the folder is made and its removal registered with Ctrl-C held back: a Ctrl-C between the
+    # two (a loaded machine's scheduling made the signal test meet it) left .report.partial-*
+    proc = subprocess.run([sys.executable, "-c", _CTRL_C_AT_THE_FOLDER, str(tmp_path)], capture_output=True, text=True,
+                          timeout=60)
+    assert proc.stdout.strip() == "[]", (proc.stdout, proc.stderr)

@@ -35,6 +35,7 @@ import os
 import re
 import secrets
 import shutil
+import signal
 import tempfile
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
@@ -99,6 +100,28 @@ def replacing(*targets: str | os.PathLike[str]) -> Iterator[list[Path]]:
     finally:
         for tmp in temps:
             tmp.unlink(missing_ok=True)
+
+
+#: The signals that stop a run (Ctrl-C, and SIGTERM, which the command line turns into Ctrl-C).
+STOP_SIGNALS = frozenset({signal.SIGINT, signal.SIGTERM})
+
+
+@contextmanager
+def stop_signals_held() -> Iterator[None]:
+    """Ctrl-C and SIGTERM held back (on POSIX) while the block runs, delivered at its end: for
+    steps that must not be cut in two, such as making a folder and registering its removal.
+
+    >>> with stop_signals_held():
+    ...     pass
+    """
+    if not hasattr(signal, "pthread_sigmask"):  # not on POSIX: nothing to hold
+        yield
+        return
+    held = signal.pthread_sigmask(signal.SIG_BLOCK, STOP_SIGNALS)
+    try:
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, held)
 
 
 def _umask() -> int:
@@ -342,14 +365,17 @@ def write_atomically(out: Path, build: Callable[[Path], None], *, version: str |
     parent = target.parent
     if not parent.is_dir():
         raise InputError(f"cannot write {out}: its parent folder {parent} does not exist")
-    try:
-        recover(out)
-        tmp = Path(tempfile.mkdtemp(prefix=f".{target.name}.partial-{os.getpid()}-", dir=parent))
-        os.chmod(tmp, 0o777 & ~_umask())  # mkdtemp makes the folder private; a report is an ordinary folder
-    except OSError as err:
-        raise InputError(f"cannot write to {parent}: {err.strerror}; choose a writable --out") from None
+    tmp: Path | None = None
     old: Path | None = None
     try:
+        # a Ctrl-C between making the folder and this try's cleanup would leave the folder behind
+        with stop_signals_held():
+            try:
+                recover(out)
+                tmp = Path(tempfile.mkdtemp(prefix=f".{target.name}.partial-{os.getpid()}-", dir=parent))
+                os.chmod(tmp, 0o777 & ~_umask())  # mkdtemp makes the folder private; a report is an ordinary folder
+            except OSError as err:
+                raise InputError(f"cannot write to {parent}: {err.strerror}; choose a writable --out") from None
         build(tmp)
         if version is not None:
             write_manifest(tmp, version)
@@ -362,7 +388,7 @@ def write_atomically(out: Path, build: Callable[[Path], None], *, version: str |
             raise _unwritable(err, out, "--out") from None
         raise
     finally:
-        if old is None:
+        if old is None and tmp is not None:
             shutil.rmtree(tmp, ignore_errors=True)
     if old is not None:
         shutil.rmtree(old, ignore_errors=True)

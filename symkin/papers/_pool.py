@@ -26,12 +26,11 @@ from pathlib import Path
 from typing import Any, cast
 
 from symkin._util import GC_THRESHOLDS
+from symkin._util.atomic import STOP_SIGNALS, stop_signals_held
 from symkin.errors import ToolError
 
 #: A task: (paper, "checks" or "figures").
 Task = tuple[str, str]
-#: The signals that stop a run.
-_STOP = {signal.SIGINT, signal.SIGTERM}
 #: The garbage collector's thresholds in a worker (see :data:`symkin._util.GC_THRESHOLDS`).
 _WORKER_GC_THRESHOLDS = GC_THRESHOLDS
 
@@ -106,7 +105,7 @@ def _worker(conn: Connection, parent: int, modules: dict[str, Any], figures_dir:
     _die_with_parent(parent)
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # the parent handles Ctrl-C and ends its workers
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
-    signal.pthread_sigmask(signal.SIG_UNBLOCK, _STOP)  # held by the parent while it forked
+    signal.pthread_sigmask(signal.SIG_UNBLOCK, STOP_SIGNALS)  # held by the parent while it forked
     gc.set_threshold(*_WORKER_GC_THRESHOLDS)
     while True:
         task = conn.recv()
@@ -151,25 +150,24 @@ def run_tasks(
     try:
         # Ctrl-C or SIGTERM during a fork would raise in the fork's own callbacks, where Python
         # ignores it: held until the workers are started, then raised here
-        held = signal.pthread_sigmask(signal.SIG_BLOCK, _STOP)
-        # what the parent loaded (SymPy, matplotlib, the papers: ~130,000 objects) is kept out
-        # of the workers' collections, which would otherwise walk it (and copy its pages) in
-        # every full collection; the parent's own collector is as before once they are forked
-        frozen_before = gc.get_freeze_count()
-        gc.freeze()
-        try:
-            for _ in range(jobs):
-                here, there = ctx.Pipe()
-                proc = ctx.Process(target=_worker, args=(there, parent, modules, figures_dir, prepare),
-                                   daemon=True)
-                proc.start()
-                there.close()
-                workers.append((proc, here))
-                papers_of[here] = set()
-        finally:
-            if not frozen_before:
-                gc.unfreeze()
-            signal.pthread_sigmask(signal.SIG_SETMASK, held)
+        with stop_signals_held():
+            # what the parent loaded (SymPy, matplotlib, the papers: ~130,000 objects) is kept out
+            # of the workers' collections, which would otherwise walk it (and copy its pages) in
+            # every full collection; the parent's own collector is as before once they are forked
+            frozen_before = gc.get_freeze_count()
+            gc.freeze()
+            try:
+                for _ in range(jobs):
+                    here, there = ctx.Pipe()
+                    proc = ctx.Process(target=_worker, args=(there, parent, modules, figures_dir, prepare),
+                                       daemon=True)
+                    proc.start()
+                    there.close()
+                    workers.append((proc, here))
+                    papers_of[here] = set()
+            finally:
+                if not frozen_before:
+                    gc.unfreeze()
         busy: dict[Connection, Task] = {}
 
         def give(conn: Connection) -> None:
