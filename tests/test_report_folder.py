@@ -71,6 +71,32 @@ def test_report_pdf_compiles_without_overfull_lines(tmp_path, pdflatex):
     assert "alyushin2009_trajectories.pdf" in (out / "equations.tex").read_text()
 
 
+
+def test_report_pdf_references_resolve_in_its_one_pass(tmp_path, pdflatex):
+    """compile_pdf runs pdflatex once: the figure numbers and check numbers are printed, not
+    ``\\ref``-ed (which one pass leaves as ??), and they are the numbers LaTeX itself gives."""
+    out = tmp_path / "report"
+    run(["alyushin2009"], out, quiet=True)
+    build = compile_pdf(out / "equations.tex", pdflatex=pdflatex, keep_log=True)
+    assert "undefined" not in build.log and "??" not in build.log
+    tex = (out / "equations.tex").read_text()
+    # LaTeX's own numbering of the figures, from its .aux
+    subprocess.run([pdflatex, "-interaction=nonstopmode", "equations.tex"], cwd=out, capture_output=True, timeout=120)
+    numbers = dict(re.findall(r"\\newlabel\{(fig:[^}]*)\}\{\{(\d+)\}", (out / "equations.aux").read_text()))
+    assert len(numbers) == 2, numbers
+    mentions = [(m.start(), m.group(1)) for m in re.finditer(r"\(Figure~(\d+)\)", tex)]
+    assert mentions
+    for start, n in mentions:  # a figure follows the last check that points to it: the next figure is it
+        label = re.compile(r"\\label\{(fig:[^}]*)\}").search(tex, start).group(1)
+        assert numbers[label] == n, (label, n)
+    # the index names checks by the numbers that head them
+    heads = re.findall(r"\\subsection\*\{\[(\d+)\] ", tex)
+    assert heads == [str(k) for k in range(1, len(heads) + 1)]
+    index = tex[tex.index("Index of paper items"):]
+    cited = {int(k) for k in re.findall(r"\[(\d+)\]", index)}
+    assert cited and cited <= set(range(1, len(heads) + 1))
+
+
 def nasty_result():
     """Checks whose laws are long and whose text holds every LaTeX special character."""
     a, b = sp.symbols("a b", real=True)

@@ -156,7 +156,10 @@ def check_rows(check: Any) -> dict[str, list[str]]:
     return rows
 
 
-def _check_block(check: Any, anchor: str = "", figure: str = "") -> str:
+def _check_block(check: Any, anchor: str = "", figure: str = "", number: int = 0) -> str:
+    """A check's subsection; ``number`` (from 1) heads it as ``[number]``, the index names it so,
+    and ``figure`` is the number of the figure it points to: both are printed, not ``\\ref``-ed,
+    so that the one pdflatex pass :func:`~symkin.papers.texbuild.compile_pdf` makes resolves them."""
     rows = []
     printed = check_rows(check)
     for label in ("derived", "published"):
@@ -168,13 +171,14 @@ def _check_block(check: Any, anchor: str = "", figure: str = "") -> str:
     if getattr(check, "source", "printed") == "reconstructed":
         kind += " (form reconstructed where the OCR lost it)"
     lines = [
-        rf"\subsection*{{{math_text(check.label)}: {math_text(check.description)}}}" + (rf"\label{{{anchor}}}" if anchor else ""),
+        (rf"\subsection*{{[{number}] " if number else r"\subsection*{") + rf"{math_text(check.label)}: {math_text(check.description)}}}"
+        + (rf"\label{{{anchor}}}" if anchor else ""),
         r"\begin{align*}",
         " \\\\\n".join(rows),
         r"\end{align*}",
         # sloppy: the evidence quotes formulas as text, whose long tokens need looser lines
         rf"{{\sloppy \textit{{{escape(kind)}}}, \textbf{{{escape(check.verdict.value)}}}: {escape(check.comparison.detail)}"
-        + (rf" (Figure~\ref{{{figure}}})" if figure else "") + r"\par}",
+        + (rf" (Figure~{figure})" if figure else "") + r"\par}",
         "",
     ]
     alt = getattr(check.comparison, "alternative", None)
@@ -202,15 +206,15 @@ def _summary(results: list[Any]) -> str:
     return escape(text) + "\n"
 
 
-def _items(result: Any, anchors: dict[int, str]) -> list[str]:
-    """The paper's printed items with their verdicts and the pages of their checks, as a list."""
+def _items(result: Any, anchors: dict[int, int]) -> list[str]:
+    """The paper's printed items with their verdicts and the numbers of their checks, as a list."""
     items = paper_items(result)
     if not items:
         return []
     out = [r"\begin{itemize}"]
     for it in items:
         verdict = it.verdict.value if it.verdict is not None else "not checked: " + (it.item.not_checked or "no reason given")
-        refs = ", ".join(rf"{math_text(c.label)} (p.~\pageref{{{anchors[id(c)]}}})" for c in it.checks if id(c) in anchors)
+        refs = ", ".join(rf"{math_text(c.label)} [{anchors[id(c)]}]" for c in it.checks if id(c) in anchors)
         out.append(rf"\item {math_text(it.item.item)} ({math_text(it.item.what)}): \textbf{{{escape(verdict)}}}"
                    + (f"; {refs}" if refs else ""))
     out.append(r"\end{itemize}")
@@ -268,10 +272,10 @@ def _placed_figures(result: Any, root: Path | None) -> _Placed:
     return after, loose, figure_of
 
 
-def _items_index(results: list[Any], anchors: dict[int, str]) -> list[str]:
-    """An index of every paper's printed items: verdict, and the pages of the checks."""
+def _items_index(results: list[Any], anchors: dict[int, int]) -> list[str]:
+    """An index of every paper's printed items: verdict, and the numbers of the checks."""
     out = [r"\clearpage", r"\section*{Index of paper items}",
-           "Every item each paper prints, with its verdict and the pages of the checks that compare it." + "\n"]
+           "Every item each paper prints, with its verdict and the numbers [n] of the checks that compare it." + "\n"]
     for r in results:
         block = _items(r, anchors)
         if block:
@@ -289,14 +293,19 @@ def equations_document(results: Iterable[Any], root: Path | None = None) -> str:
     """
     results = list(results)
     parts = [PREAMBLE, _summary(results)]
-    anchors: dict[int, str] = {}
+    anchors: dict[int, int] = {}  # check -> its number
+    figures = 0  # figures placed so far: LaTeX numbers them in the order of their captions
     for r in results:
         parts.append(rf"\section{{{escape(r.citation)}}}")
         parts.append(rf"Paper key: \texttt{{{escape(r.key)}}}." + "\n")
         after, loose, figure_of = _placed_figures(r, root)
+        placed = [label for c in r.checks for _, _, label in after.get(id(c), [])] + [label for _, _, label in loose]
+        number = {label: figures + k for k, label in enumerate(placed, 1)}
+        figures += len(placed)
         for c in r.checks:
-            anchors[id(c)] = f"chk:{len(anchors) + 1}"
-            parts.append(_check_block(c, anchors[id(c)], figure_of.get(id(c), "")))
+            anchors[id(c)] = len(anchors) + 1
+            figure = number[figure_of[id(c)]] if id(c) in figure_of else 0
+            parts.append(_check_block(c, f"chk:{anchors[id(c)]}", str(figure) if figure else "", anchors[id(c)]))
             for fig, caption, label in after.get(id(c), []):
                 parts += _figure(fig, Path(root or "."), caption, label)
         for fig, caption, label in loose:
