@@ -585,6 +585,19 @@ def figures(folder: Path) -> list[Path]:
     return _region_figure(folder) + _synthesis_figure(folder)
 
 
+def region_curve(expr: sp.Expr, d: np.ndarray) -> np.ndarray:
+    """``expr`` (a bound of Table 1 in d_w2/d_w3) on the grid ``d`` for a figure, nan where a
+    line drawn through the values would join the two branches of a pole: at the sample after
+    each sign change of the denominator (the grid need not come near enough to the pole for
+    the values to be large there), and where the value is beyond 1e3."""
+    v = compile(expr, [DELTA], stable=False, on_pole="return")(d) * np.ones_like(d)
+    den = sp.denom(sp.together(expr))
+    if den.has(DELTA):
+        dv = compile(den, [DELTA], stable=False, on_pole="return")(d) * np.ones_like(d)
+        v[1:][np.sign(dv[1:]) * np.sign(dv[:-1]) < 0] = np.nan
+    return np.where(np.abs(v) < 1e3, v, np.nan)
+
+
 def _region_figure(folder: Path) -> list[Path]:
     import numpy as np
     from matplotlib.ticker import LogLocator, ScalarFormatter
@@ -607,8 +620,7 @@ def _region_figure(folder: Path) -> list[Path]:
             k_end = b.upper if free_end is b.lower else b.lower
 
             def curve(expr, kk=3, d=d):
-                v = compile(expr.subs(K, kk), [DELTA], stable=False, on_pole="return")(d) * np.ones_like(d)
-                return np.where(np.abs(v) < 1e3, v, np.nan)  # do not join the branches of a pole
+                return region_curve(expr.subs(K, kk), d)
 
             ax.fill_between(d, curve(free_end), curve(k_end), color=style.PALETTE[5], alpha=0.25, lw=0,
                             label="region, k = 3" if first else None)

@@ -177,7 +177,7 @@ PRINTED_ITEMS = (
     PrintedItem("fig. 7(b)", "smaller m: longer period, longer low-speed plateau, smaller slope between the velocity extremes"),
     PrintedItem("fig. 8(b)", "smaller m: more acceleration fluctuations, 'so changing m can improve smoothness'",
                 "the sentence pairs more fluctuations with smoother motion, so the direction of the claimed change is "
-                "ambiguous; the derived counts are in the note on figures 7-8"),
+                "ambiguous; the derived counts are in the note on fig. 8(b) (report.json, equations.pdf)"),
     PrintedItem("fig. 7(c)/8(c)", "larger theta_H(0): longer steady share, forward and reverse acceleration extremes tend to equal"),
     PrintedItem("conclusions", "the curves agree with the simulation; elliptical gears give uniform motion and quick return",
                 "no simulation is run here; the quick return is fig. 7(a), checked"),
@@ -751,7 +751,7 @@ REPORT_FIGURES = {
     "luo2018_fig4_constant_speed": ("Fig. 4 / Table 1: displacement, velocity and acceleration of the slider at "
                                     "constant carrier speed.", ("Table 1", "stroke")),
     "luo2018_fig7_velocity": ("Fig. 7: slider velocity through elliptical gears for varying e, m and theta_H0.",
-                              ("(26)",)),
+                              ("(26)", "fig. 7")),
     "luo2018_fig8_acceleration": ("Fig. 8: slider acceleration through elliptical gears for varying e, m and theta_H0.",
                                   ("(33)-(35)",)),
     "luo2018_carrier_angle_branches": ("The carrier angle through elliptical gears: the derived continuous angle "
@@ -871,7 +871,7 @@ def notes() -> list[str]:
         "ring; the superposition route (the pin as a planet particle) gives the same displacement.",
         "Conditions (13)-(14) are derived from the harmonics of the pin's deviation from the guide: the frequencies must "
         "coincide (z3 = 2 z1), then amplitude (l_1 = l_H) and phase (theta_1(0) = 2 (theta_2 - theta_H(0)) mod 2 pi).",
-        "Figures 7-8 are drawn from the derived laws (the paper's parameter values are not in the text): Table 1's "
+        "The paper's figs. 7-8 are redrawn from the derived laws (the paper's parameter values are not in the text): Table 1's "
         "mechanism, input 0.8 pi rad/s, baseline e = 2/5, m = 1, theta_H(0) = pi/6, chosen here; each figure check "
         "also tests its claims at other values of the parameter the paper leaves open. 'Steady share' is the fraction "
         "of the period, the longest stretch in which the velocity stays within 10% of its full range (the flat part "

@@ -78,3 +78,24 @@ def test_reproduce_writes_the_kladova2010_report(tmp_path):
     for name in ("kladova2010_existence_regions.png", "kladova2010_synthesis.png"):
         assert (out / "figures" / name).stat().st_size > 10_000
     assert "Table 1" in (out / "equations.tex").read_text()
+
+
+def test_a_region_curve_is_not_drawn_across_a_pole():
+    """The published AA bound (1 - d)/(1 - d sin(pi/3)) has a pole at d = 2/sqrt(3), where a
+    400-point grid gets no closer than values of about +-60: a line through the samples would
+    draw a vertical bar there (it did).  The figure's curve breaks at the sign change of the
+    denominator, and nowhere else."""
+    import numpy as np
+
+    d = np.linspace(1.001, 3.5, 400)
+    expr = (1 - kladova2010.DELTA) / (1 - kladova2010.DELTA * sp.sin(sp.pi / 3))
+    v = kladova2010.region_curve(expr, d)
+    pole = 2 / np.sqrt(3)
+    gaps = np.flatnonzero(np.isnan(v))
+    assert gaps.size == 1 and d[gaps[0] - 1] < pole < d[gaps[0]]
+    assert np.nanmax(np.abs(v)) < 100  # the gap is not from the 1e3 clip
+    finite = ~np.isnan(v)
+    reference = np.array([float((1 - x) / (1 - x * np.sin(np.pi / 3))) for x in d])
+    np.testing.assert_allclose(v[finite], reference[finite], rtol=1e-12)
+    # a bound without a pole on the grid is drawn whole
+    assert not np.isnan(kladova2010.region_curve(1 + kladova2010.DELTA, d)).any()

@@ -155,6 +155,11 @@ def test_an_item_takes_the_worst_verdict_of_its_checks():
     assert result.verdict is Verdict.DIFFERS and [c.label for c in result.checks] == ["a", "b"]
     with pytest.raises(ValueError, match="not in the list"):
         item_results([PrintedItem("(2)", "another")], [good])
+    # an item compared by a paper check cannot also say why it is not checked (the drill head did)
+    with pytest.raises(ValueError, match="says it is not checked"):
+        item_results([PrintedItem("(1)", "a law", "a method stated in words")], [good])
+    (unchecked,) = item_results([PrintedItem("(1)", "a law", "a method stated in words")], [other])
+    assert unchecked.verdict is None and unchecked.item.not_checked
 
 
 # ---------------------------------------------------------------------------- report.json

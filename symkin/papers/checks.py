@@ -764,7 +764,8 @@ class ItemResult:
 def item_results(items: Iterable[PrintedItem], checks: Iterable[Check]) -> list[ItemResult]:
     """Every printed item with its ``paper`` checks and their worst verdict.
 
-    Raises ValueError for a paper check whose item is not listed, or an item listed twice.
+    Raises ValueError for a paper check whose item is not listed, an item listed twice, or an
+    item compared by a paper check that also says why it is not checked.
 
     >>> c = Check.make("p", "(1)", "", 1, 1, compare_exact(1, 1))
     >>> [r.verdict.value for r in item_results([PrintedItem("(1)", "a law")], [c])]
@@ -781,6 +782,9 @@ def item_results(items: Iterable[PrintedItem], checks: Iterable[Check]) -> list[
     out = []
     for it in items:
         mine = tuple(c for c in paper_checks if c.item == it.item)
+        if mine and it.not_checked:
+            raise ValueError(f"printed item {it.item!r} is compared by a paper check and says it is not checked "
+                             f"({it.not_checked}): drop one")
         verdict = max((c.verdict for c in mine), key=SEVERITY.index) if mine else None
         out.append(ItemResult(it, mine, verdict))
     return out
