@@ -79,6 +79,10 @@ def test_pint_quantities_are_taken_exactly_and_give_what_bare_numbers_give():
     ("1e400 rpm", "rad/s", "about 10.400; numbers from 1e-300 to 1e300"),   # the number's fault, not the unit's
     ("1e400", "rad/s", "about 10.400; numbers from 1e-300 to 1e300"),
     ("10**10**10 rpm", "rad/s", "exponent larger than 1000"),
+    # pint takes the radian for a pure number: 5 Hz passed as 5 rad/s (neither 5 turns a second nor refused)
+    ("5 Hz", "rad/s", "Hz gives no angle, and rad/s measures one"),
+    ("2 Hz/s", "rad/s^2", "gives no angle"),
+    ("3 rad", "m", "gives no angle|not a unit of m"),
 ])
 def test_bad_units_are_one_line_errors(text, unit, message):
     with pytest.raises(InputError, match=message) as err:
@@ -111,6 +115,13 @@ def test_cardan_takes_lengths_speeds_angles_and_times_with_units(capsys):
     assert with_units["units"]["columns"] == {"t": "s", "s": "m", "v": "m/s", "a": "m/s^2", "x": "m", "y": "m",
                                               "deviation": "m"}
     assert with_units["units"]["length"] == "m"
+
+
+def test_turns_a_second_are_2_pi_rad_s_and_hertz_is_refused(capsys):
+    assert parse_quantity("5 rps", "rad/s") == parse_quantity("5 cycle/s", "rad/s") == 10 * sp.pi
+    assert parse_quantity("90 deg/s", "rad/s") == sp.pi / 2
+    code, out, err = run(capsys, "speeds", "AA", "--teeth", "54,45,44,55", "--omega", "1=5Hz", "--omega", "4=0")
+    assert code == 2 and out == "" and "Hz gives no angle" in err and err.strip().count("\n") == 0
 
 
 def test_a_unit_of_the_wrong_kind_on_the_command_line_is_exit_2(capsys):

@@ -679,6 +679,10 @@ def unit_factor(unit_from: Any, unit_to: str, *, what: str = "value") -> sp.Expr
     Traceback (most recent call last):
     ...
     symkin.errors.InputError: value: s is not a unit of rad/s (it is a [time], rad/s is 1 / [time])
+    >>> unit_factor("Hz", "rad/s")
+    Traceback (most recent call last):
+    ...
+    symkin.errors.InputError: value: Hz gives no angle, and rad/s measures one (is 1 Hz one turn a second, 2 pi rad/s, or 1 rad/s?); write the angle in the unit: rps (turns a second), rpm, rad/s, deg/s
     """
     import pint
 
@@ -694,11 +698,22 @@ def unit_factor(unit_from: Any, unit_to: str, *, what: str = "value") -> sp.Expr
         ) from None
     if not math.isfinite(f) or f == 0:
         raise InputError(f"{what}: the unit {src:~} is out of range in {unit_to}")
+    if _angle_power(reg, dst) != _angle_power(reg, src):
+        # pint takes the radian for a pure number, so 5 Hz would pass as 5 rad/s, not 5 turns a second
+        raise InputError(
+            f"{what}: {src:~} gives no angle, and {unit_to} measures one (is 1 Hz one turn a second, 2 pi rad/s, "
+            "or 1 rad/s?); write the angle in the unit: rps (turns a second), rpm, rad/s, deg/s"
+        )
     for power in (0, 1, -1):
         r = Fraction(f / math.pi**power).limit_denominator(10**6)
         if r and abs(float(r) * math.pi**power - f) <= 1e-14 * abs(f):
             return sp.Rational(r.numerator, r.denominator) * sp.pi**power
     return sp.Rational(*Fraction(f).as_integer_ratio())
+
+
+def _angle_power(reg: Any, unit: Any) -> float:
+    """The power of the radian in ``unit``'s root units (1 for rad/s and rpm, 0 for Hz and mm)."""
+    return float(dict(reg.get_root_units(unit)[1]._units).get("radian", 0))
 
 
 def _parse_unit(reg: Any, text: str, what: str) -> Any:
