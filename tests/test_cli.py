@@ -52,6 +52,10 @@ BAD = [
     (["speeds", "AA", "--teeth", "54,45,44,55", "--omega", "1=100"], "2 degrees of freedom"),
     (["speeds", "AA", "--teeth", "54,45,44,55", "--omega", "1=1", "--omega", "4=0", "--omega", "H=3"], "but 3"),
     (["speeds", "AA", "--teeth", "54,45,44,55", "--omega", "1=inf", "--omega", "4=0"], "not allowed"),
+    # a link given twice under one name was taken at its last value
+    (["speeds", "AA", "--teeth", "54,45,44,55", "--omega", "1=100", "--omega", "1=3", "--omega", "4=0"], "gives link 1 twice"),
+    (["trajectory", "AA", "--teeth", "54,45,44,55", "--omega", "1=1", "--omega", "1=2", "--omega", "4=0", "--out", "t.png"],
+     "gives link 1 twice"),
     (["speeds", "AA", "--teeth", "54,45,44,55", "--omega", "1=__import__('os').system('touch PWNED')", "--omega", "4=0"], "not allowed"),
     (["speeds", "AA", "--teeth", "54,45,44,55", "--omega", "oops"], "LINK=VALUE"),
     (["reproduce", "nosuchpaper"], "choose all or one of alyushin2009"),

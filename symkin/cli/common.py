@@ -26,7 +26,7 @@ Conventions every command follows:
 from __future__ import annotations
 
 import argparse
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -228,6 +228,27 @@ def link_value(text: str, what: str = "--omega") -> tuple[str, Any]:
     if not link:
         raise InputError(f"{what} {text!r} names no link; write LINK=VALUE, for example 1=100")
     return link, parse_quantity(value, "rad/s", what=f"{what} value for link {link}")
+
+
+def link_values(items: Sequence[str], what: str = "--omega") -> dict[str, Any]:
+    """``{link: value}`` from repeated ``LINK=VALUE`` options (:func:`link_value`); a link given
+    twice under one name is an error (the engine refuses one given under two names).
+
+    >>> link_values(["1=300rpm", "4=0"])
+    {'1': 10*pi, '4': 0}
+    >>> link_values(["1=100", "1=3"])
+    Traceback (most recent call last):
+    ...
+    symkin.errors.InputError: --omega gives link 1 twice (1=100 and 1=3); give each link once
+    """
+    known: dict[str, Any] = {}
+    texts: dict[str, str] = {}
+    for item in items:
+        link, value = link_value(item, what)
+        if link in known:
+            raise InputError(f"{what} gives link {link} twice ({texts[link]} and {item.strip()}); give each link once")
+        known[link], texts[link] = value, item.strip()
+    return known
 
 
 def emit(args: Any, text: str, data: dict[str, Any]) -> None:

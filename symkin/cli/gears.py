@@ -13,7 +13,7 @@ from symkin.cli.common import (
     emit,
     exact_json,
     float_text,
-    link_value,
+    link_values,
     mechanism_of,
 )
 
@@ -76,10 +76,7 @@ def run_ratio(args: Any) -> int:
 
 def run_speeds(args: Any) -> int:
     """Run ``symkin speeds`` with the parsed ``args``: every link's angular velocity from the known ones; hands text and JSON to :func:`symkin.cli.common.emit` and returns 0 (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
-    known: dict[str, Any] = {}
-    for item in args.omega:
-        link, value = link_value(item)
-        known[link] = value
+    known = link_values(args.omega)
     mech, about, title = mechanism_of(args)
     speeds = mech.speeds(known)
     given = {mech.link(k).name for k in known}

@@ -20,7 +20,7 @@ from symkin.cli.common import (
     as_integer,
     emit,
     figure_file,
-    link_value,
+    link_values,
     mechanism_of,
     parse_expression,
     parse_number,
@@ -106,12 +106,10 @@ def _point(text: str, mech: Any) -> tuple[str, tuple[Any, ...]]:
 
 
 def _setup(args: Any) -> tuple[Any, Any, list, float, list[str], dict[str, Any], str]:
-    known: dict[str, Any] = {}
-    for item in args.omega:
-        link, value = link_value(item)
+    known = link_values(args.omega)
+    for item, value in zip(args.omega, known.values()):
         if not value.is_number:
             raise InputError(f"--omega {item!r}: give a number (rad/s)")
-        known[link] = value
     module: Any = None if getattr(args, "train", None) is not None else 1
     if args.module is not None:
         module = parse_number(args.module, what="--module")
