@@ -173,3 +173,20 @@ def test_a_figure_saved_in_two_formats_is_laid_out_once_and_both_files_share_tha
     assert len(runs) == 1  # one layout, for the PNG
     assert len(positions) == 2 and positions[0] == positions[1] != start  # the PDF drawn where the PNG's layout put the axes
     assert isinstance(fig.get_layout_engine(), ConstrainedLayoutEngine)
+
+
+@pytest.mark.parametrize("command, out", [("trajectory", "p.png"), ("curves", "c.png"), ("animate", "a.gif")])
+def test_a_train_file_with_symbolic_teeth_is_a_clear_error_for_a_plot(tmp_path, capsys, command, out):
+    """A train file may leave a tooth number as a symbol (the laws are fine); a plot of it said
+    'internal error: TypeError' (trajectory with --t-end)."""
+    from importlib import resources
+
+    text = resources.files("symkin.trains").joinpath("library", "simple.toml").read_text()
+    assert 'gears = { s = 24 }' in text
+    train = tmp_path / "symbolic.toml"
+    train.write_text(text.replace('gears = { s = 24 }', 'gears = { s = "z1" }'))
+    code = main([command, "--train", str(train), "--omega", "S=1", "--omega", "R=0", "--t-end", "1",
+                 "--out", str(tmp_path / out)])
+    err = capsys.readouterr().err
+    assert code == 2 and "give values for z1" in err and len(err.strip().splitlines()) == 1
+    assert not (tmp_path / out).exists()
