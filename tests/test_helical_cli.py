@@ -56,7 +56,9 @@ BAD = [
     (["--satellites", "2.5"], "whole number"),
     (["--ratio", "0.5"], "no existence region of scheme AI"),
     (["--ratio", "x"], "must be a number"),
-    (["--tolerance", "-1"], ">= 0"),
+    (["--tolerance", "-1"], "from 0 to less than 1"),
+    # from 1 on the window holds every ratio of the sign: the search ran for minutes (as synthesize, refused)
+    (["--tolerance", "1"], "from 0 to less than 1"),
     (["--top", "0"], "at least 1"),
 ]
 

@@ -74,8 +74,8 @@ class SynthesisRequest:
         if self.ratio == 0:
             raise InputError("the target ratio i_1H^(4) must not be 0 (the carrier would not turn); give a non-zero ratio")
         put("tolerance", as_fraction(self.tolerance, what="the ratio tolerance"))
-        if self.tolerance < 0:
-            raise InputError(f"the ratio tolerance must be >= 0 (a relative error), got {self.tolerance}")
+        if not 0 <= self.tolerance < 1:  # (as symkin.synthesis: from 1 on the window holds every ratio of the sign)
+            raise InputError(f"the relative ratio tolerance must be from 0 to less than 1, got {self.tolerance}; 0.01 is 1 %")
         k = int(as_integer(self.satellites, what="the number of satellites"))
         if k < 1:
             raise InputError(f"the number of satellites must be at least 1, got {k}")
