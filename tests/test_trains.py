@@ -266,6 +266,9 @@ BAD = [
     ('meshes = [["s", "p"]]\n[links.P]\ncarrier = "Q"\ngears = { p = 20 }', "[links.P] carrier: names no link 'Q'"),
     ('meshes = [["s", "p"]]\n[links.P]\ncarrier = "Q"\ngears = { p = 20 }\n[links.Q]\ncarrier = "P"', "carrier cycle: P -> Q -> P"),
     ('meshes = [["s", "p"]]\n[links.P]\ncarrier = "C"\ngears = { p = 20.5 }', "[links.P] gears.p: a tooth number is a whole number"),
+    # a tooth named like a constant, a function or the time printed as one: (pi + 72)/pi looked like pi's ratio
+    *((f'meshes = [["s", "p"]]\n[links.P]\ncarrier = "C"\ngears = {{ p = "{name}" }}', "names a constant, a function or the time")
+      for name in ("pi", "E", "I", "oo", "nan", "t", "sin")),
     ('meshes = [["s", "p"]]\n[links.P]\ncarrier = "C"\ngears = { s = 20 }', "gear 's' is also on link 'S'"),
     ('meshes = [["s", "p"]]\n[links.P]\ncarrier = "C"\ngears = { p = 20 }\ncolour = "red"', "[links.P]: unknown key 'colour'"),
     ('meshes = [["s", "p"]]\n[links.P]\ncarrier = "C"\ngears = { p = 20 }\n[links.P]\ncarrier = "C"', "not valid TOML"),

@@ -61,7 +61,7 @@ from typing import Any
 
 import sympy as sp
 
-from symkin._util.parsing import as_rational, parse_expression
+from symkin._util.parsing import CONSTANTS, FUNCTIONS, as_rational, parse_expression
 from symkin.errors import ModelError, SymkinError, TrainFileError
 from symkin.model import FRAME, Gear, Link, Mesh
 from symkin.trains.train import State, Train
@@ -83,6 +83,8 @@ _GEAR = {"teeth", "internal", "module", "radius", "bevel", "side"}
 _MESH = {"gears", "centre_distance", "efficiency"}
 _STATE = {"input", "output", "brakes", "clutches", "description"}
 _SYMBOL = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
+#: Names a symbolic tooth number may not take: they print as (or parse to) something else.
+_RESERVED = frozenset({*CONSTANTS, *FUNCTIONS, "I", "oo", "zoo", "nan", "inf", "infinity", "t"})
 #: The link name of the frame in a file.
 FRAME_TABLE = "frame"
 
@@ -197,6 +199,9 @@ class _Reader:
         if isinstance(value, str):
             if not _SYMBOL.match(value):
                 raise self.fail(where, f"a symbolic tooth number is a name such as \"z1\", got {value!r}")
+            if value in _RESERVED:
+                raise self.fail(where, f"{value!r} names a constant, a function or the time in symkin's laws, and would "
+                                       "print as one; name the tooth number otherwise, such as \"z1\"")
             return sp.Symbol(value, positive=True, integer=True)
         if isinstance(value, bool) or not isinstance(value, int):
             raise self.fail(where, f"a tooth number is a whole number (or a name such as \"z1\"), got {_show(value)}")
