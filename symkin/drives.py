@@ -153,8 +153,8 @@ class EllipticalGears(Drive):
         Driver speed (rad/s).
     eccentricity : number in [0, 1) or expression
         ``e``; 0 gives two circles (the driven gear turns at ``omega``).
-    order : positive number or expression
-        ``m``; the pitch curve closes for whole numbers.
+    order : positive whole number or expression
+        ``m``; the pitch curve closes for whole numbers only (another number is refused).
 
     Notes
     -----
@@ -191,6 +191,9 @@ class EllipticalGears(Drive):
             raise InputError(f"the eccentricity must lie in [0, 1), got {self.eccentricity}; 0 gives circular gears")
         object.__setattr__(self, "eccentricity", e)
         object.__setattr__(self, "order", _positive(self.order, "order of the elliptical gears"))
+        if self.order.is_number and float(self.order) % 1 != 0:  # (a float 2.0 is whole)
+            raise InputError(f"the order of elliptical gears is a whole number (only then does the pitch curve close), "
+                             f"got {self.order}")
         for name in ("omega", "eccentricity", "order"):
             if S.t in getattr(self, name).free_symbols:
                 raise InputError(f"the {name} of elliptical gears cannot depend on t")
