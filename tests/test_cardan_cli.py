@@ -62,6 +62,7 @@ BAD = [
     (["--length", "0.02", "--speed", "1", "-e", "1"], "[0, 1)"),
     (["--length", "0.02", "--speed", "1", "-e", "-0.2"], "[0, 1)"),
     (["--length", "0.02", "--speed", "1", "-e", "0.3", "--order", "0"], "--order must be positive"),
+    (["--length", "0.02", "--speed", "1", "-e", "0.3", "--order", "1.5"], "order of elliptical gears is a whole number"),
     (["--length", "0.02", "--speed", "1", "-e", "0.3", "--order", "-1"], "--order must be positive"),
     (["--length", "0", "--speed", "1"], "--length must be positive"),
     (["--length", "-0.02", "--speed", "1"], "--length must be positive"),
