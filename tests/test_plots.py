@@ -190,3 +190,35 @@ def test_a_train_file_with_symbolic_teeth_is_a_clear_error_for_a_plot(tmp_path, 
     err = capsys.readouterr().err
     assert code == 2 and "give values for z1" in err and len(err.strip().splitlines()) == 1
     assert not (tmp_path / out).exists()
+
+
+def test_animate_reports_each_frame_it_draws(tmp_path):
+    frames = Frames.build(schemes.single_row_AI(radii=(1, 1, 3)).motion({"4": 0, "H": 1}), [("2", (1, 0))],
+                          t_end=6.3, frames=5)
+    seen = []
+    animate(frames, tmp_path / "a.gif", dpi=20, progress=lambda done, total: seen.append((done, total)))
+    assert seen == [(k, 5) for k in range(1, 6)]
+
+
+def test_sigterm_during_animate_leaves_no_partial_file_and_keeps_the_old_one(tmp_path):
+    """SIGTERM ends every command as Ctrl-C does (it was so for reproduce only: an animation
+    killed by timeout(1) left a hidden .NAME.partial-*.gif behind)."""
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    out = tmp_path / "aa.gif"
+    out.write_bytes(b"GIF89a previous")
+    proc = subprocess.Popen([sys.executable, "-m", "symkin", "animate", "AA", "--teeth", "54,45,44,55", "--omega", "1=1",
+                             "--omega", "4=0", "--frames", "2000", "--dpi", "20", "--out", str(out)],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    deadline = time.monotonic() + 120
+    while not list(tmp_path.glob(".aa.partial-*")) and proc.poll() is None and time.monotonic() < deadline:
+        time.sleep(0.02)
+    assert proc.poll() is None, proc.communicate()
+    time.sleep(0.3)  # frames are being drawn into the partial file
+    proc.send_signal(signal.SIGTERM)
+    _, err = proc.communicate(timeout=60)
+    assert proc.returncode == 130 and "interrupted" in err, err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["aa.gif"] and out.read_bytes() == b"GIF89a previous"

@@ -16,9 +16,11 @@ import argparse
 import importlib
 import json
 import os
+import signal
 import sys
 import warnings
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
+from contextlib import contextmanager
 from typing import Any, NoReturn
 
 from symkin.errors import SymkinError, SymkinWarning
@@ -259,9 +261,29 @@ def _print_json(data: dict) -> None:
     sys.stdout.write("\n")
 
 
+@contextmanager
+def _terminate_as_interrupt() -> Iterator[None]:
+    """SIGTERM unwinds like Ctrl-C: a half-written output (a report folder, a figure, an animation) is
+    removed and what was there before is kept."""
+
+    def handler(signum: int, frame: Any) -> None:
+        raise KeyboardInterrupt
+
+    try:
+        previous = signal.signal(signal.SIGTERM, handler)
+    except ValueError:  # not the main thread
+        yield
+        return
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+
+
 def _run(args: argparse.Namespace, prog: str) -> int:
     try:
-        return int(args.run(args) or EXIT_OK)
+        with _terminate_as_interrupt():
+            return int(args.run(args) or EXIT_OK)
     except SymkinError as err:
         return _fail(args, prog, "error", one_line(err), EXIT_USAGE)
     except KeyboardInterrupt:

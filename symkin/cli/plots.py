@@ -15,6 +15,7 @@ from symkin.cli.common import (
     add_command,
     add_omega_argument,
     add_out_argument,
+    add_quiet_flag,
     add_scheme_argument,
     add_teeth_argument,
     as_integer,
@@ -86,6 +87,7 @@ def register(sub: Any) -> None:
     a.add_argument("--fps", default="20", help="frames per second (default 20)")
     a.add_argument("--frames", default=None, help=f"number of frames, 2 to {MAX_FRAMES} (default: 4 s of animation per turn)")
     a.add_argument("--dpi", default="100", help="resolution in dots per inch of a 6 in frame (default 100: 600 px)")
+    add_quiet_flag(a)
 
 
 # --------------------------------------------------------------------------- parsing
@@ -251,6 +253,12 @@ def run_animate(args: Any) -> int:
         frames = max(2, min(2000, round(4 * fps * turns)))
     sampled = Frames.build(motion, points, t_end=t_end, frames=frames, labels=labels,
                            title=title)
-    animate(sampled, out, fps=fps, dpi=dpi)
+    from symkin._util.progress import Progress
+
+    bar = Progress(frames, enabled=not args.quiet)
+    try:
+        animate(sampled, out, fps=fps, dpi=dpi, progress=lambda done, total: bar.step(f"drawing {out.name}"))
+    finally:
+        bar.close()
     _report(args, "animation", out, mech, points, t_end, about, title, {"frames": frames, "fps": fps})
     return 0

@@ -4,10 +4,7 @@ from __future__ import annotations
 
 import argparse
 import json
-import signal
 import warnings
-from collections.abc import Iterator
-from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
@@ -63,24 +60,6 @@ def _jobs(text: str) -> int:
     return n
 
 
-@contextmanager
-def _terminate_as_interrupt() -> Iterator[None]:
-    """SIGTERM unwinds like Ctrl-C, so the half-built report is removed."""
-
-    def handler(signum: int, frame: Any) -> None:
-        raise KeyboardInterrupt
-
-    try:
-        previous = signal.signal(signal.SIGTERM, handler)
-    except ValueError:  # not the main thread
-        yield
-        return
-    try:
-        yield
-    finally:
-        signal.signal(signal.SIGTERM, previous)
-
-
 def run_reproduce(args: Any) -> int:
     """Run ``symkin reproduce`` with the parsed ``args``: derive and check the papers named, print the table and write the report folder; returns 0, or 1 when some check differs."""
     from symkin.papers.registry import paper_names
@@ -98,8 +77,7 @@ def run_reproduce(args: Any) -> int:
             raise InputError(f"no paper called {n!r}; choose all or one of {', '.join(known)}")
     out = Path(args.out)
     pdf = not args.no_pdf
-    with _terminate_as_interrupt():
-        results = run(names, out, quiet=args.quiet, pdf=pdf, jobs=args.jobs)
+    results = run(names, out, quiet=args.quiet, pdf=pdf, jobs=args.jobs)
     pdf_note = MISSING if pdf and find_pdflatex() is None else ""
     # the report as written (its figure paths are relative to the folder it was built in)
     data = json.loads((out / "report.json").read_text()) if args.json else {}

@@ -20,7 +20,7 @@ complete.
 from __future__ import annotations
 
 import os
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -360,11 +360,13 @@ def animate(
     fps: int = 20,
     dpi: int = 100,
     size: float = 6.0,
+    progress: Callable[[int, int], None] | None = None,
 ) -> Path:
     """Write the animation of ``frames`` to ``out``: ``.gif``, ``.mp4`` (with ffmpeg), or
     ``.html`` (a self-contained page with playback controls, :meth:`Frames.html`).
 
-    The default is 600 pixels square (6 in at 100 dpi).
+    The default is 600 pixels square (6 in at 100 dpi).  ``progress(done, total)`` is called
+    as each frame of a GIF or MP4 is drawn (``symkin animate`` shows a bar with it).
 
     The file appears only when complete: frames go to a temporary file beside ``out``
     that is renamed at the end; on any error or interrupt the temporary file is removed
@@ -413,7 +415,8 @@ def animate(
     writer = animation.writers[WRITERS[suffix]](fps=fps)
     try:
         with replacing(out) as (tmp,):
-            anim.save(str(tmp), writer=writer, dpi=dpi)
+            anim.save(str(tmp), writer=writer, dpi=dpi,
+                      progress_callback=None if progress is None else lambda i, n: progress(i + 1, n))
     except BaseException:
         # no "deleted without rendering" warning on top of the error (a private attribute)
         anim._draw_was_started = True
