@@ -8,6 +8,7 @@ from matplotlib import animation
 from matplotlib.figure import Figure
 
 from symkin.cli import main
+from symkin.errors import InputError
 from symkin.viz import figures
 from symkin.viz.figures import save
 
@@ -36,7 +37,7 @@ def test_a_broken_write_keeps_the_previous_file(name, failure, code, tmp_path, m
     argv, files, writers = WRITERS[name]
     monkeypatch.chdir(tmp_path)
     for f in files:
-        (tmp_path / f).write_bytes(b"previous")
+        (tmp_path / f).write_bytes(MAGIC[Path(f).suffix] + b" previous")  # an earlier output
     seen = []
 
     def broken(self, path, *args, **kwargs):
@@ -51,7 +52,7 @@ def test_a_broken_write_keeps_the_previous_file(name, failure, code, tmp_path, m
     err = capsys.readouterr().err
     assert len(err.strip().splitlines()) == 1
     assert seen and all(p.name not in files and p.resolve().parent == tmp_path for p in seen)  # a temporary name
-    assert all((tmp_path / f).read_bytes() == b"previous" for f in files)
+    assert all((tmp_path / f).read_bytes() == MAGIC[Path(f).suffix] + b" previous" for f in files)
     assert leftovers(tmp_path) == []
 
 
@@ -60,7 +61,7 @@ def test_a_complete_write_replaces_the_previous_file(name, tmp_path, monkeypatch
     argv, files, _ = WRITERS[name]
     monkeypatch.chdir(tmp_path)
     for f in files:
-        (tmp_path / f).write_bytes(b"previous")
+        (tmp_path / f).write_bytes(MAGIC[Path(f).suffix] + b" previous")
     assert main(argv) == 0, capsys.readouterr().err
     for f in files:
         assert (tmp_path / f).read_bytes().startswith(MAGIC[Path(f).suffix])
@@ -70,7 +71,7 @@ def test_a_complete_write_replaces_the_previous_file(name, tmp_path, monkeypatch
 def test_save_writes_png_and_pdf_together_or_neither(tmp_path, monkeypatch):
     fig = Figure()
     fig.add_subplot().plot([0, 1], [1, 0])
-    (tmp_path / "f.png").write_bytes(b"previous")
+    (tmp_path / "f.png").write_bytes(b"\x89PNG previous")
     real = Figure.savefig
 
     def pdf_fails(self, path, *args, **kwargs):
@@ -81,8 +82,30 @@ def test_save_writes_png_and_pdf_together_or_neither(tmp_path, monkeypatch):
     monkeypatch.setattr(Figure, "savefig", pdf_fails)
     with pytest.raises(OSError):
         save(fig, tmp_path / "f")
-    assert (tmp_path / "f.png").read_bytes() == b"previous"  # the PNG written first was not put in place
+    assert (tmp_path / "f.png").read_bytes() == b"\x89PNG previous"  # the PNG written first was not put in place
     assert not (tmp_path / "f.pdf").exists() and leftovers(tmp_path) == []
     monkeypatch.setattr(Figure, "savefig", real)
     assert save(fig, tmp_path / "f") == [tmp_path / "f.png", tmp_path / "f.pdf"]
     assert (tmp_path / "f.png").read_bytes().startswith(MAGIC[".png"])
+
+
+@pytest.mark.parametrize("name, content", [("mine.png", b"my notes"), ("mine.gif", b"\x89PNG not a gif"),
+                                           ("mine.pdf", b"draft"), ("mine.mp4", b"0123notavideo")])
+def test_an_existing_file_of_another_kind_is_not_replaced(tmp_path, name, content):
+    """--out names a file that is not an earlier output of that kind (a user's notes called
+    mine.png): refused, and the file kept.  An earlier output, or an empty file, is replaced."""
+    from symkin._util.atomic import replacing
+
+    target = tmp_path / name
+    target.write_bytes(content)
+    with pytest.raises(InputError, match="it exists and is not") as err:
+        with replacing(target) as (tmp,):
+            tmp.write_bytes(b"new")
+    assert "\n" not in str(err.value) and target.read_bytes() == content
+    assert sorted(p.name for p in tmp_path.iterdir()) == [name]
+    earlier = {".png": b"\x89PNG\r\n", ".gif": b"GIF89a", ".pdf": b"%PDF-1.4", ".mp4": b"\0\0\0\x18ftypmp42"}[target.suffix]
+    for before in (earlier + b"old", b""):
+        target.write_bytes(before)
+        with replacing(target) as (tmp,):
+            tmp.write_bytes(b"new")
+        assert target.read_bytes() == b"new"

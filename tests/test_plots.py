@@ -66,7 +66,7 @@ def test_a_gif_is_written_whole_with_every_frame(tmp_path):
 def test_a_failed_animation_leaves_no_partial_file_and_keeps_the_old_one(tmp_path, monkeypatch):
     frames = Frames.build(cardan().motion({"H": 1}), [("1", (1, 0))], t_end=1.0, frames=4)
     out = tmp_path / "a.gif"
-    out.write_bytes(b"old")
+    out.write_bytes(b"GIF89a old")
     from matplotlib.animation import FuncAnimation
 
     def broken(self, *a, **k):
@@ -75,7 +75,7 @@ def test_a_failed_animation_leaves_no_partial_file_and_keeps_the_old_one(tmp_pat
     monkeypatch.setattr(FuncAnimation, "save", broken)
     with pytest.raises(KeyboardInterrupt):
         animate(frames, out, dpi=30)
-    assert out.read_bytes() == b"old" and [p.name for p in tmp_path.iterdir()] == ["a.gif"]
+    assert out.read_bytes() == b"GIF89a old" and [p.name for p in tmp_path.iterdir()] == ["a.gif"]
 
 
 def test_mp4_without_ffmpeg_is_a_clear_tool_error(tmp_path, monkeypatch):

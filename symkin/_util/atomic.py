@@ -79,6 +79,10 @@ def replacing(*targets: str | os.PathLike[str]) -> Iterator[list[Path]]:
             raise InputError(f"cannot write {out}: the folder {folder} does not exist")
         if out.is_dir():
             raise InputError(f"cannot write {out}: it is a folder; give a file name")
+        kind = _not_its_kind(out)
+        if kind:
+            raise InputError(f"cannot write {out}: it exists and is not {kind} (a file of yours?); choose another "
+                             "name, or remove it first")
     temps: list[Path] = []
     try:
         for out in outs:
@@ -100,6 +104,35 @@ def replacing(*targets: str | os.PathLike[str]) -> Iterator[list[Path]]:
     finally:
         for tmp in temps:
             tmp.unlink(missing_ok=True)
+
+
+#: What a file of each suffix symkin writes begins with: an existing target that does not is
+#: not an earlier output of the same kind, and is not replaced.
+_SIGNATURES = {
+    ".png": ("a PNG image", (b"\x89PNG",)), ".gif": ("a GIF image", (b"GIF8",)),
+    ".pdf": ("a PDF file", (b"%PDF",)), ".svg": ("an SVG image", (b"<?xml", b"<svg")), ".html": ("an HTML page", (b"<",)),
+}
+
+
+def _not_its_kind(out: Path) -> str:
+    """The kind of file ``out``'s suffix names when ``out`` exists, is not empty and is not one
+    (a user's text file called result.png); else ""."""
+    suffix = out.suffix.lower()
+    if suffix not in _SIGNATURES and suffix != ".mp4":
+        return ""
+    try:
+        with open(out, "rb") as f:
+            head = f.read(16)
+    except FileNotFoundError:
+        return ""
+    except OSError:  # unreadable: the write will say what is wrong
+        return ""
+    if not head:
+        return ""
+    if suffix == ".mp4":
+        return "" if head[4:8] == b"ftyp" else "an MP4 video"
+    kind, starts = _SIGNATURES[suffix]
+    return "" if head.lstrip().startswith(starts) else kind
 
 
 #: The signals that stop a run (Ctrl-C, and SIGTERM, which the command line turns into Ctrl-C).
