@@ -144,9 +144,22 @@ def test_every_command_has_json_and_every_angle_states_its_unit():
 
 def test_progress_commands_take_quiet_and_omega_is_always_link_value():
     quiet = {name for name, a in _options() if "--quiet" in a.option_strings}
-    assert quiet == {"reproduce", "helical", "split", "synthesize"}
+    assert quiet == {"reproduce", "helical", "split", "synthesize", "animate"}
     for name, a in _options():
         if "--omega" in a.option_strings and a.help != "==SUPPRESS==":
             assert a.metavar == "LINK=VALUE", name
         if "--out" in a.option_strings:
             assert a.metavar in ("FILE", "DIR"), name
+
+
+def test_an_option_value_may_begin_with_a_minus(capsys):
+    """argparse took '-pi/6' for an option ('expected one argument'); a value that is not an
+    option of the command is read as the value (plain negative numbers always were)."""
+    code, out, err = run(capsys, "cardan", "--length", "20mm", "--speed", "1", "--carrier-angle", "-pi/6",
+                         "--guide-angle", "-pi/4", "--samples", "3", "--json")
+    assert code == 0, err
+    mech = json.loads(out)["mechanism"]
+    assert mech["carrier_angle_rad"]["exact"] == "-pi/6" and mech["guide_angle_rad"]["exact"] == "-pi/4"
+    # an option name after an option is still an option: argparse says what is missing
+    code, _, err = run(capsys, "cardan", "--length", "--speed", "1")
+    assert code == 2 and "--length" in err

@@ -130,6 +130,36 @@ def _negative_lists_attached(argv: list[str]) -> list[str]:
     return out
 
 
+def _negative_values_attached(argv: list[str], parser: ArgumentParser) -> list[str]:
+    """``--carrier-angle -pi/6`` read as ``--carrier-angle=-pi/6``: a token that begins with one
+    minus after an option that takes a value is that value when it is not an option of the
+    command itself (argparse refused it as an option: "expected one argument").
+
+    >>> p = build_parser("cardan")
+    >>> _negative_values_attached(["cardan", "--carrier-angle", "-pi/6", "-e", "0.3", "--json"], p)
+    ['cardan', '--carrier-angle=-pi/6', '-e', '0.3', '--json']
+    """
+    taking: set[str] = set()
+    known: set[str] = set()
+    parsers = [parser]
+    while parsers:
+        current = parsers.pop()
+        for action in current._actions:
+            known.update(action.option_strings)
+            if action.option_strings and action.nargs != 0:
+                taking.update(action.option_strings)
+            if isinstance(action, argparse._SubParsersAction):
+                parsers.extend(action.choices.values())
+    out: list[str] = []
+    for token in argv:
+        if (out and out[-1] in taking and len(token) > 1 and token[0] == "-" and token[1] != "-"
+                and token not in known and f"-{token[1]}" not in known):
+            out[-1] = f"{out[-1]}={token}"
+        else:
+            out.append(token)
+    return out
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; returns the exit status.
 
@@ -144,6 +174,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     argv = _negative_lists_attached(list(sys.argv[1:] if argv is None else argv))
     wants_json = "--json" in argv
     parser = build_parser(_command(argv))
+    argv = _negative_values_attached(argv, parser)
     try:
         args = parser.parse_args(argv)
     except UsageExit as exc:
