@@ -271,6 +271,12 @@ BAD = [
       for name in ("pi", "E", "I", "oo", "nan", "t", "sin")),
     ('meshes = [["s", "p"]]\n[links.P]\ncarrier = "C"\ngears = { s = 20 }', "gear 's' is also on link 'S'"),
     ('meshes = [["s", "p"]]\n[links.P]\ncarrier = "C"\ngears = { p = 20 }\ncolour = "red"', "[links.P]: unknown key 'colour'"),
+    # nothing joins them: free speeds no state can fix (50 such links took minutes to be told so by the states)
+    ('meshes = [["s", "p"], ["p", "r"]]\n[links.P]\ncarrier = "C"\ngears = { p = 20 }\n[links.X1]\n[links.X2]',
+     "links: X1, X2 connect to nothing"),
+    ('meshes = [["s", "p"], ["p", "r"], ["s9", "p9"]]\n[links.P]\ncarrier = "C"\ngears = { p = 20 }\n[links.S9]\n'
+     'gears = { s9 = 20 }\n[links.P9]\ncarrier = "C9"\ngears = { p9 = 20 }\n[links.C9]',
+     "the train falls apart into 2 parts that no mesh, carrier or clutch joins (S, C, R, P; S9, P9, C9)"),
     ('meshes = [["s", "p"]]\n[links.P]\ncarrier = "C"\ngears = { p = 20 }\n[links.P]\ncarrier = "C"', "not valid TOML"),
     ('meshes = [["s", "p"]]\n[links.P]\ncarrier = "C"\ngears = { p = 20 }\n[states.x]\ninput = "S"', "[states.x]: give the output link"),
     ('meshes = [["s", "p"]]\n[links.P]\ncarrier = "C"\ngears = { p = 20 }\n[states.x]\ninput = "S"\noutput = "Z"', "[states.x]: names no link 'Z'"),

@@ -55,7 +55,7 @@ from __future__ import annotations
 import importlib.resources
 import re
 import sys
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -308,12 +308,14 @@ class _Reader:
         states = self.states(data.get("states", {}), set(links_table) | set(gear_owner))
         base = self.base(data["base"]) if "base" in data else None
         try:
-            return Train(tuple(links), tuple(meshes), name=name, states=tuple(states), description=description,
-                         source=self.path, base=base)
+            train = Train(tuple(links), tuple(meshes), name=name, states=tuple(states), description=description,
+                          source=self.path, base=base)
         except TrainFileError:
             raise
         except ModelError as err:
             raise self.fail(self._where_of(str(err), specs), str(err)) from None
+        self._check_joined(specs, meshes, states, gear_owner)
+        return train
 
     def base(self, table: Any) -> Any:
         from symkin.particles import SpaceFrame
@@ -336,6 +338,48 @@ class _Reader:
                                     pitch=values.get("pitch", 0), roll=values.get("roll", 0))
         except SymkinError as err:
             raise self.fail("[base]", str(err)) from None
+
+    def _check_joined(self, specs: Mapping[str, Mapping[str, Any]], meshes: Sequence[Mesh], states: Sequence[Any],
+                      gear_owner: Mapping[str, str]) -> None:
+        """Every link joined to the others by meshes, carriers and clutches (the frame, held,
+        joins nothing): a link that nothing joins is a free speed no state can fix (50 of them
+        took minutes before the states said so, by the degrees of freedom)."""
+        names = [n for n in specs if n not in (FRAME_TABLE, FRAME)]
+        parent = {n: n for n in names}
+
+        def root(n: str) -> str:
+            while parent[n] != n:
+                parent[n] = parent[parent[n]]
+                n = parent[n]
+            return n
+
+        def join(a: Any, b: Any) -> None:
+            if isinstance(a, str) and isinstance(b, str):
+                a, b = gear_owner.get(a, a), gear_owner.get(b, b)
+                if a in parent and b in parent:
+                    parent[root(a)] = root(b)
+
+        for m in meshes:
+            join(m.a, m.b)
+        for n in names:
+            join(n, specs[n].get("carrier"))
+        for st in states:
+            for a, b in st.clutches:
+                join(a, b)
+        parts: dict[str, list[str]] = {}
+        for n in names:
+            parts.setdefault(root(n), []).append(n)
+        if len(parts) < 2:
+            return
+        groups = sorted(parts.values(), key=len, reverse=True)
+        loose = [g[0] for g in groups[1:] if len(g) == 1]
+        if len(loose) == len(groups) - 1:
+            it = "it" if len(loose) == 1 else "them"
+            raise self.fail("links", f"{', '.join(loose)} {'connects' if len(loose) == 1 else 'connect'} to nothing: no "
+                                     f"mesh, carrier or clutch joins {it} to the rest; remove {it}, or give {it} a gear "
+                                     "in a mesh")
+        raise self.fail("links", f"the train falls apart into {len(groups)} parts that no mesh, carrier or clutch joins "
+                                 f"({'; '.join(', '.join(g) for g in groups)}); join them, or give each its own file")
 
     def _check_carriers(self, specs: Mapping[str, Mapping[str, Any]]) -> None:
         for link_name, table in specs.items():
