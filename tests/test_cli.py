@@ -5,6 +5,7 @@ import subprocess
 import sys
 
 import pytest
+import sympy as sp
 
 from symkin.cli import main
 
@@ -164,3 +165,12 @@ def test_an_option_value_may_begin_with_a_minus(capsys):
     with pytest.raises(SystemExit) as exc:
         main(["cardan", "--length", "--speed", "1"])
     assert exc.value.code == 2 and "--length: expected one argument" in capsys.readouterr().err
+
+
+def test_a_json_float_that_is_null_says_why(capsys):
+    """omega_1 = -1e600 has no float: its "float" is null, and the warnings say so (they were empty)."""
+    code, out, _ = run(capsys, "speeds", "AA", "--teeth", "1,1e300,1,1", "--omega", "H=1e300", "--omega", "4=0", "--json")
+    data = json.loads(out)
+    assert code == 0 and data["speeds"]["1"]["float"] is None
+    assert sp.Integer(data["speeds"]["1"]["exact"]) == -(10**600) + 10**300  # omega_1 = omega_H (1 - z2 z4/(z1 z3))
+    assert any("beyond the float range" in w for w in data["warnings"])

@@ -54,7 +54,17 @@ def exact_json(value: Any) -> dict[str, Any] | None:
                 number = _float_of(expr)
             except (TypeError, ValueError, OverflowError):
                 number = None
-    return {"exact": text, "float": number if number is not None and math.isfinite(number) else None}
+    finite = number is not None and math.isfinite(number)
+    if not finite and (number is not None or getattr(value, "is_number", False) or isinstance(value, Fraction)):
+        import warnings
+
+        from symkin.errors import SymkinWarning
+
+        shown = text if len(text) <= 60 else text[:57] + "..."
+        infinite = text in ("zoo", "oo", "-oo", "nan") or (number is not None and math.isnan(number))
+        warnings.warn(f"{shown} {'is not a finite number' if infinite else 'is beyond the float range'}: its JSON "
+                      "float is null" + ("" if infinite else " (the exact value stands)"), SymkinWarning, stacklevel=2)
+    return {"exact": text, "float": number if finite else None}
 
 
 def exact_json_list(values: Iterable[Any] | None) -> list[dict[str, Any] | None] | None:
