@@ -82,6 +82,10 @@ def test_pint_quantities_are_taken_exactly_and_give_what_bare_numbers_give():
     # pint takes the radian for a pure number: 5 Hz passed as 5 rad/s (neither 5 turns a second nor refused)
     ("5 Hz", "rad/s", "Hz gives no angle, and rad/s measures one"),
     ("2 Hz/s", "rad/s^2", "gives no angle"),
+    # a number mistyped: 1e was read as 1 of the unit e (the elementary charge), 1,5 as a tuple
+    ("1e", "rad/s", "'1e' is not a number: an exponent needs its digits, as in 1e3"),
+    ("2.5E-", "rad/s", "as in 2.5E-3"),
+    ("1,5", "rad/s", "'1,5' is not a number: write a decimal point, as in 1.5"),
     ("3 rad", "m", "gives no angle|not a unit of m"),
 ])
 def test_bad_units_are_one_line_errors(text, unit, message):

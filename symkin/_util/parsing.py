@@ -87,6 +87,9 @@ _SAFE_BITS = int(MAX_DIGITS * math.log2(10))  # 2^996 < 10^300
 #: Seconds the parsing and bounding of one expression may take.
 SECONDS = 3.0
 
+#: 1,5 (a decimal comma, read by Python as a tuple) and 1e (an exponent without digits).
+_COMMA_DECIMAL = re.compile(r"^\s*[+-]?\d+,\d+\s*$")
+_BARE_EXPONENT = re.compile(r"^\s*[+-]?(\d+\.?\d*|\.\d+)[eE][+-]?\s*$")
 _NUMBER = re.compile(r"^[+-]?(\d+(_?\d+)*)?(\.\d*)?([eE][+-]?\d+)?$|^[+-]?\d+\s*/\s*\d+$", re.ASCII)
 
 
@@ -378,6 +381,10 @@ def parse_expression(
         allowed[n] = S.t if n == "t" else sp.Symbol(n, real=True)
     allowed.update(symbols or {})
     source = s.replace("^", "**")
+    if _COMMA_DECIMAL.match(s):
+        raise InputError(f"{what} {text!r} is not a number: write a decimal point, as in {s.replace(',', '.', 1)}")
+    if _BARE_EXPONENT.match(s):
+        raise InputError(f"{what} {text!r} is not a number: an exponent needs its digits, as in {s.strip()}3")
     try:
         tree = ast.parse(source, mode="eval")
     except (SyntaxError, ValueError):
@@ -755,7 +762,7 @@ def parse_quantity(value: Any, unit: str, *, what: str = "value", names: Iterabl
         return parse_expression(s, names=names, what=what)
     except InputError as plain:
         error = plain
-    if _well_formed(s):  # a well-formed expression that was refused (out of range, a name not allowed) has no unit
+    if _well_formed(s) or _BARE_EXPONENT.match(s):  # (1e is not 1 of the unit e, the elementary charge)  # a well-formed expression that was refused (out of range, a name not allowed) has no unit
         raise error
     refused: InputError | None = None
     for m in _UNIT_START.finditer(s):  # the unit starts at the first place where both halves parse

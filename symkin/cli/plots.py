@@ -99,7 +99,7 @@ def _point(text: str, mech: Any) -> tuple[str, tuple[Any, ...]]:
     parts = [c.strip() for c in coords.split(",")]
     if len(parts) not in (2, 3) or not all(parts):
         raise InputError(f"--point {text!r} needs two coordinates after the colon (three with a height), as in 23:-15,0")
-    values = tuple(parse_expression(c, what=f"--point coordinate {c!r}") for c in parts)
+    values = tuple(parse_expression(c, what="--point coordinate") for c in parts)
     for v in values:
         if not v.is_number or not v.is_real:
             raise InputError(f"--point {text!r}: coordinates are real numbers, got {v}")
