@@ -132,6 +132,8 @@ BAD = [
     (["stages", "--ring", "180", "--ha", "-1"], "must be positive"),
     (["stages", "--ring", "18x"], "must be a number"),
     (SPLIT + ["--umin", "11", "--umax", "2.25"], "reversed"),
+    (["split", "--total", "6000", "--stages", "4", "--backlash-line", "50,7/18", "--module", "0.5"],
+     "--backlash-line needs --ring too"),
     (SPLIT + ["--umin", "2.25", "--umax", "5"], "outside what 4 stages"),
     (["split", "--total", "6000", "--stages", "2", "--umin", "2.25", "--umax", "11", "--model", "u"], "outside what 2 stages"),
     (SPLIT + ["--ring", "180", "--satellites", "0"], "--satellites must be at least 1"),

@@ -122,7 +122,8 @@ def _model(args: Any):
         return StageErrorModel.from_expression(args.model)
     if args.backlash_line:
         if args.module is None or args.ring is None:
-            raise InputError("--backlash-line needs --module and --ring to turn each mesh's backlash into Phi/d(u)")
+            missing = " and ".join(o for o, v in (("--module", args.module), ("--ring", args.ring)) if v is None)
+            raise InputError(f"--backlash-line needs {missing} too, to turn each mesh's backlash into Phi/d(u)")
         parts = [p.strip() for p in args.backlash_line.split(",")]
         if len(parts) != 2:
             raise InputError(f"--backlash-line takes C0,C1 (j = C0 + C1 a_w), got {args.backlash_line!r}")
