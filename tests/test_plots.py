@@ -121,6 +121,9 @@ BAD = [
     (["animate", "AI1", "--teeth", "20,30,80", "--omega", "4=0", "--omega", "H=1", "--out", "x.png"], ".gif or .mp4"),
     (["animate", "AI1", "--teeth", "20,30,80", "--omega", "4=0", "--omega", "H=1", "--out", "nofolder/x.gif"], "does not exist"),
     (["trajectory", "AI1", "--teeth", "20,30,80", "--omega", "4=0", "--omega", "H=1", "--module", "-1", "--out", "x.png"], "positive"),
+    # 1e300 turns overflowed the phase reduction and was reported as a pole of 25 cos t + 15 cos(5t/3)
+    (["trajectory", "AI1", "--teeth", "20,30,80", "--omega", "4=0", "--omega", "H=1", "--turns", "1e300", "--out", "x.png"],
+     "--turns is at most 1e+06"),
 ]
 
 

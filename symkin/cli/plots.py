@@ -49,7 +49,7 @@ def _common(p: Any, out_help: str) -> None:
                           "file's [base] table otherwise)")
     p.add_argument("--module", default=None, help="gear module of a scheme: pitch radius = module * teeth / 2 (default 1)")
     span = p.add_mutually_exclusive_group()
-    span.add_argument("--turns", default=None, help="time span: turns of the carrier H (or of the fastest link), default 1")
+    span.add_argument("--turns", default=None, help="time span: turns of the carrier H (or of the fastest link), default 1, at most 10^6")
     span.add_argument("--t-end", default=None, help="time span in seconds, or with a unit (500ms, 2min)")
     add_out_argument(p, out_help)
 
@@ -169,7 +169,14 @@ def _turns(args: Any) -> float:
     turns = parse_number(args.turns, what="--turns")
     if turns <= 0:
         raise InputError(f"--turns must be positive, got {args.turns}")
+    if turns > MAX_TURNS:  # (the paths are drawn from a few thousand samples: fewer than one a turn beyond)
+        raise InputError(f"--turns is at most {MAX_TURNS:.0e}, got {args.turns}; a picture of more turns would be "
+                         "noise between its samples")
     return float(turns)
+
+
+#: The most carrier turns trajectory, curves and animate draw.
+MAX_TURNS = 10**6
 
 
 def _fmt(v: Any) -> str:
