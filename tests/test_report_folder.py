@@ -80,6 +80,8 @@ def test_report_pdf_references_resolve_in_its_one_pass(tmp_path, pdflatex):
     build = compile_pdf(out / "equations.tex", pdflatex=pdflatex, keep_log=True)
     assert "undefined" not in build.log and "??" not in build.log
     tex = (out / "equations.tex").read_text()
+    # a heading does not repeat the words its label ends with
+    assert "coaxiality AI1: the planet axis" in tex and "AI1: AI1:" not in tex
     # LaTeX's own numbering of the figures, from its .aux
     subprocess.run([pdflatex, "-interaction=nonstopmode", "equations.tex"], cwd=out, capture_output=True, timeout=120)
     numbers = dict(re.findall(r"\\newlabel\{(fig:[^}]*)\}\{\{(\d+)\}", (out / "equations.aux").read_text()))

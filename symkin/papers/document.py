@@ -171,7 +171,7 @@ def _check_block(check: Any, anchor: str = "", figure: str = "", number: int = 0
     if getattr(check, "source", "printed") == "reconstructed":
         kind += " (form reconstructed where the OCR lost it)"
     lines = [
-        (rf"\subsection*{{[{number}] " if number else r"\subsection*{") + rf"{math_text(check.label)}: {math_text(check.description)}}}"
+        (rf"\subsection*{{[{number}] " if number else r"\subsection*{") + rf"{math_text(check.label)}: {math_text(_heading_text(check))}}}"
         + (rf"\label{{{anchor}}}" if anchor else ""),
         r"\begin{align*}",
         " \\\\\n".join(rows),
@@ -190,6 +190,23 @@ def _check_block(check: Any, anchor: str = "", figure: str = "", number: int = 0
         state = "agrees with the derived value" if conf.agrees_with_derived else "does not agree with the derived value"
         lines += [rf"\textit{{Independent route}} ({escape(conf.route)}): \[ {printed['confirmation'][0]} \] {escape(state)}.", ""]
     return "\n".join(lines)
+
+
+def _heading_text(check: Any) -> str:
+    """The description after the label in a check's heading, without the words the label
+    just said ("coaxiality AI1: AI1: the planet axis ..." reads "coaxiality AI1: the planet axis ...").
+
+    >>> from types import SimpleNamespace as C
+    >>> _heading_text(C(label="coaxiality AI1", description="AI1: the planet axis")), _heading_text(C(label="(8)", description="(8) as printed"))
+    ('the planet axis', 'as printed')
+    """
+    label, text = check.label.strip(), check.description
+    last = label.split()[-1] if label else ""
+    if last and text.startswith(f"{last}: "):
+        return text[len(last) + 2:]
+    if label.startswith("(") and text.startswith(f"{label} "):
+        return text[len(label) + 1:]
+    return text
 
 
 def _row(value: Any) -> str:
