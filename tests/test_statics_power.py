@@ -216,3 +216,17 @@ def test_a_train_file_gives_mesh_efficiencies_and_the_cli_prints_both_ways(tmp_p
     assert "-10000/3333" in out and "this way it locks: 1 cannot drive H" in out and "H can drive 1" in out
     assert main(["efficiency", "--train", "simple", "--state", "low", "--mesh-efficiency", "1.5"]) == 2
     assert "must lie in (0, 1]" in capsys.readouterr().err
+
+
+def test_a_train_left_free_says_which_link_to_hold(capsys):
+    """The simple set with nothing held turns freely: the message said 'give exactly 2 link
+    speeds, for example S and C', advice for speeds, not for a load case."""
+    simple = load_train("simple")
+    with pytest.raises(DeterminacyError, match=r"hold 1 more link \(fixed=, --fixed; for example R\)") as err:
+        statics(simple, input="S", output="C")
+    assert err.value.dof == 2
+    assert main(["efficiency", "--train", "simple", "--driver", "S", "--driven", "C"]) == 2
+    assert "hold 1 more link" in capsys.readouterr().err
+    # holding the link it names is the remedy: the textbook ratio 1 + 72/24 and a positive efficiency
+    st = statics(simple, input="S", output="C", fixed=("R",), efficiency="default")
+    assert st.speeds["C"] == sp.Rational(1, 4) and 0 < float(st.efficiency.rhs) < 1
