@@ -455,7 +455,7 @@ def notes() -> list[str]:
     out = [
         "Stages (ring 180, 3 satellites, 18 <= z <= 180), sun/planet teeth and ratio: "
         + "; ".join(f"{s.sun}/{s.planet}: {s.ratio}" for s in found) + ".",
-        f"Candidate suns rejected (first failing condition): {found.rejected}. The assembly condition makes the sun a "
+        f"Candidate suns rejected (first failing condition): {', '.join(f'{k} {v}' for k, v in found.rejected.items())}. The assembly condition makes the sun a "
         "multiple of 6 and cuts 64 coaxial suns to 22; with 3 satellites the neighbour condition binds only below "
         "z_sun = 16, so it never rejects a sun of at least 18 teeth.",
         "Continuous optimum (fig. 4 case): " + " | ".join(best.explain()),
@@ -475,7 +475,7 @@ def notes() -> list[str]:
     for tol in ("0.01", "0.05"):
         d = discrete(tol)
         rows = "; ".join(
-            f"{[(s.sun, s.planet) for s in x.stages]} u = {tuple(str(r) for r in x.ratios)} total {x.total} "
+            f"{', '.join(f'{s.sun}/{s.planet}' for s in x.stages)} u = ({', '.join(str(r) for r in x.ratios)}) total {x.total} "
             f"({float(x.deviation):+.2%}) objective {float(x.objective):.6f}"
             for x in d.designs
         )

@@ -233,8 +233,9 @@ def _section_11_checks() -> list[Check]:
         derived_scheme, PUBLISHED_HEADING,
         judge(compare_claim(derived_scheme == PUBLISHED_HEADING,
                             f"of the derived ratio laws ({'; '.join(f'{kd}: {v}' for kd, v in law.items())}) only "
-                            f"{by_ratio} equal the printed (1)"),
-              confirmation=confirmation(f"the coaxiality (2): only {by_coax} admit(s) a constant lambda", coax_scheme,
+                            f"{' and '.join(by_ratio) or 'none'} equal{'s' if len(by_ratio) == 1 else ''} the printed (1)"),
+              confirmation=confirmation(f"the coaxiality (2): only {' and '.join(by_coax) or 'none'} "
+                                        f"admit{'s' if len(by_coax) == 1 else ''} a constant lambda", coax_scheme,
                                         derived_scheme, same),
               hypothesis="the equations of the AI paper [1] were carried over under an AA heading"),
     ))
@@ -273,7 +274,7 @@ def _section_11_checks() -> list[Check]:
                             f"the line follows from {derived_refs}; the paper numbers its equations (1)-(11)"),
               alternative=alternative("the reference is the pair of equation numbers written without a separator",
                                       joined, PRINTED_REFERENCE,
-                                      lambda v, p: compare_claim(p in v, f"the pairs read {v}, printed {p}"))),
+                                      lambda v, p: compare_claim(p in v, f"the pairs read {', '.join(v)}, printed {p}"))),
     ))
     # (4)-(7): the tooth chain
     ch = HS.tooth_equations("AI").chain
