@@ -35,7 +35,15 @@ import sympy as sp
 from symkin._util.parsing import parse_number
 from symkin.errors import InputError, PoleError, PrecisionWarning, UnsupportedError
 from symkin.numeric import runtime
-from symkin.numeric.codegen import KERNEL_BLOCK, ExactPrinter, FloatPrinter, ScalarPrinter, kernel_source, phase_sources
+from symkin.numeric.codegen import (
+    KERNEL_BLOCK,
+    ExactPrinter,
+    FloatPrinter,
+    ScalarPrinter,
+    kernel_source,
+    phase_sources,
+    product_ratios,
+)
 from symkin.numeric.stable import ExactRatio, plain_form
 
 __all__ = ["Plan", "BACKENDS", "NumpyBackend", "NumbaBackend", "MpmathBackend", "ExactBackend", "numba_available"]
@@ -265,7 +273,7 @@ class NumpyBackend:
         # the printer writes every NumPy name as numpy.<name>: the module itself is the namespace
         # ("numpy" would run `from numpy import *`, which imports numpy.f2py: ~0.1 s per process)
         modules = [{**runtime.NAMESPACE[plan.precision], **self.phases, "numpy": np}]
-        target = list(exprs)
+        target = product_ratios(exprs) if plan.precision == "float64" else list(exprs)
         self.func = sp.lambdify(
             list(plan.args) + list(self.twins.values()), target, modules=modules, printer=printer, cse=plan.cse, docstring_limit=0
         )
@@ -297,7 +305,7 @@ class NumpyBackend:
         if self.plan.precision != "float64":
             return False
         try:
-            exprs = [self._twin(e) for e in self.plan.stable]
+            exprs = product_ratios([self._twin(e) for e in self.plan.stable])  # (as the array code: the same roundings)
             return sp.lambdify(
                 list(self.plan.args) + list(self.twins.values()), exprs,
                 modules=[{**runtime.SCALAR_NAMESPACE, **self.phases, "math": math}, "math"], printer=ScalarPrinter({"strict": True}),

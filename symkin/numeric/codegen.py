@@ -31,7 +31,79 @@ from symkin.numeric.stable import (
     plain_form,
 )
 
-__all__ = ["FloatPrinter", "ScalarPrinter", "ExactPrinter", "kernel_source", "abs_bound", "phase_sources"]
+__all__ = ["FloatPrinter", "ScalarPrinter", "ExactPrinter", "kernel_source", "abs_bound", "phase_sources", "product_ratios"]
+
+
+class ProductRatio(sp.Function):
+    """``a*b / (a*b - c*d)`` with the difference a :class:`ProductDifference`: what the NumPy
+    float64 code computes anyway to certify the difference (``g`` of
+    :func:`symkin.numeric.runtime.product_difference`), so a law that multiplies by ``a*b``
+    and divides by the difference takes it as it is (:func:`product_ratios`)."""
+
+    nargs = 4
+    is_real = True
+
+    def doit(self, **hints: Any) -> sp.Expr:
+        """The ratio with its difference: ``a*b / ProductDifference(a, b, c, d)``."""
+        a, b, c, d = self.args
+        return a * b / ProductDifference(a, b, c, d)
+
+
+def product_ratios(exprs: Sequence[sp.Expr]) -> list[sp.Expr]:
+    """``exprs`` with each product ``a*b*X / ProductDifference(a, b, c, d)`` written
+    ``X * ProductRatio(a, b, c, d)``: two passes over the points fewer (the product ``a*b``
+    again, and a division) for the Willis forms ``r1 r3/(r1 r3 - r2 r4)``.  A difference
+    that also appears elsewhere is left as it is (it would be computed twice); so is every
+    one inside a :class:`LongPhase`, whose coefficient stays whole.
+
+    >>> r1, r2, r3, r4, w = sp.symbols("r1:5 w")
+    >>> product_ratios([w * r1 * r3 / ProductDifference(r1, r3, r2, r4)])
+    [w*ProductRatio(r1, r3, r2, r4)]
+    """
+
+    def take(factors: list[sp.Expr] | None, x: sp.Expr) -> list[sp.Expr] | None:
+        if factors is None or x.is_Number:
+            return None
+        for k, f in enumerate(factors):
+            if f == x:
+                return factors[:k] + factors[k + 1:]
+            base, exp = f.as_base_exp()
+            if base == x and exp.is_Integer and exp > 1:
+                return factors[:k] + [base ** (exp - 1)] + factors[k + 1:]
+        return None
+
+    def rewrite(e: sp.Expr, skip: set[tuple[sp.Expr, ...]]) -> sp.Expr:
+        if e.is_Atom or isinstance(e, LongPhase):
+            return e
+        args = [rewrite(a, skip) for a in e.args]
+        e = e.func(*args) if any(x is not y for x, y in zip(args, e.args)) else e
+        if not e.is_Mul:
+            return e
+        factors = list(e.args)
+        for k, f in enumerate(factors):
+            if not (f.is_Pow and f.exp == -1 and isinstance(f.base, ProductDifference)) or f.base.args in skip:
+                continue
+            a, b, c, d = f.base.args
+            rest = take(take(factors[:k] + factors[k + 1:], a), b)
+            if rest is not None:
+                return sp.Mul(*rest) * ProductRatio(a, b, c, d)
+        return e
+
+    def bare(e: sp.Expr) -> set[tuple[sp.Expr, ...]]:
+        if isinstance(e, ProductDifference):
+            return {e.args}
+        if e.is_Atom or isinstance(e, (LongPhase, ProductRatio)):
+            return set()
+        return set().union(*(bare(a) for a in e.args))
+
+    skip: set[tuple[sp.Expr, ...]] = set()
+    while True:
+        out = [rewrite(e, skip) for e in exprs]
+        taken = {n.args for e in out for n in sp.preorder_traversal(e) if isinstance(n, ProductRatio)}
+        shared = (taken & set().union(*(bare(e) for e in out))) - skip
+        if not shared:
+            return out
+        skip |= shared
 
 
 def phase_sources(exprs: Sequence[sp.Expr]) -> dict[str, str]:
@@ -130,6 +202,9 @@ class FloatPrinter(NumPyPrinter):
 
     def _print_ProductDifference(self, expr: ProductDifference) -> str:
         return f"_symkin_product_difference({', '.join(self._print(a) for a in expr.args)})"
+
+    def _print_ProductRatio(self, expr: ProductRatio) -> str:
+        return f"_symkin_product_ratio({', '.join(self._print(a) for a in expr.args)})"
 
     def _print_ReducedPhase(self, expr: ReducedPhase) -> str:
         p, q, *xs = expr.args
@@ -418,6 +493,9 @@ class ScalarPrinter(PythonCodePrinter):
 
     def _print_ProductDifference(self, expr: ProductDifference) -> str:
         return f"_symkin_product_difference({', '.join(self._print(a) for a in expr.args)})"
+
+    def _print_ProductRatio(self, expr: ProductRatio) -> str:
+        return f"_symkin_product_ratio({', '.join(self._print(a) for a in expr.args)})"
 
     def _print_ReducedPhase(self, expr: ReducedPhase) -> str:
         p, q, *xs = expr.args

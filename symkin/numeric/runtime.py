@@ -146,6 +146,12 @@ def _product_difference_quiet(a: Any, b: Any, c: Any, d: Any) -> Any:
     return _product_ratio(*_arrays(a, b, c, d))[1]
 
 
+def _product_ratio_quiet(a: Any, b: Any, c: Any, d: Any) -> Any:
+    """``a b / (a b - c d)`` with the difference of :func:`product_difference` (the ``g`` it
+    certifies the plain difference by), for generated code inside ``np.errstate(all="ignore")``."""
+    return _product_ratio(*_arrays(a, b, c, d))[2]
+
+
 def product_difference_scalar(a: float, b: float, c: float, d: float) -> float:
     """:func:`product_difference` of Python floats (the scalar path of a compiled law)."""
     p = a * b
@@ -155,6 +161,11 @@ def product_difference_scalar(a: float, b: float, c: float, d: float) -> float:
         if exact == exact:
             return exact
     return r
+
+
+def _product_ratio_scalar(a: float, b: float, c: float, d: float) -> float:
+    """``a b / (a b - c d)`` of Python floats, as the array code computes it."""
+    return (a * b) / product_difference_scalar(a, b, c, d)
 
 
 def product_difference_f32(a: Any, b: Any, c: Any, d: Any) -> Any:
@@ -239,7 +250,7 @@ def _reduced_phase_scalar(p: int, q: int, x1: float, x2: float, x3: float) -> fl
 #: Names the generated scalar code (one point, Python floats) calls.
 SCALAR_NAMESPACE = {
     "_symkin_exact_ratio": _exact_ratio_scalar, "_symkin_reduced_phase": _reduced_phase_scalar,
-    "_symkin_product_difference": product_difference_scalar,
+    "_symkin_product_difference": product_difference_scalar, "_symkin_product_ratio": _product_ratio_scalar,
 }
 
 class _ElementwiseMath:
@@ -264,7 +275,8 @@ _MODULES = {"functools": functools, "math": _ElementwiseMath()}
 NAMESPACE = {
     "float64": {
         "_symkin_exact_ratio": _exact_ratio_quiet, "_symkin_reduced_phase": reduced_phase,
-        "_symkin_product_difference": _product_difference_quiet, **_MODULES,
+        "_symkin_product_difference": _product_difference_quiet, "_symkin_product_ratio": _product_ratio_quiet,
+        **_MODULES,
     },
     "float32": {
         "_symkin_exact_ratio": exact_ratio_f32, "_symkin_reduced_phase": reduced_phase_f32,
