@@ -24,9 +24,9 @@ import numpy as np
 import sympy as sp
 
 sys.path.insert(0, os.path.dirname(__file__))
-import run as R  # noqa: E402  (the benchmark set: its laws, inputs and timer)
+import run as R
 
-import symkin  # noqa: E402
+import symkin
 
 
 def hand_floor(w1, w4, r1, r2, r3, r4):
@@ -34,7 +34,7 @@ def hand_floor(w1, w4, r1, r2, r3, r4):
         p = r1 * r3
         diff = p - r2 * r4
         g = p / diff
-        certified = -0.499 <= np.minimum.reduce(g) and np.maximum.reduce(g) <= 1.499  # noqa: F841 (the check's cost)
+        certified = np.minimum.reduce(g) >= -0.499 and np.maximum.reduce(g) <= 1.499  # noqa: F841 (the check's cost)
         out = (w1 - w4) * g
         out += w4
         finite = np.isfinite(np.add.reduce(out))  # noqa: F841
