@@ -517,7 +517,8 @@ STATIC = """## What the float backends guarantee (tested, not measured here)
   phase of the call is reduced, branch-free (tests/test_numeric_fast_paths.py).
 - Where the products of `a b - c d` may cancel is decided per call from `g = a b/(a b - c d)`: its minimum
   and maximum in [-0.499, 1.499] certify every point (the plain difference is within 3 units there); only
-  uncertified points are redone in double-double.
+  uncertified points are redone in double-double. A law that multiplies by `a b` and divides by the
+  difference (the Willis forms, `r1 r3/(r1 r3 - r2 r4)`) takes `g` itself: no second product, no division.
 - Tooth-number arrays are bounded by one bitwise-or reduction each (all >= 0: the or bounds the maximum); only
   where that bound could overflow int64 are |z| and its maximum taken, and beyond it Python integers are used.
 - The numba backend (`backend="numba"`) runs one compiled loop per law over blocks of 1024 points, every
