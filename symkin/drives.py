@@ -191,7 +191,8 @@ class EllipticalGears(Drive):
             raise InputError(f"the eccentricity must lie in [0, 1), got {self.eccentricity}; 0 gives circular gears")
         object.__setattr__(self, "eccentricity", e)
         object.__setattr__(self, "order", _positive(self.order, "order of the elliptical gears"))
-        if self.order.is_number and float(self.order) % 1 != 0:  # (a float 2.0 is whole)
+        m = self.order
+        if m.is_number and not (m.is_Integer or (m.is_Float and float(m).is_integer())):  # (a float 2.0 is whole)
             raise InputError(f"the order of elliptical gears is a whole number (only then does the pitch curve close), "
                              f"got {self.order}")
         for name in ("omega", "eccentricity", "order"):

@@ -16,6 +16,7 @@ from __future__ import annotations
 
 __all__ = [
     "NonFiniteInputWarning",
+    "NullFloatWarning",
     "warn_user",
     "SymkinError",
     "ModelError",
@@ -123,6 +124,11 @@ class CoaxialityWarning(SymkinWarning):
 class NonFiniteInputWarning(SymkinWarning):
     """An input was nan or infinite, and the outputs at those points are nan or inf
     (never a finite number taken for a value of the law)."""
+
+
+class NullFloatWarning(SymkinWarning):
+    """A value written to JSON has no float (beyond the float range, not finite, or not
+    real): its ``"float"`` is null.  The command line notes it with ``--json`` only."""
 
 
 class PoleWarning(SymkinWarning):

@@ -90,7 +90,7 @@ def test_save_writes_png_and_pdf_together_or_neither(tmp_path, monkeypatch):
 
 
 @pytest.mark.parametrize("name, content", [("mine.png", b"my notes"), ("mine.gif", b"\x89PNG not a gif"),
-                                           ("mine.pdf", b"draft"), ("mine.mp4", b"0123notavideo")])
+                                           ("mine.pdf", b"draft"), ("mine.mp4", b"0123notavideo"), ("mine.eps", b"notes")])
 def test_an_existing_file_of_another_kind_is_not_replaced(tmp_path, name, content):
     """--out names a file that is not an earlier output of that kind (a user's notes called
     mine.png): refused, and the file kept.  An earlier output, or an empty file, is replaced."""
@@ -103,7 +103,8 @@ def test_an_existing_file_of_another_kind_is_not_replaced(tmp_path, name, conten
             tmp.write_bytes(b"new")
     assert "\n" not in str(err.value) and target.read_bytes() == content
     assert sorted(p.name for p in tmp_path.iterdir()) == [name]
-    earlier = {".png": b"\x89PNG\r\n", ".gif": b"GIF89a", ".pdf": b"%PDF-1.4", ".mp4": b"\0\0\0\x18ftypmp42"}[target.suffix]
+    earlier = {".png": b"\x89PNG\r\n", ".gif": b"GIF89a", ".pdf": b"%PDF-1.4", ".mp4": b"\0\0\0\x18ftypmp42",
+               ".eps": b"%!PS-Adobe-3.0 EPSF-3.0"}[target.suffix]
     for before in (earlier + b"old", b""):
         target.write_bytes(before)
         with replacing(target) as (tmp,):

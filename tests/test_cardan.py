@@ -146,6 +146,8 @@ def test_period_follows_the_drive():
     # a non-whole order has no closed pitch curve: refused (cardan --order 1.5 ran, its motion not periodic)
     with pytest.raises(InputError, match="whole number"):
         EllipticalGears(2, sp.Rational(1, 3), sp.Rational(1, 2))
+    with pytest.raises(InputError, match="whole number"):  # (exactly: as a float it would look whole)
+        EllipticalGears(2, sp.Rational(1, 3), sp.Integer(10) ** 20 + sp.Rational(1, 2))
     assert CardanSlider.build(1, drive=AngleLaw(t**2)).period() is None
 
 

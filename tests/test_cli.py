@@ -174,3 +174,14 @@ def test_a_json_float_that_is_null_says_why(capsys):
     assert code == 0 and data["speeds"]["1"]["float"] is None
     assert sp.Integer(data["speeds"]["1"]["exact"]) == -(10**600) + 10**300  # omega_1 = omega_H (1 - z2 z4/(z1 z3))
     assert any("beyond the float range" in w for w in data["warnings"])
+    # without --json no JSON is written: no note about its floats
+    code, out, err = run(capsys, "speeds", "AA", "--teeth", "1,1e300,1,1", "--omega", "H=1e300", "--omega", "4=0")
+    assert code == 0 and "JSON float" not in err
+    # and the note says why: not finite, not real, or too large
+    from symkin._util.jsonout import exact_json
+    from symkin.errors import NullFloatWarning
+
+    for value, why in ((float("inf"), "is not a finite number"), (sp.zoo, "is not a finite number"), (1 + sp.I, "is not real"),
+                       (sp.Integer(10) ** 400, "is beyond the float range")):
+        with pytest.warns(NullFloatWarning, match=why):
+            assert exact_json(value)["float"] is None

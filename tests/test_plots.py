@@ -124,6 +124,8 @@ BAD = [
     # 1e300 turns overflowed the phase reduction and was reported as a pole of 25 cos t + 15 cos(5t/3)
     (["trajectory", "AI1", "--teeth", "20,30,80", "--omega", "4=0", "--omega", "H=1", "--turns", "1e300", "--out", "x.png"],
      "--turns is at most 1e+06"),
+    (["trajectory", "AI1", "--teeth", "20,30,80", "--omega", "4=0", "--omega", "H=1", "--t-end", "1e300", "--out", "x.png"],
+     "covers 7.96e+299 turns of the fastest link; at most 1e+06 turns"),
 ]
 
 

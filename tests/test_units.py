@@ -86,7 +86,8 @@ def test_pint_quantities_are_taken_exactly_and_give_what_bare_numbers_give():
     ("1e", "rad/s", "'1e' is not a number: an exponent needs its digits, as in 1e3"),
     ("2.5E-", "rad/s", "as in 2.5E-3"),
     ("1,5", "rad/s", "'1,5' is not a number: write a decimal point, as in 1.5"),
-    ("3 rad", "m", "gives no angle|not a unit of m"),
+    ("3 rad*m", "m", "m \\* rad measures an angle, and m does not"),
+    ("30 percent", "rad", "% gives no angle, and rad measures one; write it in a unit such as deg, rad, turn"),
 ])
 def test_bad_units_are_one_line_errors(text, unit, message):
     with pytest.raises(InputError, match=message) as err:

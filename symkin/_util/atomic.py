@@ -110,7 +110,7 @@ def replacing(*targets: str | os.PathLike[str]) -> Iterator[list[Path]]:
 #: not an earlier output of the same kind, and is not replaced.
 _SIGNATURES = {
     ".png": ("a PNG image", (b"\x89PNG",)), ".gif": ("a GIF image", (b"GIF8",)),
-    ".pdf": ("a PDF file", (b"%PDF",)), ".svg": ("an SVG image", (b"<?xml", b"<svg")), ".html": ("an HTML page", (b"<",)),
+    ".pdf": ("a PDF file", (b"%PDF",)), ".eps": ("an EPS file", (b"%!PS",)), ".svg": ("an SVG image", (b"<?xml", b"<svg")), ".html": ("an HTML page", (b"<",)),
 }
 
 

@@ -58,12 +58,16 @@ def exact_json(value: Any) -> dict[str, Any] | None:
     if not finite and (number is not None or getattr(value, "is_number", False) or isinstance(value, Fraction)):
         import warnings
 
-        from symkin.errors import SymkinWarning
+        from symkin.errors import NullFloatWarning
 
         shown = text if len(text) <= 60 else text[:57] + "..."
-        infinite = text in ("zoo", "oo", "-oo", "nan") or (number is not None and math.isnan(number))
-        warnings.warn(f"{shown} {'is not a finite number' if infinite else 'is beyond the float range'}: its JSON "
-                      "float is null" + ("" if infinite else " (the exact value stands)"), SymkinWarning, stacklevel=2)
+        if text in ("zoo", "oo", "-oo", "nan") or number is not None:  # (a float that is there is inf or nan)
+            why = "is not a finite number"
+        elif getattr(value, "is_number", False) and sp.sympify(value).is_extended_real is False:
+            why = "is not real"
+        else:
+            why = "is beyond the float range (the exact value stands)"
+        warnings.warn(f"{shown} {why}: its JSON float is null", NullFloatWarning, stacklevel=2)
     return {"exact": text, "float": number if finite else None}
 
 

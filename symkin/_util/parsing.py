@@ -689,7 +689,7 @@ def unit_factor(unit_from: Any, unit_to: str, *, what: str = "value") -> sp.Expr
     >>> unit_factor("Hz", "rad/s")
     Traceback (most recent call last):
     ...
-    symkin.errors.InputError: value: Hz gives no angle, and rad/s measures one (is 1 Hz one turn a second, 2 pi rad/s, or 1 rad/s?); write the angle in the unit: rps (turns a second), rpm, rad/s, deg/s
+    symkin.errors.InputError: value: Hz gives no angle, and rad/s measures one (is 1 Hz one turn a second, 2 pi rad/s, or 1 rad/s?); write it in a unit such as rps (turns a second), rpm, rad/s, deg/s
     """
     import pint
 
@@ -707,15 +707,21 @@ def unit_factor(unit_from: Any, unit_to: str, *, what: str = "value") -> sp.Expr
         raise InputError(f"{what}: the unit {src:~} is out of range in {unit_to}")
     if _angle_power(reg, dst) != _angle_power(reg, src):
         # pint takes the radian for a pure number, so 5 Hz would pass as 5 rad/s, not 5 turns a second
-        raise InputError(
-            f"{what}: {src:~} gives no angle, and {unit_to} measures one (is 1 Hz one turn a second, 2 pi rad/s, "
-            "or 1 rad/s?); write the angle in the unit: rps (turns a second), rpm, rad/s, deg/s"
-        )
+        if _angle_power(reg, dst) > _angle_power(reg, src):
+            why = f"{src:~} gives no angle, and {unit_to} measures one" + (
+                " (is 1 Hz one turn a second, 2 pi rad/s, or 1 rad/s?)" if unit_to == "rad/s" else "")
+        else:
+            why = f"{src:~} measures an angle, and {unit_to} does not"
+        raise InputError(f"{what}: {why}; write it in a unit such as {_SUGGESTED.get(unit_to, unit_to)}")
     for power in (0, 1, -1):
         r = Fraction(f / math.pi**power).limit_denominator(10**6)
         if r and abs(float(r) * math.pi**power - f) <= 1e-14 * abs(f):
             return sp.Rational(r.numerator, r.denominator) * sp.pi**power
     return sp.Rational(*Fraction(f).as_integer_ratio())
+
+
+#: Units to suggest for a quantity given in a unit of the wrong kind.
+_SUGGESTED = {"rad/s": "rps (turns a second), rpm, rad/s, deg/s", "rad/s^2": "rad/s^2, deg/s^2, rpm/s", "rad": "deg, rad, turn"}
 
 
 def _angle_power(reg: Any, unit: Any) -> float:

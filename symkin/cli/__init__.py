@@ -187,7 +187,10 @@ def main(argv: Sequence[str] | None = None) -> int:
         code = _run(args, prog)
     if code not in (EXIT_OK, EXIT_DIFFERS):
         return code
-    notes = list(dict.fromkeys(_note(w) for w in caught))
+    from symkin.errors import NullFloatWarning
+
+    json_out = getattr(args, "json", False)  # (a null JSON float is news only where JSON is written)
+    notes = list(dict.fromkeys(_note(w) for w in caught if json_out or not issubclass(w.category, NullFloatWarning)))
     output = getattr(args, "_output", None)
     try:
         if output is not None:

@@ -8,6 +8,7 @@ shown: an epicycloid or hypocycloid (the Cardan line for a planet in a ring twic
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 from typing import Any
 
@@ -139,6 +140,14 @@ def _setup(args: Any) -> tuple[Any, Any, list, float, list[str], dict[str, Any],
         t_end = float(t_end)
     else:
         t_end = motion.turn_time(_turns(args))
+    # the paths are drawn from a few thousand samples: a span of more turns than MAX_TURNS (of the fastest link),
+    # or beyond MAX_TIME, would be noise between them (and overflows the reduction of the phases)
+    fastest = max((abs(float(w)) for w in mech.speeds(known).values() if w.is_number), default=0.0)
+    turns = fastest * t_end / (2 * math.pi)
+    if turns > MAX_TURNS or t_end > MAX_TIME:
+        raise InputError(f"the time span 0 ... {t_end:.3g} s covers {turns:.3g} turns of the fastest link; at most "
+                         f"{MAX_TURNS:.0e} turns and {MAX_TIME:.0e} s are drawn (a picture of more would be noise "
+                         "between its samples): shorten --t-end or --turns")
     labels = [f"link {mech.link(name).name} at ({', '.join(_fmt(c) for c in xy)}) from its axis" for name, xy in points]
     return mech, motion, points, t_end, labels, about, title
 
@@ -175,8 +184,9 @@ def _turns(args: Any) -> float:
     return float(turns)
 
 
-#: The most carrier turns trajectory, curves and animate draw.
+#: The most turns (of the fastest link) and the longest time span trajectory, curves and animate draw.
 MAX_TURNS = 10**6
+MAX_TIME = 1e12
 
 
 def _fmt(v: Any) -> str:

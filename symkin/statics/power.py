@@ -42,7 +42,7 @@ from symkin import symbols as S
 from symkin._util.display import html_table
 from symkin._util.jsonout import exact_json, float_text
 from symkin._util.parsing import as_real
-from symkin.errors import DeterminacyError, InputError, ModelError
+from symkin.errors import InputError, ModelError, UnderdeterminedError
 from symkin.kinematics import solve_speeds
 from symkin.laws import Law
 from symkin.model import FRAME, LinkKind, Mechanism, Mesh
@@ -371,17 +371,14 @@ def statics(
         raise InputError(f"link {inp if inp in held else out} cannot be held and drive or be driven")
     try:
         speeds_law = solve_speeds(mech, {**{h: 0 for h in held}, inp: S.omega(inp)}, joined=pairs)
-    except DeterminacyError as err:
-        free = err.dof - 1 - len(held)
-        if free <= 0:
-            raise
-        candidates = [n for n in mech.link_names if n not in (inp, out, *held, FRAME)]
+    except UnderdeterminedError as err:  # (a locked train, or one over-determined, keeps the solver's own message)
+        in_clutches = {n for pair in pairs for n in pair}
+        candidates = [n for n in mech.link_names if n not in (inp, out, *held, FRAME) and n not in in_clutches]
         central = [n for n in candidates if mech.link(n).kind is not LinkKind.PLANET]
-        others = (central or candidates)[:free] or ["another link"]
-        raise DeterminacyError(
-            f"with {inp} driving and {', '.join(held) or 'no link'} held the train still turns freely "
-            f"({err.dof} degrees of freedom): hold {free} more link{'s' if free > 1 else ''} (fixed=, --fixed; "
-            f"for example {' and '.join(others)}) or join links (a clutch, joined=)", dof=err.dof, admissible=err.admissible,
+        example = f"; for example {(central or candidates)[0]}" if central or candidates else ""
+        raise UnderdeterminedError(
+            f"with {inp} driving and {', '.join(held) or 'no link'} held the train still turns freely: hold more "
+            f"links (fixed=, --fixed{example}) or join links (a clutch, joined=)", dof=err.dof, admissible=err.admissible,
         ) from None
     unit = {S.omega(inp): 1}
     speeds = {n: sp.cancel(speeds_law[n].subs(unit)) for n in mech.link_names}
