@@ -407,9 +407,8 @@ def animate(
     if suffix == ".html":
         if not out.resolve().parent.is_dir():
             raise InputError(f"cannot write {out}: the folder {out.resolve().parent} does not exist")
-        page = frames.html(fps=fps, dpi=dpi, size=size)
-        with replacing(out) as (tmp,):
-            tmp.write_text(page, encoding="utf-8")
+        with replacing(out) as (tmp,):  # (its checks of out first: then the page is drawn)
+            tmp.write_text(frames.html(fps=fps, dpi=dpi, size=size), encoding="utf-8")
         return out
     _fig, anim = _animation(frames, size)
     writer = animation.writers[WRITERS[suffix]](fps=fps)
