@@ -620,8 +620,13 @@ def _region_figure(folder: Path) -> list[Path]:
             free_end = b.lower if not b.lower.has(K) else b.upper
             k_end = b.upper if free_end is b.lower else b.lower
 
-            def curve(expr, kk=3, d=d):
-                return region_curve(expr.subs(K, kk), d)
+            drawn: dict = {}  # a bound drawn again (the region's edge, the published one's comparison): computed once
+
+            def curve(expr, kk=3, d=d, drawn=drawn):
+                key = expr.subs(K, kk)
+                if key not in drawn:
+                    drawn[key] = region_curve(key, d)
+                return drawn[key]
 
             ax.fill_between(d, curve(free_end), curve(k_end), color=style.PALETTE[5], alpha=0.25, lw=0,
                             label="region, k = 3" if first else None)

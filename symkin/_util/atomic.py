@@ -106,33 +106,29 @@ def replacing(*targets: str | os.PathLike[str]) -> Iterator[list[Path]]:
             tmp.unlink(missing_ok=True)
 
 
-#: What a file of each suffix symkin writes begins with: an existing target that does not is
-#: not an earlier output of the same kind, and is not replaced.
+#: What a file of each suffix symkin writes holds at a given offset: an existing target that
+#: does not is not an earlier output of the same kind, and is not replaced.
 _SIGNATURES = {
-    ".png": ("a PNG image", (b"\x89PNG",)), ".gif": ("a GIF image", (b"GIF8",)),
-    ".pdf": ("a PDF file", (b"%PDF",)), ".eps": ("an EPS file", (b"%!PS",)), ".svg": ("an SVG image", (b"<?xml", b"<svg")), ".html": ("an HTML page", (b"<",)),
+    ".png": ("a PNG image", 0, (b"\x89PNG",)), ".gif": ("a GIF image", 0, (b"GIF8",)),
+    ".pdf": ("a PDF file", 0, (b"%PDF",)), ".eps": ("an EPS file", 0, (b"%!PS",)),
+    ".svg": ("an SVG image", 0, (b"<?xml", b"<svg")), ".html": ("an HTML page", 0, (b"<",)),
+    ".mp4": ("an MP4 video", 4, (b"ftyp",)),
 }
 
 
 def _not_its_kind(out: Path) -> str:
     """The kind of file ``out``'s suffix names when ``out`` exists, is not empty and is not one
     (a user's text file called result.png); else ""."""
-    suffix = out.suffix.lower()
-    if suffix not in _SIGNATURES and suffix != ".mp4":
+    known = _SIGNATURES.get(out.suffix.lower())
+    if known is None:
         return ""
     try:
         with open(out, "rb") as f:
             head = f.read(16)
-    except FileNotFoundError:
+    except OSError:  # missing, or unreadable: the write will say what is wrong
         return ""
-    except OSError:  # unreadable: the write will say what is wrong
-        return ""
-    if not head:
-        return ""
-    if suffix == ".mp4":
-        return "" if head[4:8] == b"ftyp" else "an MP4 video"
-    kind, starts = _SIGNATURES[suffix]
-    return "" if head.lstrip().startswith(starts) else kind
+    kind, offset, starts = known
+    return "" if not head or head[offset:].lstrip().startswith(starts) else kind
 
 
 #: The signals that stop a run (Ctrl-C, and SIGTERM, which the command line turns into Ctrl-C).

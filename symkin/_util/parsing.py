@@ -705,9 +705,10 @@ def unit_factor(unit_from: Any, unit_to: str, *, what: str = "value") -> sp.Expr
         ) from None
     if not math.isfinite(f) or f == 0:
         raise InputError(f"{what}: the unit {src:~} is out of range in {unit_to}")
-    if _angle_power(reg, dst) != _angle_power(reg, src):
+    to_angle, from_angle = _angle_power(reg, dst), _angle_power(reg, src)
+    if to_angle != from_angle:
         # pint takes the radian for a pure number, so 5 Hz would pass as 5 rad/s, not 5 turns a second
-        if _angle_power(reg, dst) > _angle_power(reg, src):
+        if to_angle > from_angle:
             why = f"{src:~} gives no angle, and {unit_to} measures one" + (
                 " (is 1 Hz one turn a second, 2 pi rad/s, or 1 rad/s?)" if unit_to == "rad/s" else "")
         else:
@@ -768,7 +769,9 @@ def parse_quantity(value: Any, unit: str, *, what: str = "value", names: Iterabl
         return parse_expression(s, names=names, what=what)
     except InputError as plain:
         error = plain
-    if _well_formed(s) or _BARE_EXPONENT.match(s):  # (1e is not 1 of the unit e, the elementary charge)  # a well-formed expression that was refused (out of range, a name not allowed) has no unit
+    # a well-formed expression that was refused (out of range, a name not allowed) has no unit; nor has
+    # 1e (not 1 of the unit e, the elementary charge)
+    if _well_formed(s) or _BARE_EXPONENT.match(s):
         raise error
     refused: InputError | None = None
     for m in _UNIT_START.finditer(s):  # the unit starts at the first place where both halves parse

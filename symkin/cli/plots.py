@@ -119,13 +119,6 @@ def _setup(args: Any) -> tuple[Any, Any, list, float, list[str], dict[str, Any],
         if module <= 0:
             raise InputError(f"--module must be positive, got {args.module}")
     mech, about, title = mechanism_of(args, module)
-    import sympy as sp
-
-    symbols = {str(s) for name in mech.link_names for g in mech.link(name).gears
-               for s in (sp.sympify(g.radius).free_symbols | sp.sympify(g.teeth or 0).free_symbols)}
-    if symbols:  # (a train file may leave tooth numbers as symbols: the laws are fine, a picture needs numbers)
-        raise InputError(f"give values for {', '.join(sorted(symbols))} in the train file to plot it "
-                         "(its tooth numbers are symbols there)")
     frame = _base(args, mech)
     motion = mech.motion(known, frame)
     from symkin.viz.figures import default_particles

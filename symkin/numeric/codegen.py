@@ -141,7 +141,19 @@ def _print_long_phase(printer: Any, expr: LongPhase, kernel: bool) -> str:
     return f"_symkin_long_phase({plain}, {expr.name}, {', '.join(printer._print(a) for a in (t, *syms))})"
 
 
-class FloatPrinter(NumPyPrinter):
+class _ProductCalls:
+    """The float printers' calls of the runtime's differences and ratios of products."""
+
+    _print: Any
+
+    def _print_ProductDifference(self, expr: ProductDifference) -> str:
+        return f"_symkin_product_difference({', '.join(self._print(a) for a in expr.args)})"
+
+    def _print_ProductRatio(self, expr: ProductRatio) -> str:
+        return f"_symkin_product_ratio({', '.join(self._print(a) for a in expr.args)})"
+
+
+class FloatPrinter(_ProductCalls, NumPyPrinter):
     """NumPy printer for float32/float64 code, vectorised or scalar (``kernel=True``)."""
 
     def __init__(self, precision: str = "float64", kernel: bool = False, settings: dict | None = None):
@@ -199,12 +211,6 @@ class FloatPrinter(NumPyPrinter):
             bn, bd = (self._print(abs_bound(a)) for a in expr.args)
             return f"_symkin_exact_ratio({num}, {den}, {bn}, {bd})"
         return f"_symkin_exact_ratio({num}, {den})"
-
-    def _print_ProductDifference(self, expr: ProductDifference) -> str:
-        return f"_symkin_product_difference({', '.join(self._print(a) for a in expr.args)})"
-
-    def _print_ProductRatio(self, expr: ProductRatio) -> str:
-        return f"_symkin_product_ratio({', '.join(self._print(a) for a in expr.args)})"
 
     def _print_ReducedPhase(self, expr: ReducedPhase) -> str:
         p, q, *xs = expr.args
@@ -462,7 +468,7 @@ def kernel_source(
     return "\n".join(lines) + "\n"
 
 
-class ScalarPrinter(PythonCodePrinter):
+class ScalarPrinter(_ProductCalls, PythonCodePrinter):
     """Python code on floats (the ``math`` module) for one point of a float64 law: the
     scalar path of a compiled law, with the stable-form nodes of :mod:`symkin.numeric.stable`
     called as scalar helpers (exact ratios on Python integers are correctly rounded).
@@ -490,12 +496,6 @@ class ScalarPrinter(PythonCodePrinter):
 
     def _print_ExactRatio(self, expr: ExactRatio) -> str:
         return f"_symkin_exact_ratio({', '.join(self._print(a) for a in expr.args)})"
-
-    def _print_ProductDifference(self, expr: ProductDifference) -> str:
-        return f"_symkin_product_difference({', '.join(self._print(a) for a in expr.args)})"
-
-    def _print_ProductRatio(self, expr: ProductRatio) -> str:
-        return f"_symkin_product_ratio({', '.join(self._print(a) for a in expr.args)})"
 
     def _print_ReducedPhase(self, expr: ReducedPhase) -> str:
         p, q, *xs = expr.args

@@ -156,7 +156,7 @@ def check_rows(check: Any) -> dict[str, list[str]]:
     return rows
 
 
-def _check_block(check: Any, anchor: str = "", figure: str = "", number: int = 0) -> str:
+def _check_block(check: Any, figure: int = 0, number: int = 0) -> str:
     """A check's subsection; ``number`` (from 1) heads it as ``[number]``, the index names it so,
     and ``figure`` is the number of the figure it points to: both are printed, not ``\\ref``-ed,
     so that the one pdflatex pass :func:`~symkin.papers.texbuild.compile_pdf` makes resolves them."""
@@ -171,8 +171,7 @@ def _check_block(check: Any, anchor: str = "", figure: str = "", number: int = 0
     if getattr(check, "source", "printed") == "reconstructed":
         kind += " (form reconstructed where the OCR lost it)"
     lines = [
-        (rf"\subsection*{{[{number}] " if number else r"\subsection*{") + rf"{math_text(check.label)}: {math_text(_heading_text(check))}}}"
-        + (rf"\label{{{anchor}}}" if anchor else ""),
+        (rf"\subsection*{{[{number}] " if number else r"\subsection*{") + rf"{math_text(check.label)}: {math_text(_heading_text(check))}}}",
         r"\begin{align*}",
         " \\\\\n".join(rows),
         r"\end{align*}",
@@ -223,7 +222,7 @@ def _summary(results: list[Any]) -> str:
     return escape(text) + "\n"
 
 
-def _items(result: Any, anchors: dict[int, int]) -> list[str]:
+def _items(result: Any, check_numbers: dict[int, int]) -> list[str]:
     """The paper's printed items with their verdicts and the numbers of their checks, as a list."""
     items = paper_items(result)
     if not items:
@@ -231,7 +230,7 @@ def _items(result: Any, anchors: dict[int, int]) -> list[str]:
     out = [r"\begin{itemize}"]
     for it in items:
         verdict = it.verdict.value if it.verdict is not None else "not checked: " + (it.item.not_checked or "no reason given")
-        refs = ", ".join(rf"{math_text(c.label)} [{anchors[id(c)]}]" for c in it.checks if id(c) in anchors)
+        refs = ", ".join(rf"{math_text(c.label)} [{check_numbers[id(c)]}]" for c in it.checks if id(c) in check_numbers)
         out.append(rf"\item {math_text(it.item.item)} ({math_text(it.item.what)}): \textbf{{{escape(verdict)}}}"
                    + (f"; {refs}" if refs else ""))
     out.append(r"\end{itemize}")
@@ -289,12 +288,12 @@ def _placed_figures(result: Any, root: Path | None) -> _Placed:
     return after, loose, figure_of
 
 
-def _items_index(results: list[Any], anchors: dict[int, int]) -> list[str]:
+def _items_index(results: list[Any], check_numbers: dict[int, int]) -> list[str]:
     """An index of every paper's printed items: verdict, and the numbers of the checks."""
     out = [r"\clearpage", r"\section*{Index of paper items}",
            "Every item each paper prints, with its verdict and the numbers [n] of the checks that compare it." + "\n"]
     for r in results:
-        block = _items(r, anchors)
+        block = _items(r, check_numbers)
         if block:
             out += [rf"\subsection*{{{escape(r.key)}}}"] + block
     return out
@@ -310,19 +309,18 @@ def equations_document(results: Iterable[Any], root: Path | None = None) -> str:
     """
     results = list(results)
     parts = [PREAMBLE, _summary(results)]
-    anchors: dict[int, int] = {}  # check -> its number
+    check_numbers: dict[int, int] = {}  # check -> its number
     figures = 0  # figures placed so far: LaTeX numbers them in the order of their captions
     for r in results:
         parts.append(rf"\section{{{escape(r.citation)}}}")
         parts.append(rf"Paper key: \texttt{{{escape(r.key)}}}." + "\n")
         after, loose, figure_of = _placed_figures(r, root)
         placed = [label for c in r.checks for _, _, label in after.get(id(c), [])] + [label for _, _, label in loose]
-        number = {label: figures + k for k, label in enumerate(placed, 1)}
+        figure_numbers = {label: figures + k for k, label in enumerate(placed, 1)}
         figures += len(placed)
         for c in r.checks:
-            anchors[id(c)] = len(anchors) + 1
-            figure = number[figure_of[id(c)]] if id(c) in figure_of else 0
-            parts.append(_check_block(c, f"chk:{anchors[id(c)]}", str(figure) if figure else "", anchors[id(c)]))
+            check_numbers[id(c)] = len(check_numbers) + 1
+            parts.append(_check_block(c, figure_numbers.get(figure_of.get(id(c), ""), 0), check_numbers[id(c)]))
             for fig, caption, label in after.get(id(c), []):
                 parts += _figure(fig, Path(root or "."), caption, label)
         for fig, caption, label in loose:
@@ -333,6 +331,6 @@ def equations_document(results: Iterable[Any], root: Path | None = None) -> str:
         for note in getattr(r, "notes", []) or []:
             parts.append(r"\textit{Note:} " + escape(note) + "\n")
     if any(paper_items(r) for r in results):
-        parts += _items_index(results, anchors)
+        parts += _items_index(results, check_numbers)
     parts.append(r"\end{document}")
     return "\n".join(parts) + "\n"

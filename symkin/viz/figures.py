@@ -322,11 +322,9 @@ def save(fig: Figure, path: Path, formats: Sequence[str] | None = None) -> list[
         for k, (tmp, target) in enumerate(zip(temps, targets)):
             dpi = 200 if target.suffix == ".png" else 150
             if tight is None and target.suffix in (".png", ".pdf") and _savefig_defaults():
-                if k == 0:
+                # after the first file, its layout: the axes stay where it put them (a layout costs as much as a draw)
+                with _layout_kept(fig) if k else contextlib.nullcontext():
                     _print_once(fig, tmp, target.suffix[1:], dpi)
-                else:  # the layout of the first file: the axes stay where it put them (a layout costs as much as a draw)
-                    with _layout_kept(fig):
-                        _print_once(fig, tmp, target.suffix[1:], dpi)
             else:
                 extra: dict[str, Any] = {"pil_kwargs": dict(_PNG_OPTIONS)} if target.suffix == ".png" else {}
                 fig.savefig(tmp, dpi=dpi, bbox_inches=tight, format=target.suffix[1:], **extra)

@@ -116,7 +116,11 @@ def mesh_phases(mech: Any, values: Mapping[Any, Any] | None = None) -> dict[str,
     named = as_values(values)
 
     def centre(link: Any) -> np.ndarray:
-        return np.array([float(substitute(sp.sympify(c), named)) for c in mech.axis_position(link.name)])
+        position = [substitute(sp.sympify(c), named) for c in mech.axis_position(link.name)]
+        free = set().union(*(c.free_symbols for c in position))
+        if free:  # (a train file may leave a tooth number as a symbol: a drawing needs its value)
+            raise InputError(f"give values for {', '.join(sorted(map(str, free)))} to draw the gears")
+        return np.array([float(c) for c in position])
 
     toothed = {}
     for link in mech.links:
