@@ -21,7 +21,7 @@ from symkin.cli import main
 from symkin.papers.checks import Check, alternative, compare_exact, compare_symbolic, judge
 from symkin.papers.document import equations_document
 from symkin.papers.reproduce import run
-from symkin.papers.texbuild import compile_pdf
+from symkin.papers.texbuild import compile_pdf, start_pdf
 
 
 @pytest.fixture(autouse=True, scope="module")
@@ -36,6 +36,13 @@ def _alyushin2009_derived_once():
     with pytest.MonkeyPatch.context() as patch:
         patch.setattr(alyushin2009, "checks", lambda: list(derived))
         yield
+
+
+#: A preamble as a report's: the packages and the title page.
+PREAMBLE_FOR_TESTS = r"""\documentclass[10pt,a4paper]{article}
+\usepackage{amsmath,amssymb}
+\begin{document}
+"""
 
 
 def previous_report(folder: Path) -> Path:
@@ -137,6 +144,79 @@ def test_a_document_pdflatex_rejects_is_a_tool_error_and_the_previous_report_sta
     with pytest.raises(ToolError, match="pdflatex could not compile equations.tex.*Undefined control sequence"):
         run(["alyushin2009"], out, quiet=True)
     assert_untouched(out)
+
+
+def pdflatex_processes(folder: Path) -> list[int]:
+    """The pdflatex processes working in ``folder`` or below it (Linux's /proc)."""
+    found = []
+    for entry in Path("/proc").iterdir():
+        try:
+            if entry.name.isdigit() and (entry / "comm").read_text().strip() == "pdflatex" \
+                    and Path(os.readlink(entry / "cwd")).is_relative_to(folder):
+                found.append(int(entry.name))
+        except OSError:  # ended meanwhile, or not ours to read
+            pass
+    return found
+
+
+def test_pdflatex_started_on_the_preamble_compiles_the_body_given_later_as_the_whole_document(tmp_path, pdflatex):
+    """reproduce starts pdflatex on the preamble before the papers are derived and gives it
+    the body at the end (a named pipe).  Given at once, before pdflatex has opened the pipe
+    (what the pipe holds is lost if every end closes first), and longer than a pipe holds
+    (the writes wait for pdflatex), the PDF is the one of the whole document compiled at once."""
+    body = "\n\n".join(rf"\section*{{Part {i}}} " + "Words of a long report. " * 60 for i in range(60)) + "\n\\end{document}\n"
+    assert len(body.encode()) > 2**16
+    head = PREAMBLE_FOR_TESTS
+    early = start_pdf(tmp_path, "streamed", head, pdflatex=pdflatex)
+    if early is None:
+        pytest.skip("no named pipes here (Linux only): the document is compiled whole")
+    streamed = early.finish(body, keep_log=True)
+    whole = tmp_path / "whole" / "whole.tex"
+    whole.parent.mkdir()
+    whole.write_text(head + body)
+    at_once = compile_pdf(whole, pdflatex=pdflatex, keep_log=True)
+    pages = [re.search(r"Output written on \S+ \((\d+) pages?, (\d+) bytes\)", b.log).groups() for b in (streamed, at_once)]
+    assert pages[0][0] == pages[1][0] and int(pages[0][0]) > 10
+    assert abs(int(pages[0][1]) - int(pages[1][1])) < 100  # (the file name and date in the PDF differ)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["streamed.log", "streamed.pdf", "whole"]
+    assert not pdflatex_processes(tmp_path)
+
+
+@pytest.mark.parametrize("body", [r"\undefinedmacro\end{document}", "a body that never ends the document"])
+def test_a_body_pdflatex_rejects_or_that_never_ends_is_a_tool_error_at_once_and_the_previous_report_stays(
+        tmp_path, monkeypatch, pdflatex, body):
+    import symkin.papers.reproduce
+    from symkin.papers.document import PREAMBLE
+
+    out = previous_report(tmp_path / "report")
+    monkeypatch.setattr(symkin.papers.reproduce, "equations_document", lambda results, root=None: PREAMBLE + body)
+    start = time.monotonic()
+    with pytest.raises(ToolError, match="pdflatex could not compile equations.tex: .*(Undefined control sequence|Emergency stop)"):
+        run(["alyushin2009"], out, quiet=True)
+    assert time.monotonic() - start < 60
+    assert_untouched(out)
+    assert not pdflatex_processes(tmp_path)
+
+
+def test_an_interrupt_leaves_no_pdflatex_running(tmp_path, capsys, monkeypatch, pdflatex):
+    from symkin.derivations import alyushin2009
+
+    out = previous_report(tmp_path / "report")
+    started = []
+    import symkin.papers.reproduce
+
+    real_start = symkin.papers.reproduce.start_pdf
+    monkeypatch.setattr(symkin.papers.reproduce, "start_pdf", lambda *a, **k: started.append(real_start(*a, **k)) or started[-1])
+
+    def interrupted(folder):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(alyushin2009, "figures", interrupted)
+    code, _stdout, err = cli(capsys, "reproduce", "alyushin2009", "--out", str(out))
+    assert code == 130 and "interrupted; nothing was written" in err
+    assert started and started[0] is not None  # (pdflatex was waiting for the body)
+    assert_untouched(out)
+    assert not pdflatex_processes(tmp_path)
 
 
 def test_without_pdflatex_the_pdf_is_skipped_with_a_clear_message(tmp_path, monkeypatch, capsys):
@@ -338,14 +418,15 @@ if step == "after-exchange":
         os.kill(os.getpid(), signal.SIGKILL)  # swapped, the old one not yet removed
         return done
     atomic._exchange = exchange
-if step == "while-building":
+if step.startswith("while-building"):
     from symkin.derivations import alyushin2009
     runner = os.getpid()  # figures may be drawn in a worker process: kill the run itself
     def figures(folder):
         (folder / "half.png").write_bytes(b"half")
         os.kill(runner, signal.SIGKILL)
     alyushin2009.figures = figures
-sys.exit(main(["reproduce", "alyushin2009", "--out", sys.argv[2], "--no-pdf", "--quiet"]))
+pdf = [] if step == "while-building-with-pdflatex" else ["--no-pdf"]
+sys.exit(main(["reproduce", "alyushin2009", "--out", sys.argv[2], "--quiet", *pdf]))
 """
 
 
@@ -370,6 +451,18 @@ def test_a_kill_between_the_two_renames_is_recovered_by_the_next_run(tmp_path, c
     code, _, err = cli(capsys, "reproduce", "alyushin2009", "--out", str(out), "--no-pdf", "--quiet")
     assert code == 130, err
     assert_untouched(out)
+
+
+def test_a_kill_while_pdflatex_waits_for_the_body_leaves_no_pdflatex_running(tmp_path, pdflatex):
+    """pdflatex waits for the body on a pipe the run holds open: when the run is killed, the pipe's
+    last writer closes (the workers die with it) and pdflatex reads its end and stops."""
+    out = previous_report(tmp_path / "report")
+    killed_run("while-building-with-pdflatex", out)
+    deadline = time.monotonic() + 30
+    while pdflatex_processes(tmp_path) and time.monotonic() < deadline:
+        time.sleep(0.05)
+    assert not pdflatex_processes(tmp_path)
+    assert (out / "marker.txt").read_text() == "previous"
 
 
 def test_a_kill_after_the_atomic_exchange_leaves_the_new_report_whole(tmp_path, capsys):
