@@ -82,12 +82,7 @@ def dumps(value: Any) -> bytes:
     return buffer.getvalue()
 
 
-#: Called as ``prepare(task, value)`` on a task's value in the process that ran it, after
-#: the task is timed: work on the value that would otherwise fall to the calling process.
-Prepare = Callable[[Task, Any], None]
-
-
-def run_task(modules: dict[str, Any], task: Task, figures_dir: Path, prepare: Prepare | None = None) -> tuple[Any, float]:
+def run_task(modules: dict[str, Any], task: Task, figures_dir: Path) -> tuple[Any, float]:
     """Run one task in this process; returns its value and the seconds it took."""
     name, part = task
     mod = modules[name]
@@ -97,8 +92,6 @@ def run_task(modules: dict[str, Any], task: Task, figures_dir: Path, prepare: Pr
     else:
         value = list(mod.figures(figures_dir))
     seconds = time.perf_counter() - start
-    if prepare is not None:
-        prepare(task, value)
     return value, seconds
 
 
@@ -130,7 +123,7 @@ def _die_with_parent(parent: int) -> None:
         os._exit(1)
 
 
-def _worker(conn: Connection, parent: int, modules: dict[str, Any], figures_dir: Path, prepare: Prepare | None) -> None:
+def _worker(conn: Connection, parent: int, modules: dict[str, Any], figures_dir: Path) -> None:
     _die_with_parent(parent)
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # the parent handles Ctrl-C and ends its workers
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
@@ -141,7 +134,7 @@ def _worker(conn: Connection, parent: int, modules: dict[str, Any], figures_dir:
         if task is None:
             return
         try:
-            value, seconds = run_task(modules, task, figures_dir, prepare)
+            value, seconds = run_task(modules, task, figures_dir)
             message = dumps(("ok", task, value, seconds))
         except BaseException as err:  # sent to the parent, which raises it
             try:
@@ -158,17 +151,17 @@ def run_tasks(
     *,
     jobs: int,
     done: Callable[[Task, Any, float], None],
-    prepare: Prepare | None = None,
 ) -> None:
     """Run ``tasks`` on ``jobs`` worker processes (in this process when ``jobs`` is 1 or
     forking is not possible), calling ``done(task, value, seconds)`` in this process as each
-    one ends (and ``prepare(task, value)`` first, where the task ran).  The first task to fail
+    one ends, the next task already given to the worker that ran it (what ``done`` does while
+    the workers run shares the cores with them: it falls on both).  The first task to fail
     stops the others and its exception is raised here."""
     jobs = min(jobs, len(tasks))
     if jobs <= 1 or not can_fork():
         with _collecting_as_a_worker():
             for task in tasks:
-                value, seconds = run_task(modules, task, figures_dir, prepare)
+                value, seconds = run_task(modules, task, figures_dir)
                 done(task, value, seconds)
         return
     ctx = multiprocessing.get_context("fork")
@@ -188,7 +181,7 @@ def run_tasks(
             try:
                 for _ in range(jobs):
                     here, there = ctx.Pipe()
-                    proc = ctx.Process(target=_worker, args=(there, parent, modules, figures_dir, prepare),
+                    proc = ctx.Process(target=_worker, args=(there, parent, modules, figures_dir),
                                        daemon=True)
                     proc.start()
                     there.close()
