@@ -198,6 +198,26 @@ def test_ratio_from_tooth_numbers_is_exact_up_to_1e8_teeth():
         assert np.all(got[~ok] == 0)
 
 
+@pytest.mark.parametrize("backend", FLOAT_BACKENDS)
+def test_tooth_ratios_on_both_sides_of_2_53_in_one_call_are_correctly_rounded(backend):
+    """numba evaluates the integer parts in float64 where every partial sum is below 2^53 (exact
+    there) and redoes the other points with integers: one array holding both kinds (z1 z3 near
+    10^4 and near 10^16, the products nearly equal)."""
+    law = ratio_law()
+    n = 400
+    big = rng.integers(0, 2, n).astype(bool)
+    z1 = np.where(big, rng.integers(10**7, 10**8, n), rng.integers(20, 200, n))
+    z3 = z1 + rng.integers(-2, 3, n)
+    k = rng.integers(1, 4, n)
+    z2, z4 = z1 - k, z3 + k
+    ref = np.array([float(Fraction(int(a * c - b * d), int(a * c))) for a, b, c, d in zip(z1, z2, z3, z4)])
+    got = symkin.compile(law, backend=backend)(z1, z2, z3, z4)
+    ok = ref != 0
+    assert np.max(np.abs(got[ok] - ref[ok]) / np.abs(ref[ok])) <= 2.3e-16  # within one rounding
+    assert np.all(got[~ok] == 0)
+    assert big[ok].sum() > 100 and (~big).sum() > 100
+
+
 def test_integer_parts_switch_to_python_integers_where_int64_would_overflow():
     law = schemes.two_row("AA", teeth=True).ratio("H", "1", fixed="4")
     z = [3 * 10**9, 3 * 10**9 - 1, 3 * 10**9, 3 * 10**9 + 1]  # z1 z3 = 9e18 > int64 range

@@ -88,6 +88,7 @@ class Plan:
 _KIND_WORDS = {"c": "complex", "b": "boolean", "U": "text", "S": "bytes", "M": "date", "m": "time-span", "V": "raw"}
 _INT64_MAX = np.iinfo(np.int64).max
 _INT64 = np.dtype(np.int64)
+_FLOAT64 = np.dtype(np.float64)
 
 
 def _refusal(name: str, got: str, integer: bool) -> InputError:
@@ -748,6 +749,13 @@ class NumbaBackend(NumpyBackend):
         self.broken = False
         self.kernel_sources: dict[tuple[bool, tuple[bool, ...]], str] = {}
         self.namespace = runtime.numba_namespace(plan.precision)
+        #: the type each argument's array has in the common call (int64 for tooth numbers)
+        self._wanted = tuple(_INT64 if integer else self._np_dtype for integer in self.integer_flags)
+        #: argument -> (value, block of copies of it), the last scalar given there
+        self._blocks: dict[int, tuple[float, np.ndarray]] = {}
+        self._outputs = len(plan.stable)
+        #: the serial kernel of float inputs once compiled (the common small call's fast path)
+        self._serial: Any = None
 
     def _kernel(self, parallel: bool, float_integers: tuple[bool, ...] = ()) -> Any:
         """The compiled loop and its redo pass (or None): one per law, threading and float
@@ -771,6 +779,8 @@ class NumbaBackend(NumpyBackend):
                     jit = numba.njit(parallel=parallel, error_model="numpy", fastmath=False, nogil=True)
                     kernel = jit(ns["_kernel"]), (jit(ns["_kernel_redo"]) if "_kernel_redo" in ns else None)
                 self.kernels[key] = kernel
+                if key == (False, (False,) * len(plan.args)):
+                    self._serial = kernel[0]
         return self.kernels[key]
 
     @property
@@ -785,16 +795,15 @@ class NumbaBackend(NumpyBackend):
     def _common_call(self, values: Sequence[Any]) -> tuple[int, list[np.ndarray], list[int]] | None:
         """``(n, inputs, steps)`` for the common call, without conversions: every argument a
         flat contiguous array of one length (int64 for tooth numbers, the working float type
-        otherwise) or, in float64, a float for a real argument; None for any other call."""
+        otherwise) or, in float64, a float for a real argument (given to the kernel as a block
+        of copies of it, kept for the next call with the same value); None for any other call."""
         n = -1
         inputs: list[np.ndarray] = []
         steps: list[int] = []
-        dt = self._np_dtype
-        wide = self.dtype is np.float64
-        for v, integer in zip(values, self.integer_flags):
+        for k, (v, want) in enumerate(zip(values, self._wanted)):
             kind = type(v)
             if kind is np.ndarray:
-                if v.ndim != 1 or v.dtype is not (_INT64 if integer else dt) or v.strides[0] != v.itemsize:
+                if v.dtype is not want or v.ndim != 1 or v.strides[0] != v.itemsize:
                     return None
                 if n < 0:
                     n = v.shape[0]
@@ -802,17 +811,22 @@ class NumbaBackend(NumpyBackend):
                     return None
                 inputs.append(v)
                 steps.append(1)
-            elif wide and not integer and (kind is float or kind is np.float64):
-                inputs.append(v)  # (made a block of copies below)
+            elif want is _FLOAT64 and (kind is float or kind is np.float64):
+                inputs.append(self._block(k, v))
                 steps.append(0)
             else:
                 return None
-        if n < 0:
-            return None
-        if 0 in steps:
-            block = min(n, KERNEL_BLOCK)
-            inputs = [v if step else np.full(block, v) for v, step in zip(inputs, steps)]
-        return n, inputs, steps
+        return (n, inputs, steps) if n >= 0 else None
+
+    def _block(self, k: int, v: float) -> np.ndarray:
+        """A block of :data:`KERNEL_BLOCK` copies of the float ``v`` for argument ``k``: the one
+        of the last call when ``v`` is the same number (a parameter held while an array sweeps)."""
+        held = self._blocks.get(k)
+        if held is not None and held[0] == v and math.copysign(1.0, held[0]) == math.copysign(1.0, v):
+            return held[1]
+        block = np.full(KERNEL_BLOCK, v, dtype=np.float64)
+        self._blocks[k] = (float(v), block)
+        return block
 
     def evaluate(
         self, values: Sequence[Any], outs: Sequence[np.ndarray] | None = None
@@ -822,6 +836,15 @@ class NumbaBackend(NumpyBackend):
             return super().evaluate(values, outs)
         plan = self.plan
         common = self._common_call(values) if outs is None else None
+        serial = self._serial
+        if common is not None and serial is not None and common[0] < _PARALLEL_FROM:
+            # the common small call: the serial kernel compiled, nothing to convert or switch
+            n, inputs, steps = common
+            results = [np.empty(n, self._np_dtype) for _ in range(self._outputs)] if self._outputs > 1 else [np.empty(n, self._np_dtype)]
+            bad, nonwhole, uncertain = serial(*inputs, *results, n, *steps)
+            if not (bad or uncertain):
+                return (n,), results, False
+            # (else poles, or differences of products to redo: the general path below, again)
         if common is not None:
             n, inputs, steps = common
             shape: tuple[int, ...] = (n,)

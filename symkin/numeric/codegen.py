@@ -125,6 +125,9 @@ def _print_long_phase(printer: Any, expr: LongPhase, kernel: bool) -> str:
     plain = f"({printer._print(coeff)})*{printer._print(t)}"
     args = [printer._print(a) for a in syms]
     call = f"_dd_reduce_pair({expr.name}({', '.join(args)}), {printer._print(t)})"
+    fixed = getattr(printer, "phase_fixed", None) if kernel else None
+    if fixed is not None:  # a block whose coefficients are its inputs' at its first point: every phase reduced
+        return f"_dd_reduce(_mh{fixed[expr.name]}, _ml{fixed[expr.name]}, {printer._print(t)})"
     memo = getattr(printer, "phase_memo", None) if kernel else None
     if memo is not None:  # a kernel's loop: the coefficient kept while its inputs repeat (below)
         k = memo.setdefault(expr.name, (len(memo), len(args)))[0]
@@ -165,6 +168,9 @@ class FloatPrinter(_ProductCalls, NumPyPrinter):
         #: variables, number of coefficient inputs) (``None``: no memo), and the statements
         #: to put before the line printed.
         self.phase_memo: dict[str, tuple[int, int]] | None = None
+        #: In a kernel's blocked loop where every long phase's coefficient is the same at every
+        #: point (its inputs scalars): the phases by name -> index of their coefficient variables.
+        self.phase_fixed: dict[str, int] | None = None
         self.pending: list[str] = []
 
     # numbers: a float32 kernel wraps constants so that Numba keeps float32
@@ -209,6 +215,9 @@ class FloatPrinter(_ProductCalls, NumPyPrinter):
             self._integer_mode = saved
         if self.kernel:
             bn, bd = (self._print(abs_bound(a)) for a in expr.args)
+            if self.precision == "float64":  # in the float twins: exact below 2^53 (runtime checks the bounds)
+                twins = {s: sp.Symbol(FLOAT_TWIN + s.name) for a in expr.args for s in a.free_symbols}
+                num, den = (self._print(a.xreplace(twins)) for a in expr.args)
             return f"_symkin_exact_ratio({num}, {den}, {bn}, {bd})"
         return f"_symkin_exact_ratio({num}, {den})"
 
@@ -428,6 +437,13 @@ def kernel_source(
         lines += ["    _bad += _lb", "    _nonwhole += _lnw", "    return _bad, _nonwhole, 0"]
         return "\n".join(lines) + "\n"
 
+    # the long phases: name -> indices of the arguments of their coefficient
+    long_args: dict[str, list[int]] = {}
+    for e in exprs:
+        for node in sp.preorder_traversal(e):
+            if isinstance(node, LongPhase) and node.name not in long_args:
+                long_args[node.name] = [int(str(a).removeprefix(FLOAT_TWIN)[1:]) for a in node.args[3:]]
+
     def block_loop(mode: str) -> list[str]:
         out = ["    for _b in prange((n + _B - 1) // _B):",
                "        _s = _b * _B",
@@ -435,14 +451,29 @@ def kernel_source(
         # a scalar arrives as a block of copies of it: every read is contiguous
         out += [f"        V{k} = {nm.upper()}[_s:_e] if S{k} else {nm.upper()}[:_e - _s]" for k, nm in enumerate(names)]
         out += [f"        W{k} = O{k}[_s:_e]" for k in range(len(reduced))]
-        out += ["        _lb = 0", "        _lnw = 0"] + (["        _lu = 0"] if mode == "plain" else [])
+        counts = ["_lb = 0", "_lnw = 0"] + (["_lu = 0"] if mode == "plain" else [])
+        out += ["        " + c for c in counts]
+        pad = "        "
+        if long_args and mode != "redo":
+            # every long phase's coefficient from scalars (a sweep of t): computed once for the
+            # block and every phase reduced, a loop without branches; else kept while inputs repeat
+            used = sorted({k for ks in long_args.values() for k in ks})
+            out.append(f"        if not ({' or '.join(f'S{k}' for k in used)}):")
+            for i, (name, ks) in enumerate(long_args.items()):
+                out.append(f"            _mh{i}, _ml{i} = {name}({', '.join(f'V{k}[0]' for k in ks)})")
+            printer.phase_fixed = {name: i for i, name in enumerate(long_args)}
+            out.append("            for _j in range(_e - _s):")
+            out += body("                ", lambda k: f"V{k}[_j]", mode)
+            printer.phase_fixed = None
+            out.append("        else:")
+            pad = "            "
         printer.phase_memo = {}
-        inner = body("            ", lambda k: f"V{k}[_j]", mode)
+        inner = body(pad + "    ", lambda k: f"V{k}[_j]", mode)
         for k, inputs in printer.phase_memo.values():  # no coefficient yet in this block
-            out += [f"        _mv{k} = False", f"        _mh{k} = 0.0", f"        _ml{k} = 0.0"]
-            out += [f"        _mk{k}_{i} = 0.0" for i in range(inputs)]
+            out += [f"{pad}_mv{k} = False", f"{pad}_mh{k} = 0.0", f"{pad}_ml{k} = 0.0"]
+            out += [f"{pad}_mk{k}_{i} = 0.0" for i in range(inputs)]
         printer.phase_memo = None
-        out.append("        for _j in range(_e - _s):")
+        out.append(f"{pad}for _j in range(_e - _s):")
         out += inner
         out.append("        _bad += _lb")
         if mode != "redo":  # (the redo reads the same inputs again)
