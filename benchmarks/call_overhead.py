@@ -60,7 +60,7 @@ def main() -> None:
         for title, (law, values) in cases(n, rng).items():
             args = sorted(law.rhs.free_symbols, key=lambda s: s.name)
             plain = sp.lambdify(args, law.rhs, modules="numpy")
-            f = symkin.compile(law)
+            f = symkin.compile(law, backend="numpy")
             vals = values
             t_plain = median_us(lambda: plain(*vals), n)
             t_symkin = median_us(lambda: f(*vals), n)

@@ -3,7 +3,7 @@ omega_H = omega_4 + (omega_1 - omega_4) r1 r3/(r1 r3 - r2 r4), three ways, side 
 in one run (methods in turn, medians of 7 rounds, as ratios to sympy.lambdify):
 
 - ``sympy.lambdify``: no check;
-- ``symkin numpy (default)``: ``symkin.compile(law)``;
+- ``symkin numpy``: ``symkin.compile(law, backend="numpy")``;
 - ``hand floor``: the least NumPy work that still certifies the difference r1 r3 - r2 r4
   (products, difference, g = r1 r3/difference, its minimum and maximum, one finiteness
   pass; the law rewritten as omega_4 + (omega_1 - omega_4) g, in place).  No implementation
@@ -45,7 +45,7 @@ def main() -> None:
     case = R.cases(10**6)["differential omega_H (II, radii)"]
     methods = {
         "sympy.lambdify": sp.lambdify(case["args"], case["expr"], "numpy"),
-        "symkin numpy (default)": symkin.compile(case["expr"], case["args"]),
+        "symkin numpy": symkin.compile(case["expr"], case["args"], backend="numpy"),
         "hand floor": hand_floor,
     }
     print(f"load {os.getloadavg()[0]:.2f}")

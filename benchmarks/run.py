@@ -11,8 +11,9 @@ elliptical-drive Cardan slider acceleration a_s (symkin.mechanisms.cardan).
 
 Methods, every one timed on the same inputs in the same rounds (round robin, so that a busy
 moment of the shared machine hits them all): hand-written NumPy, sympy.lambdify,
-lambdify(cse=True), numexpr (if installed), symkin.compile(law) (the default: NumPy float64
-with its stable forms and checks) and symkin.compile(law, backend="numba") (if installed).
+lambdify(cse=True), numexpr (if installed), symkin.compile(law, backend="numpy") (NumPy float64
+with its stable forms and checks) and symkin.compile(law, backend="numba") (if installed);
+symkin.compile(law) without a backend is the numba one where numba is installed, else NumPy.
 Each cell is the median wall time of one call over the rounds, with the spread
 (max - min)/median; the 1-minute load average is recorded at the start and the end.
 
@@ -50,6 +51,13 @@ from symkin import symbols as S  # noqa: E402
 from symkin.numeric.backends import numba_available  # noqa: E402
 
 HAS_NUMBA = numba_available()
+#: The backend symkin.compile takes when none is named (symkin.numeric.default_backend).
+DEFAULT = "numba" if HAS_NUMBA else "numpy"
+
+
+def label(backend: str) -> str:
+    """A method's name in the tables: the default backend says so."""
+    return f"symkin {backend} (default)" if backend == DEFAULT else f"symkin {backend}"
 try:
     import numexpr  # noqa: F401
 
@@ -153,9 +161,9 @@ def methods(case: dict) -> dict:
         text = NUMEXPR[case["key"]]
         names = ["z1", "z2", "z3", "z4"] if case["key"] == "ratio" else ["w1", "w4", "r1", "r2", "r3", "r4"]
         out["numexpr"] = lambda *v: ne.evaluate(text, local_dict=dict(zip(names, (np.asarray(x, float) for x in v))))
-    out["symkin numpy (default)"] = symkin.compile(expr, args, ranges=L.RANGES)
+    out[label("numpy")] = symkin.compile(expr, args, backend="numpy", ranges=L.RANGES)
     if HAS_NUMBA:
-        out["symkin numba"] = symkin.compile(expr, args, backend="numba", ranges=L.RANGES)
+        out[label("numba")] = symkin.compile(expr, args, backend="numba", ranges=L.RANGES)
     return out
 
 
@@ -252,7 +260,7 @@ def hard_regions() -> list[dict]:
     add(region, "lambdify(cse=True)", max(error(g, r, True) for g, r in zip(raw, ref)), "normwise")
     for b in float_backends:
         got = symkin.compile(laws, SLIDER_ARGS, backend=b, ranges=L.RANGES)(*vals)
-        add(region, f"symkin {b} (default)", max(error(g, r, True) for g, r in zip(got, ref)), "normwise",
+        add(region, label(b), max(error(g, r, True) for g, r in zip(got, ref)), "normwise",
             before=BEFORE["slider peaks"] if b == "numpy" else None)
     # planet laws at t = 10^6 s
     motion = schemes.two_row("AI").motion({"1": W1, "4": 0})
@@ -264,11 +272,11 @@ def hard_regions() -> list[dict]:
     region = "planet velocity and acceleration (x, y; AI) at t = 1e6 s + [0, 20] s (max of the 4)"
     raw = sp.lambdify(pargs, plaws, modules="numpy")(*vals)
     add(region, "sympy.lambdify", max(error(g, r, True) for g, r in zip(raw, ref)), "normwise")
-    plain = symkin.compile(plaws, pargs, reduce_phase=())(*vals)
+    plain = symkin.compile(plaws, pargs, backend="numpy", reduce_phase=())(*vals)
     add(region, "symkin numpy, reduce_phase=() (off)", max(error(g, r, True) for g, r in zip(plain, ref)), "normwise")
     for b in float_backends:
         got = symkin.compile(plaws, pargs, backend=b)(*vals)
-        add(region, f"symkin {b} (default)", max(error(g, r, True) for g, r in zip(got, ref)), "normwise",
+        add(region, label(b), max(error(g, r, True) for g, r in zip(got, ref)), "normwise",
             before=BEFORE["planet 1e6"] if b == "numpy" else None)
     # AA ratio in radii and II differential within 60 ulps of their poles
     r1, r2, r3 = (rng.uniform(0.1, 3, 1000) for _ in range(3))
@@ -285,13 +293,13 @@ def hard_regions() -> list[dict]:
             warnings.simplefilter("ignore")
             add(region, "sympy.lambdify", error(sp.lambdify(args, expr, modules="numpy")(*vals), ref, False), "relative")
         for b in float_backends:
-            add(region, f"symkin {b} (default)", error(symkin.compile(expr, args, backend=b)(*vals), ref, False), "relative")
+            add(region, label(b), error(symkin.compile(expr, args, backend=b)(*vals), ref, False), "relative")
     # float32 near the pole, from float64 inputs: the rounding to float32 moves the point
     region = "AA ratio in radii, float32 requested, float64 inputs within 60 ulps of the pole"
     (ref,) = mp(aa, R, [r1, r2, r3, r4])
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        got = symkin.compile(aa, R, precision="float32")(r1, r2, r3, r4)
+        got = symkin.compile(aa, R, backend="numpy", precision="float32")(r1, r2, r3, r4)
     add(region, "symkin numpy float32", error(got, ref, False), "relative",
         warned=", ".join(sorted({w.category.__name__ for w in caught})) or "no", before=BEFORE["float32 pole"])
     return rows
@@ -300,14 +308,16 @@ def hard_regions() -> list[dict]:
 # --------------------------------------------------------------------------- 10^7 points
 def issue_size(rounds: int = 3) -> dict:
     """The II differential in radii at 10^7 points, as issue 18 measured it: lambdify and the
-    default path in round robin (median wall time of one call)."""
+    float backends in round robin (median wall time of one call)."""
     n = 10**7
     rng = np.random.default_rng(7)
     vals = [rng.uniform(-1, 1, n), rng.uniform(-1, 1, n), rng.uniform(5, 10, n), rng.uniform(1, 2, n),
             rng.uniform(2.5, 4, n), rng.uniform(1, 2, n)]
     expr = schemes.two_row("II").speeds({"1": W1, "4": W4}).law("H").rhs
     fns = {"sympy.lambdify": sp.lambdify([W1, W4, *R], expr, modules="numpy"),
-           "symkin numpy (default)": symkin.compile(expr, [W1, W4, *R])}
+           label("numpy"): symkin.compile(expr, [W1, W4, *R], backend="numpy")}
+    if HAS_NUMBA:
+        fns[label("numba")] = symkin.compile(expr, [W1, W4, *R], backend="numba")
     samples: dict[str, list[float]] = {k: [] for k in fns}
     with np.errstate(all="ignore"):
         for fn in fns.values():
@@ -336,12 +346,12 @@ def best(fn, loops: int = 2000, repeat: int = 7) -> float:
 def fixed_costs(all_cases: dict) -> list[dict]:
     """Where the time of a small call goes, per law: the whole call, lambdify, the generated code
     alone (its own checks inside: the cancellation test's two reductions, the long phases' two),
-    and each check the default path adds around it, timed on its own (10^3 points and one point)."""
+    and each check the NumPy path adds around it, timed on its own (10^3 points and one point)."""
     from symkin.numeric.backends import NumpyBackend
 
     rows = []
     for title, case in all_cases.items():
-        f = symkin.compile(case["expr"], case["args"], ranges=L.RANGES)
+        f = symkin.compile(case["expr"], case["args"], backend="numpy", ranges=L.RANGES)
         lam = sp.lambdify(case["args"], case["expr"], modules="numpy")
         ev = f._evaluator
         assert isinstance(ev, NumpyBackend)
@@ -393,11 +403,14 @@ def markdown(res: dict) -> str:
         "Laws as the README derives them, nothing substituted: the AA ratio i_H1 in tooth numbers, the II general",
         "differential omega_H(omega_1, omega_4, r1..r4) in radii (denominator r1 r3 - r2 r4, evaluated in double-double",
         "where its products cancel), the AI planet-particle acceleration w_x(omega_1, r1..r4, t) and the",
-        "elliptical-drive slider acceleration a_s. `symkin numpy (default)` is `symkin.compile(law)` (NumPy float64,",
-        "stable forms, input and pole checks); `symkin numba` is `backend=\"numba\"` (all threads). Each cell is the",
-        "median wall time of one call over the rounds (methods in round robin), spread = (max - min)/median.",
-        "A call with 1 point passes Python floats. The NumPy default evaluates a call of up to 2^17 points in one",
-        "piece, larger calls in chunks of 2^17 points.",
+        "elliptical-drive slider acceleration a_s. `symkin numpy` is `symkin.compile(law, backend=\"numpy\")` (NumPy",
+        "float64, stable forms, input and pole checks); `symkin numba` is `backend=\"numba\"` (one fused loop, all",
+        f"threads from 2^15 points); `(default)` marks what `symkin.compile(law)` takes on this machine ({DEFAULT}:",
+        "numba where it is installed). Each cell is the median wall time of one call over the rounds (methods in",
+        "round robin), spread = (max - min)/median. A call with 1 point passes Python floats (the one-point path,",
+        "the same for both backends: the type test of each argument and the finiteness test of each output, which",
+        "a bare lambdify expression does not make). NumPy evaluates a call of up to 2^17 points in one piece, larger",
+        "calls in chunks of 2^17 points.",
         "",
         "## Time per call, as a ratio to sympy.lambdify (below 1: faster than lambdify)",
         "",
@@ -434,7 +447,7 @@ def markdown(res: dict) -> str:
         "",
         "## Hard regions, against mpmath at 50 digits",
         "",
-        "`before` is the figure issue 18 reported for the default path before this work (where it gave one).",
+        "`before` is the figure issue 18 reported for the default path (then NumPy) before this work (where it gave one).",
         "",
         "| region | method | error | metric | warning | before (issue 18) |",
         "|---|---|---:|---|---|---|",
@@ -445,7 +458,7 @@ def markdown(res: dict) -> str:
     if res.get("fixed"):
         us = lambda x: f"{x * 1e6:.2f}"  # noqa: E731
         lines += [
-            "", "## Where the time of a small call goes (microseconds, this run)", "",
+            "", "## Where the time of a small NumPy call goes (microseconds, this run)", "",
             "Each piece timed on its own, the minimum of 7 loops (the cost without interruptions), so the pieces",
             "need not add up to the call exactly. `generated` is the generated code alone: at one point the",
             "Python-float code (the call adds the type test of each argument, the finiteness test of each output",
@@ -467,19 +480,26 @@ def markdown(res: dict) -> str:
     cell = {(r["law"], r["method"], r["n"]): r for r in res["speed"]}
     big = max(sizes)
     diff = "differential omega_H (II, radii)"
-    d_s, d_l = cell.get((diff, "symkin numpy (default)", big)), cell.get((diff, "sympy.lambdify", big))
-    if d_s and d_l:
-        lines.append(f"- II differential in radii, default path: before, {BEFORE['speed differential']}; this run, "
-                     f"{d_s['median_s'] / d_l['median_s']:.2f}x lambdify's time at {big:.0e} points.")
+    d_l = cell.get((diff, "sympy.lambdify", big))
+    for b in dict.fromkeys([DEFAULT, "numpy"]):
+        d_s = cell.get((diff, label(b), big))
+        if d_s and d_l:
+            lines.append(f"- II differential in radii, {label(b)}: before (the default path, NumPy), "
+                         f"{BEFORE['speed differential']}; this run, {d_s['median_s'] / d_l['median_s']:.2f}x lambdify's "
+                         f"time at {big:.0e} points.")
     big7 = res.get("issue_size")
     if big7:
-        s7, l7 = big7["symkin numpy (default)"], big7["sympy.lambdify"]
-        lines.append(f"- The same law at 10^7 points, as the issue measured it (3 rounds, round robin, load {big7['load']:.1f}): "
-                     f"{s7 / l7:.2f}x lambdify's time ({fmt_time(s7)} against {fmt_time(l7)}; {l7 / s7:.2f}x its speed).")
-    s1 = [r for r in res["speed"] if r["n"] == 1 and r["method"] in ("symkin numpy (default)", "sympy.lambdify")]
+        l7 = big7["sympy.lambdify"]
+        for b in dict.fromkeys([DEFAULT, "numpy"]):
+            if label(b) in big7:
+                s7 = big7[label(b)]
+                lines.append(f"- The same law at 10^7 points, as the issue measured it (3 rounds, round robin, load "
+                             f"{big7['load']:.1f}), {label(b)}: {s7 / l7:.2f}x lambdify's time ({fmt_time(s7)} against "
+                             f"{fmt_time(l7)}; {l7 / s7:.2f}x its speed).")
+    s1 = [r for r in res["speed"] if r["n"] == 1 and r["method"] in (label(DEFAULT), "sympy.lambdify")]
     if s1:
         per = {(r["law"], r["method"]): r["median_s"] for r in s1}
-        text = "; ".join(f"{law}: {fmt_time(per[(law, 'symkin numpy (default)')])} (lambdify {fmt_time(per[(law, 'sympy.lambdify')])})"
+        text = "; ".join(f"{law}: {fmt_time(per[(law, label(DEFAULT))])} (lambdify {fmt_time(per[(law, 'sympy.lambdify')])})"
                          for law in dict.fromkeys(r["law"] for r in s1))
         lines.append(f"- Scalar calls: before, {BEFORE['scalar call']}; this run, {text}.")
     lines += [
@@ -495,7 +515,9 @@ STATIC = """## What the float backends guarantee (tested, not measured here)
 
 `symkin.compile(laws, args, backend=..., precision=..., digits=...)` is the one entry point; backends
 `numpy` (float64/float32), `numba` (fused loop, threads; optional extra), `mpmath` (n digits), `exact`
-(rationals). Float backends evaluate stable forms (`symkin.numeric.stable`; `f.stable_exprs` shows them).
+(rationals). Without `backend` it takes `symkin.numeric.default_backend()`: numba where it is installed,
+else numpy (`SYMKIN_BACKEND=numpy` or `numba` chooses). Float backends evaluate stable forms
+(`symkin.numeric.stable`; `f.stable_exprs` shows them).
 
 - Complex, boolean, text and None inputs are refused (InputError); tooth numbers must be whole.
 - No nan or inf output is silent: where an input is nan or infinite a `NonFiniteInputWarning` counts the
@@ -521,20 +543,27 @@ STATIC = """## What the float backends guarantee (tested, not measured here)
   difference (the Willis forms, `r1 r3/(r1 r3 - r2 r4)`) takes `g` itself: no second product, no division.
 - Tooth-number arrays are bounded by one bitwise-or reduction each (all >= 0: the or bounds the maximum); only
   where that bound could overflow int64 are |z| and its maximum taken, and beyond it Python integers are used.
+  The numba kernels evaluate the integer parts in float64 where a bound of every partial sum is below 2^53
+  (exact there, a loop that vectorises) and redo the other points with integers
+  (tests/test_numeric.py).
 - The numba backend (`backend="numba"`) runs one compiled loop per law over blocks of 1024 points, every
   argument read as a contiguous slice (a scalar as a block of copies of it), so that LLVM vectorises the
   inner loop; there `a b - c d` is taken plainly, the certification test of each point counting the
   uncertified ones, which a second kernel, compiled on the first call that needs it, redoes in double-double
-  (tests/test_numeric_near_poles.py). A long phase's double-double coefficient is computed at the first
-  point of a block that needs it and kept while its inputs repeat (tests/test_numeric_long_phase.py); the
-  reduction itself is still done at every point, and sin and cos are libm's scalar functions (as fast here
-  as NumPy's), so laws in time gain least (the planet law above). Rational laws gain most. The first
-  call of a law compiles its kernel (about 1-5 s on this machine) and caches it on disk (`$SYMKIN_CACHE_DIR`,
-  else `~/.cache/symkin/kernels`): another process loads it in about 10 ms.
-- Speed, what lambdify keeps ahead on: small calls. A call of 1 to about 10^4 points pays fixed costs
-  that lambdify does not (the type test of each argument, one `np.errstate`, the finiteness sum of each
-  output, the tooth-number bound, the cancellation test): 1-3 us for one point, 15-30 us at 10^3 points
-  (the table above). Loops over many small calls are faster with one call on an array.
+  (tests/test_numeric_near_poles.py). Where a long phase's coefficient depends on scalar arguments only (a
+  sweep of t), it is computed once per block in double-double and every phase of the block reduced, a loop
+  without branches; elsewhere it is computed at the first point of a block that needs it and kept while its
+  inputs repeat (tests/test_numeric_long_phase.py). sin and cos are libm's scalar functions (as fast here as
+  NumPy's), so laws in time gain least (the planet law above). Rational laws gain most. A scalar argument's
+  block of copies is kept for the next call with the same value. The first call of a law compiles its kernel
+  (about 1-5 s on this machine) and caches it on disk (`$SYMKIN_CACHE_DIR`, else `~/.cache/symkin/kernels`):
+  another process loads it in about 10 ms.
+- Speed, what lambdify keeps ahead on: one point, and small NumPy calls. A call of one point pays what a
+  bare lambdify expression does not (the type test of each argument, the finiteness test of each output):
+  1-3 us with either backend (lambdify 0.1-13 us). On the NumPy backend a call of up to about 10^4 points
+  also pays one `np.errstate`, the finiteness sum of each output, the tooth-number bound and the
+  cancellation test: 15-30 us at 10^3 points (the table above); the numba kernel does these tests in its
+  loop. Loops over many small calls are faster with one call on an array.
 - Memory: before its first call of more than 8192 points, the NumPy path allocates and frees one 16 MiB
   block (never written), once per process. glibc's malloc then keeps freed temporaries instead of
   unmapping them after each operation, as it does in any process that has freed a 16 MiB array; without

@@ -45,7 +45,7 @@ def every_tuple(zmax: int, request: dict) -> tuple[set, int]:
     planets = kw.pop("planets")
     problem = derive(symkin.load_train("ravigneaux"), planets=planets, zmax=zmax, **kw)
     plan = _plan(problem, Target.of(request["ratio"], request["tolerance"]), None, 1 << 15)
-    rows = symkin.compile([row.expr for row in problem.coaxiality], list(problem.unknowns), stable=False)
+    rows = symkin.compile([row.expr for row in problem.coaxiality], list(problem.unknowns), backend="numpy", stable=False)
     names = plan.unknowns
     teeth = np.arange(problem.options.zmin, zmax + 1)
     grid = np.stack(np.meshgrid(*([teeth] * (len(names) - 1)), indexing="ij"), axis=-1).reshape(-1, len(names) - 1)

@@ -591,10 +591,10 @@ def region_curve(expr: sp.Expr, d: np.ndarray) -> np.ndarray:
     line drawn through the values would join the two branches of a pole: at the sample after
     each sign change of the denominator (the grid need not come near enough to the pole for
     the values to be large there), and where the value is beyond 1e3."""
-    v = compile(expr, [DELTA], stable=False, on_pole="return")(d) * np.ones_like(d)
+    v = compile(expr, [DELTA], backend="numpy", stable=False, on_pole="return")(d) * np.ones_like(d)
     den = sp.denom(sp.together(expr))
     if den.has(DELTA):
-        dv = compile(den, [DELTA], stable=False, on_pole="return")(d) * np.ones_like(d)
+        dv = compile(den, [DELTA], backend="numpy", stable=False, on_pole="return")(d) * np.ones_like(d)
         v[1:][np.sign(dv[1:]) * np.sign(dv[:-1]) < 0] = np.nan
     return np.where(np.abs(v) < 1e3, v, np.nan)
 

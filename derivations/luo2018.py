@@ -446,8 +446,8 @@ def _branch_comparison(angle: sp.Expr) -> Comparison:
                       for x in (sp.diff(PUBLISHED_27 - angle, t), (PUBLISHED_27 - angle).subs(t, 0)))
     values = {omega: 1, e: sp.Rational(1, 2), m: 2, theta_H0: 0}
     # the published form as printed (compile's stable forms would unwrap its principal arctan)
-    published = compile(PUBLISHED_27.subs(values), [t], stable=False, on_pole="return")
-    derived = compile(angle.subs(values), [t])
+    published = compile(PUBLISHED_27.subs(values), [t], backend="numpy", stable=False, on_pole="return")
+    derived = compile(angle.subs(values), [t], backend="numpy")
     branch = np.pi / 2  # m omega t = pi
     pub_before, pub_after = (published(branch - 1e-9), published(branch + 1e-9))
     der_before, der_after = (derived(branch - 1e-9), derived(branch + 1e-9))
@@ -476,7 +476,7 @@ def _family(order) -> Any:
 def _compiled_family(order: sp.Expr) -> Any:
     slider = elliptical_slider(_E, order, _THETA0)
     angle = slider.carrier_angle
-    return compile([slider.displacement, slider.velocity, slider.acceleration, angle, sp.diff(angle, t)], [t, _E, _THETA0])
+    return compile([slider.displacement, slider.velocity, slider.acceleration, angle, sp.diff(angle, t)], [t, _E, _THETA0], backend="numpy")
 
 
 @functools.cache
@@ -486,7 +486,7 @@ def _velocity_law() -> Any:
     general = _symbolic_slider(drive=AngleLaw(Theta(t)), carrier_angle=Theta(0), guide_angle=0)
     angle, speed = sp.symbols("theta_H omega_H", real=True)
     law = general.velocity.subs(sp.Derivative(Theta(t), t), speed).subs(Theta(t), angle).subs(l, TABLE1_LENGTH)
-    return compile(law, [angle, speed])
+    return compile(law, [angle, speed], backend="numpy")
 
 
 def sample_curve(ecc, order, theta0, times) -> dict[str, np.ndarray]:
@@ -844,9 +844,9 @@ def _branch_figure(folder: Path) -> list[Path]:
 
     values = {omega: TABLE1_OMEGA, e: BASE_E, m: 2, theta_H0: 0}
     ts = np.linspace(0, 2.5, 1001)
-    derived = compile((EllipticalGears(omega, e, m).angle(t)).subs(values), [t])(ts)
+    derived = compile((EllipticalGears(omega, e, m).angle(t)).subs(values), [t], backend="numpy")(ts)
     # as printed: no stable rewriting (which would unwrap the principal arctan's jumps)
-    published = compile(PUBLISHED_27.subs(values), [t], stable=False, on_pole="return")(ts)
+    published = compile(PUBLISHED_27.subs(values), [t], backend="numpy", stable=False, on_pole="return")(ts)
     fig = style.new_figure(style.COLUMN * 1.5, 3.6)
     ax = fig.add_subplot()
     style.style_axes(ax)

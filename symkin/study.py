@@ -47,7 +47,7 @@ _ALIASES = {"V": "velocity", "v": "velocity", "w": "acceleration", "a": "acceler
 class _CompileOptions(TypedDict):
     """The keyword arguments a study passes to :func:`symkin.compile` (part of its cache key too)."""
 
-    backend: str
+    backend: str | None
     precision: str
     digits: int
     ranges: Mapping[sp.Symbol, tuple[Any, Any]] | None
@@ -81,7 +81,7 @@ class Study:
     t : array, optional
         Time grid used when the laws depend on t and no ``t`` is given to :meth:`evaluate`.
     backend, precision, digits, ranges, chunk, threads
-        Passed to :func:`symkin.compile`.
+        Passed to :func:`symkin.compile` (``backend``: its default when None).
     reduce_phase : bool
         Reduce phases in t in double-double arithmetic (default): the rounding of
         omega t is otherwise most of the float64 error of a law in time.
@@ -94,7 +94,7 @@ class Study:
     inputs: Mapping[str, Any] | None = None
     frame: Any = None
     t: Any = None
-    backend: str = "numpy"
+    backend: str | None = None
     precision: str = "float64"
     digits: int = 50
     ranges: Mapping[sp.Symbol, tuple[Any, Any]] | None = None
@@ -207,7 +207,7 @@ class Study:
             raise InputError(f"{', '.join(unknown)} {'is' if len(unknown) == 1 else 'are'} not an argument of this study; its arguments are {', '.join(self.args)}")
         ordered = [given[a] for a in self.args]
         out = None
-        if reuse and self.backend in ("numpy", "numba"):
+        if reuse and self.function.backend in ("numpy", "numba"):
             shape = np.broadcast_shapes(*(np.shape(v) for v in ordered))
             dtype = np.float32 if self.precision == "float32" else np.float64
             key = (shape, dtype)

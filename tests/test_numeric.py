@@ -481,3 +481,37 @@ def test_laws_with_max_min_and_functions_numpy_lacks_evaluate_on_arrays(precisio
         exact = np.array([float(v) for v in exact])
         assert np.allclose(got, exact, rtol=tol, atol=0)
     assert all(np.isclose(g, float(e), rtol=tol) for g, e in zip(f(0.25, 1.25), ref(0.25, 1.25)))
+
+
+# ---- the default backend
+def test_the_default_backend_is_numba_where_it_is_installed_else_numpy(monkeypatch):
+    import importlib.util
+
+    import symkin.numeric as numeric
+
+    monkeypatch.delenv("SYMKIN_BACKEND", raising=False)
+    installed = importlib.util.find_spec("numba") is not None
+    assert numeric.default_backend() == ("numba" if installed else "numpy")
+    law = ratio_law()
+    if installed:
+        f = symkin.compile(law)
+        assert f.backend == "numba" and "numba" in repr(f)
+        assert f(100, 99, 100, 101) == pytest.approx(1e-4, rel=1e-15)  # (i_1H: 1/10000)
+    real_find_spec = importlib.util.find_spec
+    monkeypatch.setattr(importlib.util, "find_spec", lambda name, *a: None if name == "numba" else real_find_spec(name, *a))
+    assert numeric.default_backend() == "numpy"
+    assert symkin.compile(law).backend == "numpy"
+
+
+@pytest.mark.parametrize("named", ["numpy", "numba"])
+def test_symkin_backend_names_the_default(monkeypatch, named):
+    monkeypatch.setenv("SYMKIN_BACKEND", named)
+    f = symkin.compile(ratio_law())
+    assert f.backend == (named if named == "numpy" or numba_available() else "numpy")
+    assert symkin.compile(ratio_law(), backend="exact").backend == "exact"  # a named backend wins
+
+
+def test_symkin_backend_that_is_no_float_backend_is_one_line(monkeypatch):
+    monkeypatch.setenv("SYMKIN_BACKEND", "fortran")
+    with pytest.raises(symkin.InputError, match=r"^SYMKIN_BACKEND='fortran' is not a float backend; set it to numpy or numba, or unset it$"):
+        symkin.compile(ratio_law())

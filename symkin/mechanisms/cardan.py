@@ -655,7 +655,7 @@ class CardanSlider:
             return float(sp.N(substitute(self.drive.time_of_angle(sp.Float(angle, 30)), subs), 20))
         except UnsupportedError:
             pass
-        f = compile(substitute(self.motion.angle("H"), subs) - angle, [S.t], on_pole="raise")
+        f = compile(substitute(self.motion.angle("H"), subs) - angle, [S.t], backend="numpy", on_pole="raise")
         lo, hi, step = 0.0, 1e-3, 1e-3
         while f(hi) < 0:
             lo, hi, step = hi, hi + step, step * 2

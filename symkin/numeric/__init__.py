@@ -3,19 +3,21 @@
 :func:`compile` takes one law or several (they share common subexpressions) and a
 backend: ``"numpy"`` (vectorised, float64 or float32), ``"numba"`` (one fused compiled
 loop, an optional extra), ``"mpmath"`` (``digits`` significant digits) or ``"exact"``
-(rationals).  Float backends evaluate a *stable form* of each law
+(rationals).  Without one it takes :func:`default_backend`: numba where it is installed
+(faster than ``sympy.lambdify`` from 10^3 points, docs/numerics.md; its first call of a law
+compiles it, 1-5 s, kept on disk for later processes), else numpy.  Float backends evaluate a *stable form* of each law
 (:mod:`symkin.numeric.stable`): integer parts exactly, removable singularities
 cancelled, angles unwrapped, cosine sums well conditioned.
 
     >>> import numpy as np, symkin
     >>> law = symkin.schemes.two_row("AI").ratio("1", "H", fixed="4")
-    >>> f = symkin.compile(law)
+    >>> f = symkin.compile(law, backend="numpy")
     >>> f.args
     ('r_1', 'r_2', 'r_3', 'r_4')
     >>> float(f(1, 2, 1, 4))
     9.0
     >>> aa = symkin.schemes.two_row("AA", teeth=True).ratio("H", "1", fixed="4")
-    >>> g = symkin.compile(aa)          # z1 z3 - z2 z4 in exact integer arithmetic
+    >>> g = symkin.compile(aa, backend="numpy")   # z1 z3 - z2 z4 in exact integer arithmetic
     >>> float(g(10**8, 10**8 - 1, 10**8, 10**8 + 1))
     1e+16
     >>> symkin.compile(aa, backend="exact")(100, 99, 100, 101)
@@ -24,6 +26,8 @@ cancelled, angles unwrapped, cosine sums well conditioned.
 
 from __future__ import annotations
 
+import importlib.util
+import os
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -38,7 +42,7 @@ from symkin.numeric.backends import BACKENDS, Plan, numba_available, warn_no_num
 from symkin.numeric.function import NonFiniteInputWarning, NumericFunction
 from symkin.numeric.stable import RULE_NOTES, stable_form
 
-__all__ = ["compile", "NumericFunction", "NonFiniteInputWarning", "BACKENDS", "dask_map"]
+__all__ = ["compile", "default_backend", "NumericFunction", "NonFiniteInputWarning", "BACKENDS", "dask_map"]
 
 #: Points per chunk of the NumPy backend: a call of up to this many points is one call of the
 #: generated code on the arrays as given (no copy of the outputs), larger calls go in chunks of it.
@@ -46,6 +50,27 @@ __all__ = ["compile", "NumericFunction", "NonFiniteInputWarning", "BACKENDS", "d
 #: 1.3-2x the time at 10^5 points (the II differential 1.76x lambdify's time against 1.11x; the AA
 #: ratio 2.3x against 1.6x) and was no faster at 10^6 (all four laws, round robin in one run).
 DEFAULT_CHUNK = 1 << 17
+
+
+#: The environment variable that names the backend :func:`compile` takes when none is given.
+BACKEND_VARIABLE = "SYMKIN_BACKEND"
+
+
+def default_backend() -> str:
+    """The backend :func:`compile` uses when none is named: ``$SYMKIN_BACKEND`` when set
+    (``numpy`` or ``numba``), else ``numba`` where Numba is installed (one fused loop per
+    law, faster than ``sympy.lambdify`` on arrays of 10^3 points and more; a law's first call
+    compiles it, 1-5 s, and the kernel is kept on disk for later processes), else ``numpy``.
+
+    >>> default_backend() in ("numpy", "numba")
+    True
+    """
+    named = os.environ.get(BACKEND_VARIABLE, "").strip()
+    if named:
+        if named not in ("numpy", "numba"):
+            raise InputError(f"{BACKEND_VARIABLE}={named!r} is not a float backend; set it to numpy or numba, or unset it")
+        return named
+    return "numba" if importlib.util.find_spec("numba") is not None else "numpy"
 
 
 def _exprs(laws: Any) -> tuple[list[sp.Expr], list[str]]:
@@ -103,7 +128,7 @@ def compile(
     laws: Any,
     args: Sequence[sp.Symbol] | None = None,
     *,
-    backend: str = "numpy",
+    backend: str | None = None,
     precision: str = "float64",
     digits: int = 50,
     cse: bool = True,
@@ -121,8 +146,10 @@ def compile(
     laws : Law, sympy expression, Matrix, or a sequence of them
     args : sequence of Symbol, optional
         Argument order; default: every free symbol, sorted by name.
-    backend : {"numpy", "numba", "mpmath", "exact"}
-        ``"numba"`` needs the ``numba`` extra; without it symkin warns once and uses NumPy.
+    backend : {"numpy", "numba", "mpmath", "exact"}, optional
+        Default: :func:`default_backend` (numba where it is installed, else numpy; the
+        environment variable ``SYMKIN_BACKEND`` chooses).  ``"numba"`` needs the ``numba``
+        extra; named without it, symkin warns once and uses NumPy.
     precision : {"float64", "float32"}
         For the numpy and numba backends.  float32 inputs are the inputs; other inputs are
         rounded to float32, and where that rounding moves a result near a pole or zero by
@@ -167,6 +194,8 @@ def compile(
     >>> mpmath.nstr(f("0.5"), 30)   # mpf values carry 30 digits; print them with nstr
     '0.958851077208406000546575870431'
     """
+    if backend is None:
+        backend = default_backend()
     if backend not in BACKENDS:
         raise InputError(f"unknown backend {backend!r}; choose one of {', '.join(BACKENDS)}")
     exprs, names = _exprs(laws)

@@ -1,7 +1,7 @@
 """The compiled function a user calls: argument order, precision and backend stated.
 
     >>> import symkin
-    >>> f = symkin.compile(symkin.schemes.two_row("AI", teeth=True).ratio("1", "H", fixed="4"))
+    >>> f = symkin.compile(symkin.schemes.two_row("AI", teeth=True).ratio("1", "H", fixed="4"), backend="numpy")
     >>> f
     <NumericFunction i_{1H}^{(4)}(z_1, z_2, z_3, z_4): numpy float64>
     >>> f(20, 30, 20, 70)

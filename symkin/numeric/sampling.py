@@ -111,7 +111,7 @@ def on_grid(
         raise InputError(f"give values for {', '.join(sorted(map(str, free)))} to {what}")
     if not laws:
         return []
-    f = compile(laws, [S.t], on_pole="raise")
+    f = compile(laws, [S.t], backend="numpy", on_pole="raise")
     out = f(grid)
     columns = out if isinstance(out, tuple) else (out,)
     return [np.array(np.broadcast_to(np.asarray(c, dtype=float), grid.shape)) for c in columns]

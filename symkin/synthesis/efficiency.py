@@ -203,7 +203,7 @@ class EfficiencyLaw:
             conditions.append(_tree(cond, put))
         zmax = problem.options.zmax
         exact = all(_bound(p, zmax) < 2.0**52 for p in polys)
-        f_float = compile([p.as_expr() for p in polys], list(args), stable=False, on_pole="return", cse=True) \
+        f_float = compile([p.as_expr() for p in polys], list(args), backend="numpy", stable=False, on_pole="return", cse=True) \
             if exact else None
         held_polys = tuple((tuple(m for m, _ in p.terms()), tuple(int(c) for _, c in p.terms())) for p in polys)
         return cls(law, args, mesh_efficiency, held_polys, tuple((v, v + 1) for v in values), tuple(conditions),

@@ -303,7 +303,7 @@ class Plan:
         else:
             outer_layout["abcd"] = []
         outer_exprs = [sp.sympify(e) for e in outer_exprs]
-        f_outer = compile(outer_exprs, outer_syms, stable=False, on_pole="return", cse=True) if outer_exprs else None
+        f_outer = compile(outer_exprs, outer_syms, backend="numpy", stable=False, on_pole="return", cse=True) if outer_exprs else None
         # ---- the candidate function: every integer and scaled length the checks need
         cand_args = list(unknowns) + [s for s, _ in slacks]
         cand: list[sp.Expr] = []
@@ -371,7 +371,7 @@ class Plan:
         bounds = {str(z): zhi[z] for z in unknowns} | {str(s): w for s, w in slacks}
         for e in cand + outer_exprs:
             _check_exact(e, bounds, o.zmax)
-        f_cand = compile(cand, cand_args, stable=False, on_pole="return", cse=True)
+        f_cand = compile(cand, cand_args, backend="numpy", stable=False, on_pole="return", cse=True)
         cc, ss, kk_, tt = sp.symbols("C S k t", real=True)
         f_sin = compile(cc + ss * sp.sin(sp.pi / kk_), [cc, ss, kk_], backend="mpmath", digits=60)
         aa, bb, dd, rr = sp.symbols("A B D R2", real=True)

@@ -314,7 +314,7 @@ class StageErrorModel:
         >>> StageErrorModel.from_expression("u**2").numeric()(1.5)
         2.25
         """
-        f = compile(self.expr, [U])
+        f = compile(self.expr, [U], backend="numpy")
         return lambda x: float(f(float(x)))
 
     def check_positive(self, lower: Any, upper: Any) -> None:

@@ -98,7 +98,7 @@ _SAMPLES = {  # delta values and satellite counts on which the binding constrain
 
 @cache
 def _numeric(expr: sp.Expr) -> NumericFunction:
-    return compile(expr, [DELTA, _S, K])
+    return compile(expr, [DELTA, _S, K], backend="numpy")
 
 
 @cache

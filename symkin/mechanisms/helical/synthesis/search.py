@@ -73,18 +73,18 @@ def _compiled(scheme: str) -> _Compiled:
     (z4_of_nu,) = sp.solve(sp.Eq(nu, NU), z4)
     sol = helix_angle_solution()
     in1, in4 = SCHEME_MESHES[scheme]
-    # the sieve's laws (stable=False, on_pole="return", chunk=_PLANE): their bounds are inf or nan where a
+    # the sieve's laws (backend="numpy", stable=False, on_pole="return", chunk=_PLANE): their bounds are inf or nan where a
     # tooth set makes a denominator vanish, and the sieve compares them itself and discards
     # such sets; one call per tooth plane (chunk=_PLANE), whose inputs broadcast a column
     # against a row, is cheaper than chunks of copies; the checks are exact
     return _Compiled(
         ratio=ratio_function(scheme),
-        z4_of_ratio=compile(z4_of_ratio, [RATIO, z1, z2, z3], stable=False, on_pole="return", chunk=_PLANE),
-        z4_of_nu=compile(z4_of_nu, [NU, M12, M34, z1, z2, z3], stable=False, on_pole="return", chunk=_PLANE),
+        z4_of_ratio=compile(z4_of_ratio, [RATIO, z1, z2, z3], backend="numpy", stable=False, on_pole="return", chunk=_PLANE),
+        z4_of_nu=compile(z4_of_nu, [NU, M12, M34, z1, z2, z3], backend="numpy", stable=False, on_pole="return", chunk=_PLANE),
         mu=compile(sol.mu, [M12, M34, z2, z3], backend="exact"),
         nu=compile(nu, [M12, M34, z1, z2, z3, z4], backend="exact"),
         sin2_34=compile(sol.sin2_34, [MU, NU], backend="exact"),
-        nu2_of_sin2_34=compile(sol.nu2_of_sin2_34, [MU, U34], stable=False, on_pole="return", chunk=_PLANE),
+        nu2_of_sin2_34=compile(sol.nu2_of_sin2_34, [MU, U34], backend="numpy", stable=False, on_pole="return", chunk=_PLANE),
         internal1=in1,
         internal4=in4,
     )

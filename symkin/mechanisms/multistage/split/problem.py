@@ -129,12 +129,12 @@ class SplitProblem:
     @cached_property
     def _f(self) -> NumericFunction:
         """The objective compiled (float64), for the solvers."""
-        return compile(self.objective, self.lost_motion.ratios)
+        return compile(self.objective, self.lost_motion.ratios, backend="numpy")
 
     @cached_property
     def _g(self) -> NumericFunction:
         """The log-gradient compiled (float64), for the solvers."""
-        return compile(list(self.log_gradient), self.lost_motion.ratios)
+        return compile(list(self.log_gradient), self.lost_motion.ratios, backend="numpy")
 
     def value(self, ratios: Sequence[Any]) -> float:
         """The objective at a split (floats)."""
