@@ -504,7 +504,7 @@ def markdown(res: dict) -> str:
         lines.append(f"- Scalar calls: before, {BEFORE['scalar call']}; this run, {text}.")
     lines += [
         "",
-        "The default path of this tree against commit 513222f (before issue 18's work), in alternating processes",
+        "The NumPy path of this tree against commit 513222f (before issue 18's work), in alternating processes",
         "and CPU time, is a separate run of `benchmarks/default_path.py`: [numerics-default-path.md](numerics-default-path.md).",
         "",
     ]
@@ -560,7 +560,7 @@ else numpy (`SYMKIN_BACKEND=numpy` or `numba` chooses). Float backends evaluate 
   another process loads it in about 10 ms.
 - Speed, what lambdify keeps ahead on: one point, and small NumPy calls. A call of one point pays what a
   bare lambdify expression does not (the type test of each argument, the finiteness test of each output):
-  1-3 us with either backend (lambdify 0.1-13 us). On the NumPy backend a call of up to about 10^4 points
+  a few microseconds with either backend (the tables above). On the NumPy backend a call of up to about 10^4 points
   also pays one `np.errstate`, the finiteness sum of each output, the tooth-number bound and the
   cancellation test: 15-30 us at 10^3 points (the table above); the numba kernel does these tests in its
   loop. Loops over many small calls are faster with one call on an array.
