@@ -515,3 +515,40 @@ def test_symkin_backend_that_is_no_float_backend_is_one_line(monkeypatch):
     monkeypatch.setenv("SYMKIN_BACKEND", "fortran")
     with pytest.raises(symkin.InputError, match=r"^SYMKIN_BACKEND='fortran' is not a float backend; set it to numpy or numba, or unset it$"):
         symkin.compile(ratio_law())
+
+
+@pytest.mark.skipif(not HAS_NUMBA, reason="numba not installed")
+def test_parallel_kernels_run_one_at_a_time_and_threads_calling_at_once_agree(monkeypatch):
+    """A call of 2^15 points or more runs on every thread: calls from several threads at once
+    (a Dask scheduler's) take turns, as Numba's workqueue layer requires; small calls do not wait."""
+    import threading
+
+    from symkin.numeric import backends
+
+    entered = []
+
+    class Recording:
+        def __enter__(self):
+            entered.append(True)
+
+        def __exit__(self, *exc):
+            return False
+
+    law = differential_law()
+    args = [W1, W4, R[0], R[1], R[2]]
+    f = symkin.compile(law, args, backend="numba")
+    values = [rng.uniform(1, 2, 1 << 16) for _ in range(5)]
+    want = f(*values)
+    monkeypatch.setattr(backends, "_PARALLEL_LOCK", Recording())
+    f(*[v[:1000] for v in values])
+    assert not entered
+    f(*values)
+    assert entered == [True]
+    monkeypatch.undo()
+    out = {}
+    threads = [threading.Thread(target=lambda k=k: out.__setitem__(k, f(*values))) for k in range(4)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert all(np.array_equal(out[k], want) for k in range(4))

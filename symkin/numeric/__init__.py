@@ -62,6 +62,11 @@ def default_backend() -> str:
     law, faster than ``sympy.lambdify`` on arrays of 10^3 points and more; a law's first call
     compiles it, 1-5 s, and the kernel is kept on disk for later processes), else ``numpy``.
 
+    Numba runs calls of 2^15 points and more on every thread, with OpenMP where it is found;
+    GNU OpenMP's threads do not survive a ``fork``: a process that forks workers after such a
+    call (multiprocessing's default start method on Linux) should compile with ``threads=1``
+    (one thread, no OpenMP) or ``backend="numpy"``.
+
     >>> default_backend() in ("numpy", "numba")
     True
     """

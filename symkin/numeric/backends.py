@@ -19,6 +19,7 @@ exact     rational arithmetic (fractions.Fraction)    exact
 
 from __future__ import annotations
 
+import contextlib
 import math
 import os
 import threading
@@ -656,6 +657,10 @@ def numba_available() -> bool:
 
 _NUMBA_LOCK = threading.Lock()
 _PARALLEL_FROM = 1 << 15
+#: Held while a parallel kernel runs: one at a time, each on every thread (calls from several
+#: threads at once, as a Dask scheduler's, would oversubscribe the cores, and Numba's workqueue
+#: threading layer, where no OpenMP is found, aborts on them).
+_PARALLEL_LOCK = threading.Lock()
 
 
 def _passive_openmp() -> None:
@@ -882,9 +887,10 @@ class NumbaBackend(NumpyBackend):
                 # numba.core.config defines its settings at run time (globals().update), which
                 # numba's inline types (py.typed) do not show
                 numba.set_num_threads(min(plan.threads, numba.config.NUMBA_NUM_THREADS))  # type: ignore[attr-defined]
-            bad, nonwhole, uncertain = kernel(*inputs, *results, n, *steps)
-            if uncertain:  # points near a pole: their differences of products again, in double-double
-                bad += redo(*inputs, *results, n, *steps)
+            with _PARALLEL_LOCK if parallel else contextlib.nullcontext():
+                bad, nonwhole, uncertain = kernel(*inputs, *results, n, *steps)
+                if uncertain:  # points near a pole: their differences of products again, in double-double
+                    bad += redo(*inputs, *results, n, *steps)
         except numba.core.errors.NumbaError as err:  # a construct Numba cannot compile: NumPy instead
             self.broken = True
             warnings.warn(
