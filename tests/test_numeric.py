@@ -218,6 +218,24 @@ def test_tooth_ratios_on_both_sides_of_2_53_in_one_call_are_correctly_rounded(ba
     assert big[ok].sum() > 100 and (~big).sum() > 100
 
 
+@pytest.mark.parametrize("backend", FLOAT_BACKENDS)
+def test_a_four_stage_tooth_law_beyond_2_53_is_correctly_rounded(backend):
+    """Four AA stages in series: products of eight tooth numbers (about 10^16, beyond 2^53 and
+    within int64), which numba's kernel computes in int64 for the whole block."""
+    zs = sp.symbols("a0:4 b0:4 c0:4 d0:4", positive=True, integer=True)
+    a, b, c, d = zs[0:4], zs[4:8], zs[8:12], zs[12:16]
+    law = sp.Mul(*[a[k] * c[k] / (a[k] * c[k] - b[k] * d[k]) for k in range(4)])
+    n = 300
+    values = [rng.integers(90, 130, n) for _ in zs]
+    ok = np.logical_and.reduce([values[k] * values[8 + k] != values[4 + k] * values[12 + k] for k in range(4)])
+    values = [v[ok] for v in values]
+    got = symkin.compile(law, list(zs), backend=backend)(*values)
+    exact = [float(sp.Mul(*[Fraction(int(v[k][i]) * int(v[8 + k][i]), int(v[k][i]) * int(v[8 + k][i]) - int(v[4 + k][i]) * int(v[12 + k][i]))
+                             for k in range(4)]))
+             for i in range(len(values[0])) for v in [values]]
+    assert np.max(np.abs(got - exact) / np.abs(exact)) <= 2.3e-16
+
+
 def test_integer_parts_switch_to_python_integers_where_int64_would_overflow():
     law = schemes.two_row("AA", teeth=True).ratio("H", "1", fixed="4")
     z = [3 * 10**9, 3 * 10**9 - 1, 3 * 10**9, 3 * 10**9 + 1]  # z1 z3 = 9e18 > int64 range

@@ -21,7 +21,7 @@ import sympy as sp
 from sympy.printing.numpy import NumPyPrinter
 from sympy.printing.pycode import PythonCodePrinter
 
-from symkin.numeric.runtime import LONG_PHASE
+from symkin.numeric.runtime import EXACT_FLOATS, LONG_PHASE
 from symkin.numeric.stable import (
     ExactRatio,
     Group,
@@ -171,6 +171,8 @@ class FloatPrinter(_ProductCalls, NumPyPrinter):
         #: In a kernel's blocked loop where every long phase's coefficient is the same at every
         #: point (its inputs scalars): the phases by name -> index of their coefficient variables.
         self.phase_fixed: dict[str, int] | None = None
+        #: In a float64 kernel's second pass: exact ratios in int64 (else in float64, exact below 2^53).
+        self.exact_ints = False
         self.pending: list[str] = []
 
     # numbers: a float32 kernel wraps constants so that Numba keeps float32
@@ -215,9 +217,12 @@ class FloatPrinter(_ProductCalls, NumPyPrinter):
             self._integer_mode = saved
         if self.kernel:
             bn, bd = (self._print(abs_bound(a)) for a in expr.args)
-            if self.precision == "float64":  # in the float twins: exact below 2^53 (runtime checks the bounds)
+            if self.exact_ints:  # (a float64 kernel's second pass: the points beyond 2^53, in int64)
+                return f"_symkin_exact_ratio_int({num}, {den}, {bn}, {bd})"
+            if self.precision == "float64":  # in the float twins: exact in a block kernel_source found below 2^53
                 twins = {s: sp.Symbol(FLOAT_TWIN + s.name) for a in expr.args for s in a.free_symbols}
                 num, den = (self._print(a.xreplace(twins)) for a in expr.args)
+                return f"(({num})/({den}))"
             return f"_symkin_exact_ratio({num}, {den}, {bn}, {bd})"
         return f"_symkin_exact_ratio({num}, {den})"
 
@@ -356,6 +361,10 @@ def kernel_source(
     else:
         repl, reduced = [], list(exprs)
     printer = FloatPrinter(precision, kernel=True)
+    # a float64 kernel's exact ratios: in float64 where a bound of every partial sum is below 2^53
+    # (exact there), the block again in int64 where it is not at some point
+    ratio_bounds = [f"{printer.doprint(abs_bound(a))} > {EXACT_FLOATS!r}" for node in ratios for a in node.args] \
+        if blocked and precision == "float64" else []
     outs = [f"O{k}" for k in range(len(exprs))]
     n_ops = sum(sp.count_ops(v) for _, v in repl) + sum(sp.count_ops(e) for e in reduced)
     n_ops += sum(sp.count_ops(a) + 1 for node in ratios for a in node.args)
@@ -404,6 +413,8 @@ def kernel_source(
 
         for node, sym in ratios.items():
             assign(str(sym), node)
+        if ratio_bounds and not printer.exact_ints:  # (points whose ratios float64 may not hold exactly)
+            out.append(f"_nb += {' | '.join(f'({b})' for b in ratio_bounds)}")
         if mode:
             if mode == "redo":
                 out.append("_lu = 0")
@@ -444,6 +455,31 @@ def kernel_source(
             if isinstance(node, LongPhase) and node.name not in long_args:
                 long_args[node.name] = [int(str(a).removeprefix(FLOAT_TWIN)[1:]) for a in node.args[3:]]
 
+    def point_loops(pad: str, mode: str) -> list[str]:
+        """The loop over a block's points at indentation ``pad``: where every long phase's
+        coefficient comes from scalars (a sweep of t), computed once for the block and every
+        phase reduced, a loop without branches; else kept while the inputs repeat."""
+        out: list[str] = []
+        if long_args and mode != "redo":
+            used = sorted({k for ks in long_args.values() for k in ks})
+            out.append(f"{pad}if not ({' or '.join(f'S{k}' for k in used)}):")
+            for i, (name, ks) in enumerate(long_args.items()):
+                out.append(f"{pad}    _mh{i}, _ml{i} = {name}({', '.join(f'V{k}[0]' for k in ks)})")
+            printer.phase_fixed = {name: i for i, name in enumerate(long_args)}
+            out.append(f"{pad}    for _j in range(_e - _s):")
+            out += body(pad + "        ", lambda k: f"V{k}[_j]", mode)
+            printer.phase_fixed = None
+            out.append(f"{pad}else:")
+            pad += "    "
+        printer.phase_memo = {}
+        inner = body(pad + "    ", lambda k: f"V{k}[_j]", mode)
+        for k, inputs in printer.phase_memo.values():  # no coefficient yet in this block
+            out += [f"{pad}_mv{k} = False", f"{pad}_mh{k} = 0.0", f"{pad}_ml{k} = 0.0"]
+            out += [f"{pad}_mk{k}_{i} = 0.0" for i in range(inputs)]
+        printer.phase_memo = None
+        out.append(f"{pad}for _j in range(_e - _s):")
+        return out + inner
+
     def block_loop(mode: str) -> list[str]:
         out = ["    for _b in prange((n + _B - 1) // _B):",
                "        _s = _b * _B",
@@ -453,28 +489,20 @@ def kernel_source(
         out += [f"        W{k} = O{k}[_s:_e]" for k in range(len(reduced))]
         counts = ["_lb = 0", "_lnw = 0"] + (["_lu = 0"] if mode == "plain" else [])
         out += ["        " + c for c in counts]
-        pad = "        "
-        if long_args and mode != "redo":
-            # every long phase's coefficient from scalars (a sweep of t): computed once for the
-            # block and every phase reduced, a loop without branches; else kept while inputs repeat
-            used = sorted({k for ks in long_args.values() for k in ks})
-            out.append(f"        if not ({' or '.join(f'S{k}' for k in used)}):")
-            for i, (name, ks) in enumerate(long_args.items()):
-                out.append(f"            _mh{i}, _ml{i} = {name}({', '.join(f'V{k}[0]' for k in ks)})")
-            printer.phase_fixed = {name: i for i, name in enumerate(long_args)}
-            out.append("            for _j in range(_e - _s):")
-            out += body("                ", lambda k: f"V{k}[_j]", mode)
-            printer.phase_fixed = None
-            out.append("        else:")
-            pad = "            "
-        printer.phase_memo = {}
-        inner = body(pad + "    ", lambda k: f"V{k}[_j]", mode)
-        for k, inputs in printer.phase_memo.values():  # no coefficient yet in this block
-            out += [f"{pad}_mv{k} = False", f"{pad}_mh{k} = 0.0", f"{pad}_ml{k} = 0.0"]
-            out += [f"{pad}_mk{k}_{i} = 0.0" for i in range(inputs)]
-        printer.phase_memo = None
-        out.append(f"{pad}for _j in range(_e - _s):")
-        out += inner
+        if ratio_bounds and mode != "redo":
+            # exact ratios in float64 (a loop that vectorises), counting the points where a bound of a
+            # partial sum passes 2^53; where there are any, the block again with them in int64
+            out.append("        _nb = 0")
+            out += point_loops("        ", mode)
+            out.append("        if _nb:")
+            out += ["            " + c for c in counts]
+            printer.exact_ints = True
+            out += point_loops("            ", mode)
+            printer.exact_ints = False
+        else:
+            printer.exact_ints = mode == "redo"  # (the rare second pass: integers, no test)
+            out += point_loops("        ", mode)
+            printer.exact_ints = False
         out.append("        _bad += _lb")
         if mode != "redo":  # (the redo reads the same inputs again)
             out.append("        _nonwhole += _lnw")

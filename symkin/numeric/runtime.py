@@ -80,7 +80,7 @@ def _product_difference_core(a: Any, b: Any, c: Any, d: Any) -> Any:
 #: bounds are pulled in by 1/1000 so that the rounding of ``g`` cannot move a point across.
 _CERTIFIED = _LO, _HI = (-0.499, 1.499)
 #: Integers up to this size, and their sums and products while they stay below it, are exact in float64.
-_EXACT_FLOATS = float(2**53)
+EXACT_FLOATS = float(2**53)
 
 
 def _product_ratio(a: Any, b: Any, c: Any, d: Any) -> tuple[Any, Any, Any]:
@@ -313,23 +313,13 @@ def numba_namespace(precision: str) -> dict[str, Any]:
         k = np.floor(h * _INV_2PI + 0.5)
         return dtype((((h - k * _C1) - k * _C2) - k * _C3) + lo)
 
-    if precision == "float32":
-
-        @numba.njit(inline="always")
-        def ratio(num, den, bound_num, bound_den):  # pragma: no cover - compiled
-            if bound_num > 4.6e18 or bound_den > 4.6e18:  # int64 could overflow: nan, redone with Python integers
-                return dtype(np.nan)
-            return dtype(num / den)
-
-    else:
-
-        @numba.njit(inline="always")
-        def ratio(num, den, bound_num, bound_den):  # pragma: no cover - compiled
-            """``num/den`` of integer polynomials evaluated in float64 (codegen prints them so):
-            exact while every partial sum is below 2^53, which the bounds say; else nan, and
-            the point is redone with integers.  No branch, so that a loop of it vectorises."""
-            v = num / den
-            return v if bound_num <= _EXACT_FLOATS and bound_den <= _EXACT_FLOATS else np.nan
+    @numba.njit(inline="always")
+    def ratio(num, den, bound_num, bound_den):  # pragma: no cover - compiled
+        """``num/den`` of integer polynomials in int64 (a float64 kernel computes them in float64
+        where a bound of every partial sum is below 2^53, codegen.kernel_source)."""
+        if bound_num > 4.6e18 or bound_den > 4.6e18:  # int64 could overflow: nan, redone with Python integers
+            return dtype(np.nan)
+        return dtype(num / den)
 
     core = _jit_product_difference(numba, two_prod)
 
@@ -363,7 +353,8 @@ def numba_namespace(precision: str) -> dict[str, Any]:
                     r = e
             return r
 
-    return {"_symkin_exact_ratio": ratio, "_symkin_reduced_phase": phase, "_symkin_product_difference": difference,
+    return {"_symkin_exact_ratio": ratio, "_symkin_exact_ratio_int": ratio, "_symkin_reduced_phase": phase,
+            "_symkin_product_difference": difference,
             "_symkin_plain_difference": plain_difference, **_numba_dd_helpers(numba)}
 
 
