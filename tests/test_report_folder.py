@@ -19,7 +19,7 @@ from symkin import symbols as S
 from symkin._util.atomic import MANIFEST, write_manifest
 from symkin.cli import main
 from symkin.papers.checks import Check, alternative, compare_exact, compare_symbolic, judge
-from symkin.papers.document import equations_document
+from symkin.papers.document import PREAMBLE, equations_document
 from symkin.papers.reproduce import run
 from symkin.papers.texbuild import compile_pdf, start_pdf
 
@@ -161,15 +161,15 @@ def pdflatex_processes(folder: Path) -> list[int]:
 
 def test_pdflatex_started_on_the_preamble_compiles_the_body_given_later_as_the_whole_document(tmp_path, pdflatex):
     """reproduce starts pdflatex on the preamble before the papers are derived and gives it
-    the body at the end (a named pipe).  Given at once, before pdflatex has opened the pipe
-    (what the pipe holds is lost if every end closes first), and longer than a pipe holds
-    (the writes wait for pdflatex), the PDF is the one of the whole document compiled at once."""
+    the body at the end (a pipe, its standard input).  Given at once, while pdflatex may still
+    be starting, and longer than a pipe holds (the writes wait for pdflatex), the PDF is the one
+    of the whole document compiled at once."""
     body = "\n\n".join(rf"\section*{{Part {i}}} " + "Words of a long report. " * 60 for i in range(60)) + "\n\\end{document}\n"
     assert len(body.encode()) > 2**16
     head = PREAMBLE_FOR_TESTS
     early = start_pdf(tmp_path, "streamed", head, pdflatex=pdflatex)
     if early is None:
-        pytest.skip("no named pipes here (Linux only): the document is compiled whole")
+        pytest.skip("not on Linux: the document is compiled whole")
     streamed = early.finish(body, keep_log=True)
     whole = tmp_path / "whole" / "whole.tex"
     whole.parent.mkdir()
@@ -186,14 +186,16 @@ def test_pdflatex_started_on_the_preamble_compiles_the_body_given_later_as_the_w
 def test_a_body_pdflatex_rejects_or_that_never_ends_is_a_tool_error_at_once_and_the_previous_report_stays(
         tmp_path, monkeypatch, pdflatex, body):
     import symkin.papers.reproduce
-    from symkin.papers.document import PREAMBLE
 
     out = previous_report(tmp_path / "report")
     monkeypatch.setattr(symkin.papers.reproduce, "equations_document", lambda results, root=None: PREAMBLE + body)
     start = time.monotonic()
-    with pytest.raises(ToolError, match="pdflatex could not compile equations.tex: .*(Undefined control sequence|Emergency stop)"):
+    with pytest.raises(ToolError, match="pdflatex could not compile equations.tex: .*(Undefined control sequence|Emergency stop)") as err:
         run(["alyushin2009"], out, quiet=True)
     assert time.monotonic() - start < 60
+    if "undefined" in body:  # the message names equations.tex and the line of the fault in it
+        assert f"equations.tex:{PREAMBLE.count(chr(10)) + 1}: Undefined control sequence" in str(err.value)
+        assert "/dev/stdin" not in str(err.value)
     assert_untouched(out)
     assert not pdflatex_processes(tmp_path)
 
@@ -451,6 +453,22 @@ def test_a_kill_between_the_two_renames_is_recovered_by_the_next_run(tmp_path, c
     code, _, err = cli(capsys, "reproduce", "alyushin2009", "--out", str(out), "--no-pdf", "--quiet")
     assert code == 130, err
     assert_untouched(out)
+
+
+def test_a_kill_the_moment_pdflatex_starts_leaves_no_pdflatex_running(tmp_path, pdflatex):
+    """Killed before pdflatex has read its preamble: its input is its own from the start, and it
+    reads the end of it and stops (a named pipe it opened later waited for a writer for ever)."""
+    folder = tmp_path / "f"
+    folder.mkdir()
+    code = ("import os, signal, sys; from symkin.papers.texbuild import start_pdf; "
+            "from symkin.papers.document import PREAMBLE; "
+            "start_pdf(__import__('pathlib').Path(sys.argv[1]), 'equations', PREAMBLE); os.kill(os.getpid(), signal.SIGKILL)")
+    proc = subprocess.run([sys.executable, "-c", code, str(folder)], capture_output=True, text=True, timeout=60)
+    assert proc.returncode == -signal.SIGKILL, proc.stderr
+    deadline = time.monotonic() + 30
+    while pdflatex_processes(tmp_path) and time.monotonic() < deadline:
+        time.sleep(0.05)
+    assert not pdflatex_processes(tmp_path)
 
 
 def test_a_kill_while_pdflatex_waits_for_the_body_leaves_no_pdflatex_running(tmp_path, pdflatex):

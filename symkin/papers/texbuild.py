@@ -17,10 +17,10 @@ import shutil
 import subprocess
 import sys
 import tempfile
+import threading
 import time
 from dataclasses import dataclass
 from pathlib import Path
-from typing import IO, cast
 
 from symkin.errors import ToolError
 
@@ -129,55 +129,65 @@ def _result(folder: Path, job: str, name: str, returncode: int | None, output: s
 class StreamedPdf:
     """pdflatex started on a document whose beginning is known before the rest of it.
 
-    pdflatex reads ``head`` (the preamble) at once and then waits, reading the rest of the
-    document from a named pipe: :meth:`finish` writes it and returns the PDF, so only the
-    body is compiled after it exists.  ``symkin reproduce`` starts it while the papers are
-    derived (the process's start-up and the preamble, about 0.12 s, off the end of the run).
+    pdflatex reads the document from a pipe, its standard input (``\\input /dev/stdin``):
+    ``head`` (the preamble) at once, the rest when :meth:`finish` writes it, so only the body
+    is compiled after it exists.  ``symkin reproduce`` starts it while the papers are derived
+    (the process's start-up and the preamble, about 0.12 s, off the end of the run).
 
-    The pipe is opened for reading and writing here, so pdflatex never waits on a writer
-    that is gone: when this process ends, the pipe's last writer closes and pdflatex reads
-    the end of its input and stops.  :meth:`cancel` ends it at once.
+    The pipe is pdflatex's from its start: when this process ends, whatever the way, its end
+    of the pipe closes and pdflatex reads the end of its input and stops (processes forked from
+    this one hold the pipe too: ``reproduce``'s workers end before :meth:`finish`).
+    :meth:`cancel` ends it at once.  Messages name ``job.tex`` and its line numbers (the head
+    and the body are that file).
     """
 
     def __init__(self, folder: Path, job: str, head: str, exe: str, timeout: float):
         self.folder, self.job, self.timeout = folder, job, timeout
-        self.driver, self.pipe = folder / f"{job}-head.tex", folder / f"{job}-body.tex"
-        self.fd, self.output = -1, cast("IO[bytes] | None", None)
+        self._lock = threading.Lock()  # (finish writes in a thread; cancel may come from another)
+        # pdflatex's terminal output, read if it writes no log; a file, not a pipe nobody reads meanwhile
+        self.output = tempfile.TemporaryFile()  # noqa: SIM115 - closed by finish or cancel
+        read, self.fd = os.pipe()
         try:
-            self.driver.write_text(head + f"\\input{{{self.pipe.name}}}\n", encoding="utf-8")
-            os.mkfifo(self.pipe)
-            self.fd = os.open(self.pipe, os.O_RDWR | os.O_NONBLOCK)  # (Linux: never blocks, and keeps a reader)
-            # pdflatex's terminal output, read if it writes no log; a file, not a pipe nobody reads meanwhile
-            self.output = tempfile.TemporaryFile()  # noqa: SIM115 - closed by finish or cancel
             self.proc = subprocess.Popen(
-                _command(exe, job, self.driver.name), cwd=folder, stdin=subprocess.DEVNULL, stdout=self.output,
+                _command(exe, job, r"\input /dev/stdin"), cwd=folder, stdin=read, stdout=self.output,
                 stderr=subprocess.STDOUT, env=_environment(folder),
             )
         except BaseException:
-            self._tidy()
+            os.close(self.fd)
+            self.fd = -1
+            self.output.close()
             raise
+        finally:
+            os.close(read)
+        os.set_blocking(self.fd, False)
+        self._write(head.encode("utf-8"), time.monotonic() + timeout)
+
+    def _write(self, data: bytes, deadline: float) -> None:
+        """Write ``data`` into the pipe as pdflatex reads it, until ``deadline`` (TimeoutExpired);
+        stops where pdflatex has stopped reading (it ended)."""
+        view = memoryview(data)
+        while view:
+            with self._lock:
+                if self.fd < 0:  # cancelled
+                    return
+                try:
+                    view = view[os.write(self.fd, view):]
+                    continue
+                except BlockingIOError:
+                    fd = self.fd
+                except BrokenPipeError:  # pdflatex ended: its log says why
+                    return
+            if time.monotonic() > deadline:
+                raise subprocess.TimeoutExpired(self.proc.args, self.timeout)
+            select.select([], [fd], [], 0.05)
 
     def finish(self, body: str, *, keep_log: bool = False) -> PdfBuild:
         """Give pdflatex the rest of the document (``body``, ending with ``\\end{document}``)
         and return the PDF; ToolError as :func:`compile_pdf`."""
         deadline = time.monotonic() + self.timeout
-        data = memoryview(body.encode("utf-8"))
         try:
-            while data and self.proc.poll() is None:  # a pdflatex that stopped reads no more
-                if time.monotonic() > deadline:
-                    raise subprocess.TimeoutExpired(self.proc.args, self.timeout)
-                try:
-                    data = data[os.write(self.fd, data):]
-                except BlockingIOError:
-                    select.select([], [self.fd], [], 0.05)
-            # the pipe forgets what it holds when its last reader and writer close it: kept open until
-            # pdflatex has read it all (it may not have opened it yet), then closed, so that it reads an end
-            while self.proc.poll() is None and _unread(self.fd):
-                if time.monotonic() > deadline:
-                    raise subprocess.TimeoutExpired(self.proc.args, self.timeout)
-                time.sleep(0.002)
-            os.close(self.fd)
-            self.fd = -1
+            self._write(body.encode("utf-8"), deadline)
+            self._close()  # the end of its input: a body that does not end the document is an error
             self.proc.wait(max(0.0, deadline - time.monotonic()))
         except subprocess.TimeoutExpired:
             self.cancel()
@@ -186,42 +196,37 @@ class StreamedPdf:
         except BaseException:
             self.cancel()
             raise
-        assert self.output is not None
+        if self.output.closed:  # cancelled meanwhile (a second Ctrl-C)
+            raise ToolError(f"pdflatex was stopped before it finished {self.job}.tex")
         self.output.seek(0)
         output = self.output.read().decode(errors="replace")
-        self._tidy()
-        return _result(self.folder, self.job, f"{self.job}.tex", self.proc.returncode, output, keep_log)
+        self.output.close()
+        log_file = self.folder / f"{self.job}.log"
+        if log_file.exists():  # the document came from /dev/stdin: its messages name it so
+            log_file.write_text(log_file.read_text(errors="replace").replace("/dev/stdin", f"{self.job}.tex"))
+        return _result(self.folder, self.job, f"{self.job}.tex", self.proc.returncode,
+                       output.replace("/dev/stdin", f"{self.job}.tex"), keep_log)
 
     def cancel(self) -> None:
-        """End pdflatex and remove what it and this object wrote."""
+        """End pdflatex and remove what it wrote."""
         if self.proc.poll() is None:
             self.proc.kill()
             self.proc.wait()
-        self._tidy()
+        self._close()
+        self.output.close()
         for suffix in (".aux", ".out", ".log", ".pdf"):
             (self.folder / f"{self.job}{suffix}").unlink(missing_ok=True)
 
-    def _tidy(self) -> None:
-        if self.fd >= 0:
-            os.close(self.fd)
-            self.fd = -1
-        if self.output is not None:
-            self.output.close()
-        for path in (self.driver, self.pipe):
-            path.unlink(missing_ok=True)
-
-
-def _unread(fd: int) -> int:
-    """How many bytes wait in the pipe ``fd`` (Linux's FIONREAD)."""
-    import fcntl
-    import termios
-
-    return int.from_bytes(fcntl.ioctl(fd, termios.FIONREAD, bytes(4)), sys.byteorder)
+    def _close(self) -> None:
+        with self._lock:
+            if self.fd >= 0:
+                os.close(self.fd)
+                self.fd = -1
 
 
 def start_pdf(folder: Path, job: str, head: str, *, pdflatex: str | None = None, timeout: float = 180.0) -> StreamedPdf | None:
     """Start pdflatex on ``head``, the beginning of ``folder/job.tex``, before the rest exists
-    (see :class:`StreamedPdf`); None where named pipes cannot be used that way (only on
+    (see :class:`StreamedPdf`); None where a pipe cannot be read as ``/dev/stdin`` (only on
     Linux), and the document is then compiled whole with :func:`compile_pdf`.
 
     Examples
@@ -235,9 +240,9 @@ def start_pdf(folder: Path, job: str, head: str, *, pdflatex: str | None = None,
     True
     """
     exe = pdflatex or find_pdflatex()
-    if exe is None or not sys.platform.startswith("linux") or not hasattr(os, "mkfifo"):
+    if exe is None or not sys.platform.startswith("linux"):
         return None
     try:
         return StreamedPdf(Path(folder), job, head, exe, timeout)
-    except OSError:  # no named pipe in this folder's file system, or pdflatex cannot be started: compiled whole
+    except OSError:  # pdflatex cannot be started: compiled whole, where the error is reported
         return None
