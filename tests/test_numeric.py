@@ -535,7 +535,7 @@ def test_symkin_backend_that_is_no_float_backend_is_one_line(monkeypatch):
         symkin.compile(ratio_law())
 
 
-@pytest.mark.skipif(not HAS_NUMBA, reason="numba not installed")
+@pytest.mark.skipif(not HAS_NUMBA or __import__("numba").get_num_threads() < 2, reason="needs numba and two threads")
 def test_parallel_kernels_run_one_at_a_time_and_threads_calling_at_once_agree(monkeypatch):
     """A call of 2^15 points or more runs on every thread: calls from several threads at once
     (a Dask scheduler's) take turns, as Numba's workqueue layer requires; small calls do not wait."""

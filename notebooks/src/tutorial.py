@@ -113,12 +113,13 @@ for link, value in numeric.speeds({"H1": omega_in}).items():
 # %% [markdown]
 # ## 5. A fast numeric function, and a design question
 #
-# `symkin.compile` turns the law into a vectorised NumPy function; `f.args` gives the
-# argument order. Which coaxial tooth sets (z1 + z2 = z3 + z4, 30 to 70 teeth, z3 != z2) give a
+# `symkin.compile` turns the law into a numeric function (by default a compiled numba loop where
+# numba is installed, else NumPy; for the one call here, `backend="numpy"`: nothing to compile);
+# `f.args` gives the argument order. Which coaxial tooth sets (z1 + z2 = z3 + z4, 30 to 70 teeth, z3 != z2) give a
 # stage ratio between 20 and 30 in magnitude? One call evaluates them all:
 
 # %%
-f = symkin.compile(stage)
+f = symkin.compile(stage, backend="numpy")
 print("arguments:", f.args)
 z1, z2, z3 = np.meshgrid(np.arange(30, 71), np.arange(30, 71), np.arange(30, 71), indexing="ij")
 z4 = z1 + z2 - z3

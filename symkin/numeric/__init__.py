@@ -26,6 +26,7 @@ cancelled, angles unwrapped, cosine sums well conditioned.
 
 from __future__ import annotations
 
+import functools
 import importlib.util
 import os
 from collections.abc import Iterable, Mapping, Sequence
@@ -62,10 +63,11 @@ def default_backend() -> str:
     law, faster than ``sympy.lambdify`` on arrays of 10^3 points and more; a law's first call
     compiles it, 1-5 s, and the kernel is kept on disk for later processes), else ``numpy``.
 
-    Numba runs calls of 2^15 points and more on every thread, with OpenMP where it is found;
-    GNU OpenMP's threads do not survive a ``fork``: a process that forks workers after such a
-    call (multiprocessing's default start method on Linux) should compile with ``threads=1``
-    (one thread, no OpenMP) or ``backend="numpy"``.
+    Numba runs calls of 2^15 points and more on every thread, with OpenMP where it is found
+    (symkin sets ``OMP_WAIT_POLICY=PASSIVE`` unless it is set: waiting threads sleep); GNU
+    OpenMP's threads do not survive a ``fork``: a process that forks workers after such a call
+    (multiprocessing's default start method on Linux) should compile with ``threads=1`` (one
+    thread, no OpenMP) or ``backend="numpy"``.
 
     >>> default_backend() in ("numpy", "numba")
     True
@@ -75,7 +77,14 @@ def default_backend() -> str:
         if named not in ("numpy", "numba"):
             raise InputError(f"{BACKEND_VARIABLE}={named!r} is not a float backend; set it to numpy or numba, or unset it")
         return named
-    return "numba" if importlib.util.find_spec("numba") is not None else "numpy"
+    return "numba" if importlib.util.find_spec("numba") is not None and _numba_imports() else "numpy"
+
+
+@functools.cache
+def _numba_imports() -> bool:
+    """Whether the installed Numba imports (a Numba built for another NumPy does not: NumPy then,
+    without a word, as where Numba is not installed)."""
+    return numba_available()
 
 
 def _exprs(laws: Any) -> tuple[list[sp.Expr], list[str]]:
