@@ -170,3 +170,20 @@ def test_equal_laws_come_back_as_separate_arrays(backend):
     first[0] = 99.0
     assert list(second) == [0.0, 2.0, 4.0] and not np.shares_memory(first, second)
     assert not np.shares_memory(third, xs)  # nor is an output the caller's input
+
+
+@pytest.mark.skipif(not numba_available(), reason="numba not installed")
+def test_numba_keeps_a_scalar_s_block_only_for_the_same_number_and_sign():
+    """A scalar argument reaches the numba kernel as a block of copies of it, kept for the next
+    call with the same value: -0.0 after 0.0 (equal, another sign) and nan after nan (equal to
+    nothing) must not reuse it."""
+    x, y = sp.symbols("x y", real=True)
+    f = symkin.compile(sp.atan2(y, x), [x, y], backend="numba")
+    g = symkin.compile(1 / x + y, [x, y], backend="numba")
+    ys = np.array([0.0, 1.0])
+    assert f(0.0, ys)[0] == 0.0 and f(-0.0, ys)[0] == np.pi and f(0.0, ys)[0] == 0.0
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        assert np.all(g(0.0, ys) == np.inf) and np.all(g(-0.0, ys) == -np.inf)
+        assert np.all(np.isnan(g(np.nan, ys))) and np.all(np.isnan(g(np.nan, ys)))
+        assert np.array_equal(g(2.0, ys), [0.5, 1.5]) and np.array_equal(g(np.float64(4.0), ys), [0.25, 1.25])

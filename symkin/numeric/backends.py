@@ -757,7 +757,7 @@ class NumbaBackend(NumpyBackend):
         #: the type each argument's array has in the common call (int64 for tooth numbers)
         self._wanted = tuple(_INT64 if integer else self._np_dtype for integer in self.integer_flags)
         #: argument -> (value, block of copies of it), the last scalar given there
-        self._blocks: dict[int, tuple[float, np.ndarray]] = {}
+        self._blocks: dict[int, tuple[Any, np.ndarray]] = {}
         self._outputs = len(plan.stable)
         #: the serial kernel of float inputs once compiled (the common small call's fast path)
         self._serial: Any = None
@@ -800,11 +800,13 @@ class NumbaBackend(NumpyBackend):
     def _common_call(self, values: Sequence[Any]) -> tuple[int, list[np.ndarray], list[int]] | None:
         """``(n, inputs, steps)`` for the common call, without conversions: every argument a
         flat contiguous array of one length (int64 for tooth numbers, the working float type
-        otherwise) or, in float64, a float for a real argument (given to the kernel as a block
-        of copies of it, kept for the next call with the same value); None for any other call."""
+        otherwise) or, in float64, a float for a real argument, given to the kernel as a block of
+        :data:`KERNEL_BLOCK` copies of it (the block of the last call kept when the number is the
+        same, its sign of zero too: a parameter held while an array sweeps); None for any other call."""
         n = -1
         inputs: list[np.ndarray] = []
         steps: list[int] = []
+        blocks = self._blocks
         for k, (v, want) in enumerate(zip(values, self._wanted)):
             kind = type(v)
             if kind is np.ndarray:
@@ -817,21 +819,14 @@ class NumbaBackend(NumpyBackend):
                 inputs.append(v)
                 steps.append(1)
             elif want is _FLOAT64 and (kind is float or kind is np.float64):
-                inputs.append(self._block(k, v))
+                held = blocks.get(k)
+                if held is None or not (held[0] is v or (held[0] == v and math.copysign(1.0, held[0]) == math.copysign(1.0, v))):
+                    held = blocks[k] = (v, np.full(KERNEL_BLOCK, v, dtype=np.float64))
+                inputs.append(held[1])
                 steps.append(0)
             else:
                 return None
         return (n, inputs, steps) if n >= 0 else None
-
-    def _block(self, k: int, v: float) -> np.ndarray:
-        """A block of :data:`KERNEL_BLOCK` copies of the float ``v`` for argument ``k``: the one
-        of the last call when ``v`` is the same number (a parameter held while an array sweeps)."""
-        held = self._blocks.get(k)
-        if held is not None and held[0] == v and math.copysign(1.0, held[0]) == math.copysign(1.0, v):
-            return held[1]
-        block = np.full(KERNEL_BLOCK, v, dtype=np.float64)
-        self._blocks[k] = (float(v), block)
-        return block
 
     def evaluate(
         self, values: Sequence[Any], outs: Sequence[np.ndarray] | None = None
