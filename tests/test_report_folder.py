@@ -200,6 +200,17 @@ def test_a_body_pdflatex_rejects_or_that_never_ends_is_a_tool_error_at_once_and_
     assert not pdflatex_processes(tmp_path)
 
 
+def test_without_dev_stdin_the_document_is_compiled_whole(tmp_path, monkeypatch, pdflatex):
+    import os.path
+
+    real = os.path.exists
+    monkeypatch.setattr(os.path, "exists", lambda p: False if p == "/dev/stdin" else real(p))
+    assert start_pdf(tmp_path, "x", PREAMBLE, pdflatex=pdflatex) is None
+    out = tmp_path / "report"
+    run(["alyushin2009"], out, quiet=True)
+    assert (out / "equations.pdf").read_bytes().startswith(b"%PDF")
+
+
 def test_an_interrupt_leaves_no_pdflatex_running(tmp_path, capsys, monkeypatch, pdflatex):
     from symkin.derivations import alyushin2009
 

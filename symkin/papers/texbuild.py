@@ -10,6 +10,7 @@ and :data:`MISSING` is the message to show when it is not.
 
 from __future__ import annotations
 
+import contextlib
 import os
 import re
 import select
@@ -160,7 +161,11 @@ class StreamedPdf:
         finally:
             os.close(read)
         os.set_blocking(self.fd, False)
-        self._write(head.encode("utf-8"), time.monotonic() + timeout)
+        try:
+            self._write(head.encode("utf-8"), time.monotonic() + timeout)
+        except BaseException:
+            self.cancel()
+            raise
 
     def _write(self, data: bytes, deadline: float) -> None:
         """Write ``data`` into the pipe as pdflatex reads it, until ``deadline`` (TimeoutExpired);
@@ -179,7 +184,8 @@ class StreamedPdf:
                     return
             if time.monotonic() > deadline:
                 raise subprocess.TimeoutExpired(self.proc.args, self.timeout)
-            select.select([], [fd], [], 0.05)
+            with contextlib.suppress(OSError, ValueError):  # (closed meanwhile by cancel: seen above)
+                select.select([], [fd], [], 0.05)
 
     def finish(self, body: str, *, keep_log: bool = False) -> PdfBuild:
         """Give pdflatex the rest of the document (``body``, ending with ``\\end{document}``)
@@ -240,7 +246,7 @@ def start_pdf(folder: Path, job: str, head: str, *, pdflatex: str | None = None,
     True
     """
     exe = pdflatex or find_pdflatex()
-    if exe is None or not sys.platform.startswith("linux"):
+    if exe is None or not sys.platform.startswith("linux") or not os.path.exists("/dev/stdin"):
         return None
     try:
         return StreamedPdf(Path(folder), job, head, exe, timeout)
