@@ -199,7 +199,7 @@ def test_ratio_from_tooth_numbers_is_exact_up_to_1e8_teeth():
 
 
 @pytest.mark.parametrize("backend", FLOAT_BACKENDS)
-def test_tooth_ratios_on_both_sides_of_2_53_in_one_call_are_correctly_rounded(backend):
+def test_tooth_ratios_on_both_sides_of_2_53_in_one_call_are_within_one_rounding(backend):
     """numba evaluates the integer parts in float64 where every partial sum is below 2^53 (exact
     there) and redoes the other points with integers: one array holding both kinds (z1 z3 near
     10^4 and near 10^16, the products nearly equal)."""
@@ -219,7 +219,7 @@ def test_tooth_ratios_on_both_sides_of_2_53_in_one_call_are_correctly_rounded(ba
 
 
 @pytest.mark.parametrize("backend", FLOAT_BACKENDS)
-def test_a_four_stage_tooth_law_beyond_2_53_is_correctly_rounded(backend):
+def test_a_four_stage_tooth_law_beyond_2_53_is_within_one_rounding(backend):
     """Four AA stages in series: products of eight tooth numbers (about 10^16, beyond 2^53 and
     within int64), which numba's kernel computes in int64 for the whole block."""
     zs = sp.symbols("a0:4 b0:4 c0:4 d0:4", positive=True, integer=True)

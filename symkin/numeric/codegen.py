@@ -363,7 +363,7 @@ def kernel_source(
     printer = FloatPrinter(precision, kernel=True)
     # a float64 kernel's exact ratios: in float64 where a bound of every partial sum is below 2^53
     # (exact there), the block again in int64 where it is not at some point
-    ratio_bounds = [f"{printer.doprint(abs_bound(a))} > {EXACT_FLOATS!r}" for node in ratios for a in node.args] \
+    ratio_bounds = [f"{printer.doprint(abs_bound(a))} >= {EXACT_FLOATS!r}" for node in ratios for a in node.args] \
         if blocked and precision == "float64" else []
     outs = [f"O{k}" for k in range(len(exprs))]
     n_ops = sum(sp.count_ops(v) for _, v in repl) + sum(sp.count_ops(e) for e in reduced)

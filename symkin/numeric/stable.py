@@ -126,8 +126,10 @@ class ExactRatio(_Deferred):
     """``N/D`` with ``N`` and ``D`` integer polynomials of integer-valued symbols.
 
     Float backends evaluate ``N`` and ``D`` in exact integer arithmetic (int64, or
-    Python integers when int64 could overflow) and divide once; the quotient is then
-    within about one unit in the last place of the exact rational.
+    Python integers when int64 could overflow; numba's float64 kernels in float64 where a
+    bound of every partial sum is below 2^53, which is exact there) and divide once; the
+    quotient is then within about one unit in the last place of the exact rational
+    (correctly rounded below 2^53; beyond it two integers rounded to float64 are divided).
     """
 
     nargs = 2
