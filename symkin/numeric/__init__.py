@@ -27,7 +27,6 @@ cancelled, angles unwrapped, cosine sums well conditioned.
 from __future__ import annotations
 
 import functools
-import importlib.util
 import os
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
@@ -77,13 +76,13 @@ def default_backend() -> str:
         if named not in ("numpy", "numba"):
             raise InputError(f"{BACKEND_VARIABLE}={named!r} is not a float backend; set it to numpy or numba, or unset it")
         return named
-    return "numba" if importlib.util.find_spec("numba") is not None and _numba_imports() else "numpy"
+    return "numba" if _numba_imports() else "numpy"
 
 
 @functools.cache
 def _numba_imports() -> bool:
-    """Whether the installed Numba imports (a Numba built for another NumPy does not: NumPy then,
-    without a word, as where Numba is not installed)."""
+    """Whether Numba is installed and imports (a Numba built for another NumPy does not: NumPy
+    then, without a word, as where Numba is not installed)."""
     return numba_available()
 
 

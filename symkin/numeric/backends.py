@@ -759,8 +759,8 @@ class NumbaBackend(NumpyBackend):
         #: argument -> (value, block of copies of it), the last scalar given there
         self._blocks: dict[int, tuple[Any, np.ndarray]] = {}
         self._outputs = len(plan.stable)
-        #: the serial kernel of float inputs once compiled (the common small call's fast path)
-        self._serial: Any = None
+        #: the key of the serial kernel of int64 and float inputs (the common small call's)
+        self._serial_key = (False, (False,) * len(plan.args))
 
     def _kernel(self, parallel: bool, float_integers: tuple[bool, ...] = ()) -> Any:
         """The compiled loop and its redo pass (or None): one per law, threading and float
@@ -784,8 +784,6 @@ class NumbaBackend(NumpyBackend):
                     jit = numba.njit(parallel=parallel, error_model="numpy", fastmath=False, nogil=True)
                     kernel = jit(ns["_kernel"]), (jit(ns["_kernel_redo"]) if "_kernel_redo" in ns else None)
                 self.kernels[key] = kernel
-                if key == (False, (False,) * len(plan.args)):
-                    self._serial = kernel[0]
         return self.kernels[key]
 
     @property
@@ -836,12 +834,12 @@ class NumbaBackend(NumpyBackend):
             return super().evaluate(values, outs)
         plan = self.plan
         common = self._common_call(values) if outs is None else None
-        serial = self._serial
+        serial = self.kernels.get(self._serial_key)
         if common is not None and serial is not None and common[0] < _PARALLEL_FROM:
             # the common small call: the serial kernel compiled, nothing to convert or switch
             n, inputs, steps = common
             results = [np.empty(n, self._np_dtype) for _ in range(self._outputs)] if self._outputs > 1 else [np.empty(n, self._np_dtype)]
-            bad, nonwhole, uncertain = serial(*inputs, *results, n, *steps)
+            bad, nonwhole, uncertain = serial[0](*inputs, *results, n, *steps)
             if not (bad or uncertain):
                 return (n,), results, False
             # (else poles, or differences of products to redo: the general path below, again)

@@ -217,9 +217,7 @@ class FloatPrinter(_ProductCalls, NumPyPrinter):
             self._integer_mode = saved
         if self.kernel:
             bn, bd = (self._print(abs_bound(a)) for a in expr.args)
-            if self.exact_ints:  # (a float64 kernel's second pass: the points beyond 2^53, in int64)
-                return f"_symkin_exact_ratio_int({num}, {den}, {bn}, {bd})"
-            if self.precision == "float64":  # in the float twins: exact in a block kernel_source found below 2^53
+            if self.precision == "float64" and not self.exact_ints:  # in the float twins: exact in a block kernel_source found below 2^53
                 twins = {s: sp.Symbol(FLOAT_TWIN + s.name) for a in expr.args for s in a.free_symbols}
                 num, den = (self._print(a.xreplace(twins)) for a in expr.args)
                 return f"(({num})/({den}))"
@@ -448,12 +446,13 @@ def kernel_source(
         lines += ["    _bad += _lb", "    _nonwhole += _lnw", "    return _bad, _nonwhole, 0"]
         return "\n".join(lines) + "\n"
 
-    # the long phases: name -> indices of the arguments of their coefficient
+    # the long phases: name -> indices of the arguments of their coefficient (as a value or a float twin)
+    index = {sp.Symbol(nm): k for k, nm in enumerate(names)} | {sp.Symbol(FLOAT_TWIN + nm): k for k, nm in enumerate(names)}
     long_args: dict[str, list[int]] = {}
     for e in exprs:
         for node in sp.preorder_traversal(e):
             if isinstance(node, LongPhase) and node.name not in long_args:
-                long_args[node.name] = [int(str(a).removeprefix(FLOAT_TWIN)[1:]) for a in node.args[3:]]
+                long_args[node.name] = [index[a] for a in node.args[3:]]
 
     def point_loops(pad: str, mode: str) -> list[str]:
         """The loop over a block's points at indentation ``pad``: where every long phase's

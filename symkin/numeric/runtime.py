@@ -353,8 +353,7 @@ def numba_namespace(precision: str) -> dict[str, Any]:
                     r = e
             return r
 
-    return {"_symkin_exact_ratio": ratio, "_symkin_exact_ratio_int": ratio, "_symkin_reduced_phase": phase,
-            "_symkin_product_difference": difference,
+    return {"_symkin_exact_ratio": ratio, "_symkin_reduced_phase": phase, "_symkin_product_difference": difference,
             "_symkin_plain_difference": plain_difference, **_numba_dd_helpers(numba)}
 
 
