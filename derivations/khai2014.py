@@ -39,6 +39,7 @@ from symkin.papers.checks import (
     confirmation,
     judge,
 )
+from symkin.parsing import parse_number
 
 KEY = "khai2014"
 CITATION = (
@@ -52,9 +53,9 @@ RING, SATELLITES, Z_MIN, Z_MAX = 180, 3, 18, 180  # "z3 = 180, S = 3, 18 <= z <=
 PUBLISHED_STAGE_COUNT = 22
 PUBLISHED_U_MIN, PUBLISHED_U_MAX = "2.25", "11"
 TOTAL, STAGES = 6000, 4  # fig. 4, step 1
-U_LOWER, U_UPPER = "2.25", "11"  # fig. 4, step 3
+U_LOWER, U_UPPER = parse_number("2.25"), parse_number("11")  # fig. 4, step 3
 START = 3  # fig. 4, step 2: u_1 = ... = u_4 = 3
-A_LINEAR, B_LINEAR = "0.854", "0.858"  # (5) for curve 1 of fig. 3 (grade 8, mating F, m = 0.5 mm)
+A_LINEAR, B_LINEAR = parse_number("0.854"), parse_number("0.858")  # (5) for curve 1 of fig. 3 (grade 8, mating F, m = 0.5 mm)
 PUBLISHED_OPTIMUM = ("4.508", "11", "11", "11")  # fig. 4, step 7
 PUBLISHED_OBJECTIVE = "0.343"  # fig. 4, step 8
 LINE_J0, LINE_J_END, LINE_A_END = 50, 120, 180  # (7): j_n max(a_w) = 50 + (120 - 50)/180 a_w
@@ -209,10 +210,12 @@ def optimum():
 
 
 def discrete(tolerance: str):
-    """The best discrete designs from :func:`stage_set` within ``tolerance`` (cached)."""
+    """The best discrete designs from :func:`stage_set` within ``tolerance`` (a decimal, as the text
+    prints it; cached)."""
     key = ("discrete", tolerance)
     if key not in _CACHE:
-        _CACHE[key] = best_designs(TOTAL, stage_set(), STAGES, model=paper_model(), tolerance=tolerance, top=5)
+        _CACHE[key] = best_designs(TOTAL, stage_set(), STAGES, model=paper_model(), tolerance=parse_number(tolerance),
+                                   top=5)
     return _CACHE[key]
 
 

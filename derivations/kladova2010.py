@@ -43,6 +43,7 @@ from symkin.papers.checks import (
     judge,
     vanishes,
 )
+from symkin.parsing import parse_number
 from symkin.statics import balancing_hands, planet_forces, planet_statics
 
 KEY = "kladova2010"
@@ -102,7 +103,8 @@ TABLE_K = (3, 4, 6)
 EXAMPLE_AA_2009 = (54, 45, 44, 55)
 EXAMPLE_II_2009 = (200, 99, 100, 201)
 #: The synthesis example: AI, i = 25 within 2 %, 3 satellites, m_n12 = 2 mm, m_n34 = 2.5 mm.
-SYNTHESIS_EXAMPLE = dict(scheme="AI", ratio=25, tolerance="0.02", satellites=3, normal_modules=(2, "2.5"),
+SYNTHESIS_EXAMPLE = dict(scheme="AI", ratio=25, tolerance=parse_number("0.02"), satellites=3,
+                         normal_modules=(2, parse_number("2.5")),
                          beta_min_deg=8, beta_max_deg=30, teeth_min=17, teeth_max=110, top=20)
 
 PRINTED_ITEMS = (

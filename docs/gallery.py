@@ -94,9 +94,9 @@ def _split(path: Path) -> Path:
     from symkin.mechanisms.multistage.stages import enumerate_stages
     from symkin.viz.split import split_figure
 
-    model = StageErrorModel.linear("0.854", "0.858")
-    best = optimise_split(6000, 4, lower="2.25", upper=11, model=model)
-    designs = best_designs(6000, enumerate_stages(180, 3, zmin=18, zmax=180), 4, model=model, tolerance="0.05", top=10)
+    model = StageErrorModel.linear(0.854, 0.858)
+    best = optimise_split(6000, 4, lower=2.25, upper=11, model=model)
+    designs = best_designs(6000, enumerate_stages(180, 3, zmin=18, zmax=180), 4, model=model, tolerance=0.05, top=10)
     return _save(split_figure(best, designs), path)
 
 
@@ -105,7 +105,7 @@ def _stage_model(path: Path) -> Path:
     from symkin.mechanisms.multistage.stages import enumerate_stages
     from symkin.viz.split import stage_model_figure
 
-    models = {"0.854 + 0.858 u": StageErrorModel.linear("0.854", "0.858")}
+    models = {"0.854 + 0.858 u": StageErrorModel.linear(0.854, 0.858)}
     return _save(stage_model_figure(enumerate_stages(180, 3, zmin=18, zmax=180), models, module=1), path)
 
 

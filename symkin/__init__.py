@@ -18,6 +18,9 @@ The package, from the bottom up (``docs/architecture.md`` gives the path of data
   :mod:`~symkin.laws`, :mod:`~symkin.symbols` and :mod:`~symkin.errors`;
 - :mod:`~symkin.schemes`: the catalogue of ready-made schemes; :mod:`~symkin.trains`: any
   train from a file, its gear states and shift table (:func:`load_train`);
+- :mod:`~symkin.values`: the values functions take (numbers, SymPy expressions, Fractions, pint
+  quantities, :mod:`~symkin.units`); :mod:`~symkin.parsing`: the one parser of text
+  (:func:`parse`), used where text enters (the command line, train files, the reports);
 - :mod:`~symkin.numeric`: the one place laws become numbers; :mod:`~symkin.printing`:
   LaTeX; :mod:`~symkin.study`: derive, compile and evaluate what a request needs;
 - :mod:`~symkin.statics`; :mod:`~symkin.synthesis`: tooth numbers of any train for a
@@ -54,6 +57,7 @@ if TYPE_CHECKING:  # what the lazy attributes below are, for type checkers and I
     from symkin.laws import Law
     from symkin.model import FRAME, Gear, Link, Mechanism, Mesh
     from symkin.numeric import NumericFunction, compile
+    from symkin.parsing import parse
     from symkin.particles import FrameMotion, Motion, Particle
     from symkin.printing import latex
     from symkin.study import Study
@@ -77,6 +81,7 @@ _LAZY: dict[str, tuple[str, str]] = {
     "NumericFunction": ("numeric", "NumericFunction"),
     "compile": ("numeric", "compile"),
     "Study": ("study", "Study"),
+    "parse": ("parsing", "parse"),
     "FrameMotion": ("particles", "FrameMotion"),
     "Motion": ("particles", "Motion"),
     "Particle": ("particles", "Particle"),
@@ -88,8 +93,8 @@ _LAZY: dict[str, tuple[str, str]] = {
 
 #: Subpackages and modules reachable as ``symkin.NAME`` without importing them first.
 _SUBMODULES = frozenset({
-    "cli", "drives", "errors", "kinematics", "laws", "mechanisms", "model", "numeric", "papers", "particles",
-    "printing", "schemes", "statics", "study", "superposition", "symbols", "synthesis", "trains", "vectorloop", "viz",
+    "cli", "drives", "errors", "kinematics", "laws", "mechanisms", "model", "numeric", "papers", "parsing",
+    "particles", "printing", "units", "values", "schemes", "statics", "study", "superposition", "symbols", "synthesis", "trains", "vectorloop", "viz",
 })
 #: Modules of symkin 0.1 that moved (see :mod:`symkin._deprecated`), as ``symkin.NAME``.
 _MOVED = frozenset(name.split(".")[1] for name in _deprecated.MODULES if name.count(".") == 1)
@@ -134,6 +139,7 @@ __all__ = [
     "solve_speeds",
     "latex",
     "compile",
+    "parse",
     "schemes",
     "trains",
     "drives",

@@ -52,7 +52,6 @@ MODULES: dict[str, str] = {
     "symkin.reproduce": "symkin.papers.reproduce",
     "symkin.latex_report": "symkin.papers.document",
     "symkin.texbuild": "symkin.papers.texbuild",
-    "symkin.parsing": "symkin._util.parsing",
     "symkin.budget": "symkin._util.budget",
     "symkin.jsonout": "symkin._util.jsonout",
     "symkin.atomic": "symkin._util.atomic",

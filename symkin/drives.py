@@ -20,8 +20,8 @@ from typing import Any
 import sympy as sp
 
 from symkin import symbols as S
-from symkin._util.parsing import as_expr
 from symkin.errors import InputError, UnsupportedError
+from symkin.values import as_expr
 
 __all__ = ["Drive", "ConstantSpeed", "AngleLaw", "SpeedLaw", "EllipticalGears", "as_drive"]
 
@@ -53,7 +53,7 @@ class Drive(ABC):
 
 
 def _as_expr(value: Any, what: str, unit: str | None = None) -> sp.Expr:
-    return as_expr(value, what=what, names=("t",), unit=unit)
+    return as_expr(value, what=what, unit=unit)
 
 
 @dataclass(frozen=True)
@@ -249,12 +249,13 @@ class EllipticalGears(Drive):
 
 
 def as_drive(value: Any, what: str = "drive") -> Drive:
-    """A drive from a Drive, or a speed: a number (rad/s), an expression in t, safe text, or
-    a speed with a unit (text such as ``"300 rpm"`` or a pint quantity, converted to rad/s).
+    """A drive from a Drive, or a speed: a number (rad/s), an expression in t, or a pint
+    quantity (converted to rad/s).
 
+    >>> import pint
     >>> as_drive(0)
     ConstantSpeed(omega=0)
-    >>> as_drive("300 rpm")
+    >>> as_drive(300 * pint.get_application_registry().rpm)
     ConstantSpeed(omega=10*pi)
     """
     if isinstance(value, Drive):

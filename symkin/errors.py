@@ -22,6 +22,7 @@ __all__ = [
     "ModelError",
     "TrainFileError",
     "InputError",
+    "TextInputError",
     "DeterminacyError",
     "UnderdeterminedError",
     "OverdeterminedError",
@@ -65,6 +66,11 @@ class TrainFileError(ModelError):
 
 class InputError(SymkinError, ValueError):
     """A value given by the user (a number, a name, an expression) cannot be used."""
+
+
+class TextInputError(InputError, TypeError):
+    """Text was given to a library function where a value is meant: symkin's functions take
+    numbers, SymPy expressions, Fractions and pint quantities; :func:`symkin.parse` reads text."""
 
 
 class DeterminacyError(SymkinError, ValueError):

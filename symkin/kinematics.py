@@ -25,7 +25,6 @@ from typing import Any
 import sympy as sp
 
 from symkin import symbols as S
-from symkin._util.parsing import as_expr
 from symkin.errors import (
     InputError,
     OverdeterminedError,
@@ -35,6 +34,7 @@ from symkin.errors import (
 from symkin.laws import Law
 from symkin.model import FRAME, LinkKind, Mechanism, Mesh
 from symkin.superposition import vec, velocity
+from symkin.values import as_expr
 
 __all__ = ["contact_condition", "kinematic_system", "KinematicSystem", "solve_speeds", "Speeds", "ratio"]
 
@@ -461,7 +461,7 @@ def solve_speeds(mech: Mechanism, known: Mapping[str, Any], *, joined: Sequence[
     known : mapping of link name to speed
         Exactly ``mech.dof`` independent links (fewer with ``joined``); a fixed link has
         speed 0.  Values may be numbers (rad/s), symbols or expressions (of time too), or
-        speeds with a unit: text such as ``"300 rpm"`` or a pint quantity, converted to rad/s.
+        pint quantities (``300 * ureg.rpm``), converted to rad/s.
     joined : sequence of (link, link)
         Pairs of links made to turn together (an engaged clutch).
 
@@ -481,7 +481,9 @@ def solve_speeds(mech: Mechanism, known: Mapping[str, Any], *, joined: Sequence[
     >>> ai = schemes.two_row("AI")
     >>> sp.factor(ai.speeds({"1": S.omega("1"), "4": 0})["H"])
     omega_1*r_1*r_3/(r_1*r_3 + r_2*r_4)
-    >>> schemes.two_row("AA", teeth=(54, 45, 44, 55)).speeds({"1": "300 rpm", "4": 0})["H"]
+    >>> import pint
+    >>> rpm = pint.get_application_registry().rpm
+    >>> schemes.two_row("AA", teeth=(54, 45, 44, 55)).speeds({"1": 300 * rpm, "4": 0})["H"]
     -240*pi
     """
     if not isinstance(known, MappingABC):
@@ -493,7 +495,7 @@ def solve_speeds(mech: Mechanism, known: Mapping[str, Any], *, joined: Sequence[
             raise InputError("the frame (link 0) does not move; give the speeds of moving links")
         if link in resolved:
             raise InputError(f"the speed of link {link} is given twice (as {name!r} too); give it once")
-        resolved[link] = as_expr(value, what=f"speed of link {link}", names=("t",), unit="rad/s")
+        resolved[link] = as_expr(value, what=f"speed of link {link}", unit="rad/s")
     names = tuple(resolved)
     pairs = _joined_pairs(mech, joined)
     order = tuple(sorted(names))

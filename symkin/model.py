@@ -37,8 +37,8 @@ import sympy as sp
 
 from symkin import symbols as S
 from symkin._util.budget import simplify_within
-from symkin._util.parsing import as_expr, as_rational, sign_of
 from symkin.errors import CoaxialityWarning, ModelError, warn_user
+from symkin.values import as_expr, as_rational, sign_of
 
 __all__ = ["FRAME", "MAIN_AXIS", "LinkKind", "Gear", "Link", "Mesh", "Mechanism", "as_length", "as_teeth"]
 
@@ -67,7 +67,7 @@ def as_length(value: Any, what: str) -> sp.Expr:
     ...
     symkin.errors.ModelError: module of gear 1 must be positive, got 0; give a positive module
     """
-    expr = as_expr(value, what=what, text=False, finite=False, error=ModelError)
+    expr = as_expr(value, what=what, finite=False, error=ModelError)
     if expr.is_number:
         if expr.has(sp.nan, sp.zoo, sp.oo, -sp.oo) or not expr.is_finite:
             raise ModelError(f"{what} must be a finite number, got {value!r}")
@@ -76,7 +76,7 @@ def as_length(value: Any, what: str) -> sp.Expr:
         # decided on intervals, not by SymPy's assumptions (which leave sin(1)**2 + cos(1)**2 - 1 open)
         sign = sign_of(expr, what=what, error=ModelError)
         if sign is None:
-            raise ModelError(f"{what} must be positive, got {value!r}, which is 0 to 1233 digits; give a positive "
+            raise ModelError(f"{what} must be positive, got {value!r}, which is 0 to 1300 digits; give a positive "
                              f"{what.split(' of ')[0]}")
         if sign != 1:
             raise ModelError(f"{what} must be positive, got {value!r}; give a positive {what.split(' of ')[0]}")
@@ -97,8 +97,8 @@ def as_teeth(value: Any, what: str) -> sp.Expr:
     """
     exact = value
     if isinstance(value, decimal.Decimal):  # an exact decimal, as a Fraction is: Decimal("20") is 20
-        exact = as_rational(value, what=what, text=False, error=ModelError)
-    expr = as_expr(exact, what=what, text=False, finite=False, error=ModelError)
+        exact = as_rational(value, what=what, error=ModelError)
+    expr = as_expr(exact, what=what, finite=False, error=ModelError)
     if expr.is_number:
         if not expr.is_Integer:
             if expr.is_finite and expr.is_integer:  # e.g. Float 20.0: still refuse, it is not exact
@@ -304,7 +304,7 @@ class Link:
             if self.position_angle is not None:
                 object.__setattr__(
                     self, "position_angle",
-                    as_expr(self.position_angle, what=f"position angle of planet {self.name}", text=False, error=ModelError),
+                    as_expr(self.position_angle, what=f"position angle of planet {self.name}", error=ModelError),
                 )
             if isinstance(self.count, bool) or not isinstance(self.count, int) or not 1 <= self.count <= MAX_PLANETS:
                 raise ModelError(f"count of planet {self.name} must be a whole number from 1 to {MAX_PLANETS}, got {self.count!r}")
@@ -379,7 +379,7 @@ class Mesh:
             object.__setattr__(self, "centre_distance",
                                as_length(self.centre_distance, f"centre distance of mesh {self.a}-{self.b}"))
         if self.efficiency is not None:
-            eta = as_expr(self.efficiency, what=f"efficiency of mesh {self.a}-{self.b}", text=False, error=ModelError)
+            eta = as_expr(self.efficiency, what=f"efficiency of mesh {self.a}-{self.b}", error=ModelError)
             if eta.is_number and not (0 < eta <= 1):
                 raise ModelError(f"the efficiency of mesh {self.a}-{self.b} must lie in (0, 1], got {self.efficiency!r}")
             object.__setattr__(self, "efficiency", eta)

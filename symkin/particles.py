@@ -29,7 +29,6 @@ import numpy as np
 import sympy as sp
 
 from symkin import symbols as S
-from symkin._util.parsing import as_expr, as_float, as_values, substitute
 from symkin.drives import Drive, as_drive
 from symkin.errors import InputError, UnsupportedError
 from symkin.kinematics import check_known_links, solve_speeds
@@ -47,6 +46,7 @@ from symkin.superposition import (
     vec3,
     velocity,
 )
+from symkin.values import as_expr, as_float, as_values, substitute
 
 __all__ = ["FrameMotion", "SpaceFrame", "Motion", "Particle", "SpaceParticle"]
 
@@ -63,7 +63,7 @@ class FrameMotion:
 
     def __post_init__(self) -> None:
         for name in ("x", "y", "angle"):
-            object.__setattr__(self, name, as_expr(getattr(self, name), what=f"frame {name}(t)", names=("t",)))
+            object.__setattr__(self, name, as_expr(getattr(self, name), what=f"frame {name}(t)"))
 
 
 @dataclass(frozen=True)
@@ -88,11 +88,11 @@ class SpaceFrame:
 
     def __post_init__(self) -> None:
         for name in ("x", "y", "z"):
-            object.__setattr__(self, name, as_expr(getattr(self, name), what=f"frame {name}(t)", names=("t",)))
+            object.__setattr__(self, name, as_expr(getattr(self, name), what=f"frame {name}(t)"))
         R = sp.eye(3) if self.rotation is None else self.rotation
         if not hasattr(R, "shape") or tuple(R.shape) != (3, 3):
             raise InputError(f"the frame's rotation is a 3 x 3 matrix (columns: its x, y, z axes), got {self.rotation!r}")
-        R = sp.ImmutableMatrix([[as_expr(R[i, j], what="an entry of the frame's rotation", names=("t",)) for j in range(3)]
+        R = sp.ImmutableMatrix([[as_expr(R[i, j], what="an entry of the frame's rotation") for j in range(3)]
                                 for i in range(3)])
         for when in (sp.Integer(0), sp.Rational(7, 3), sp.Rational(-11, 5)):  # orthonormal and right-handed
             Rn = R.subs(S.t, when).evalf(30)
@@ -105,7 +105,7 @@ class SpaceFrame:
     def euler(cls, x: Any = 0, y: Any = 0, z: Any = 0, *, yaw: Any = 0, pitch: Any = 0, roll: Any = 0) -> SpaceFrame:
         """The frame at (x, y, z) turned by yaw about z, then pitch about the new y, then roll
         about the newest x (R = R_z(yaw) R_y(pitch) R_x(roll)); expressions in t."""
-        angles = [as_expr(a, what=f"frame {n}(t)", names=("t",)) for n, a in (("yaw", yaw), ("pitch", pitch), ("roll", roll))]
+        angles = [as_expr(a, what=f"frame {n}(t)") for n, a in (("yaw", yaw), ("pitch", pitch), ("roll", roll))]
         R = (rotation_about(vec3(0, 0, 1), angles[0]) * rotation_about(vec3(0, 1, 0), angles[1])
              * rotation_about(vec3(1, 0, 0), angles[2]))
         return cls(x, y, z, sp.ImmutableMatrix(R))

@@ -284,7 +284,7 @@ def latex(
 
 def _strict(obj: Any) -> sp.Basic:
     if isinstance(obj, str):
-        raise InputError("latex() prints laws and SymPy expressions, not strings; parse text with symkin._util.parsing.parse_expression")
+        raise InputError("latex() prints laws and SymPy expressions, not strings; parse text with symkin.parse")
     try:
         return sp.sympify(obj, strict=True)
     except (sp.SympifyError, TypeError):

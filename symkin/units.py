@@ -2,17 +2,19 @@
 
 symkin computes in exact numbers whose units are fixed by convention: angular velocities in
 rad/s, angles in rad, lengths in m (the gear geometry of a scheme in the length unit of its
-module), times in s.  Where a user thinks in other units, symkin takes a quantity and
-converts it once, exactly, on the way in: a pint quantity (from pint's application
-registry, or any registry) or text with a unit.  A bare number keeps its documented unit,
-as before.
+module), times in s.  Where a user thinks in other units, symkin takes a pint quantity (from
+pint's application registry, or any registry) and converts it once, exactly, on the way in.
+A bare number keeps its documented unit.  Text with a unit (``"300 rpm"``) is read by
+:func:`symkin.parse` (``symkin.parse("300 rpm", unit="rad/s")``).
 
+    >>> import pint
     >>> from symkin import schemes
     >>> from symkin.units import quantity
-    >>> quantity("300 rpm", "rad/s")
+    >>> ureg = pint.get_application_registry()
+    >>> quantity(ureg.Quantity(300, "rpm"), "rad/s")
     10*pi
     >>> aa = schemes.two_row("AA", teeth=(54, 45, 44, 55))
-    >>> aa.speeds({"1": "300 rpm", "4": 0})["H"]        # the same as {"1": 10*pi, "4": 0}
+    >>> aa.speeds({"1": ureg.Quantity(300, "rpm"), "4": 0})["H"]        # the same as {"1": 10*pi, "4": 0}
     -240*pi
 
 Where quantities are accepted:
@@ -36,7 +38,7 @@ from typing import Any
 
 import sympy as sp
 
-from symkin._util.parsing import is_quantity, parse_quantity, unit_factor
+from symkin.values import as_expr, is_quantity, unit_factor
 
 __all__ = ["UNITS", "quantity", "factor", "is_quantity"]
 
@@ -57,10 +59,9 @@ def quantity(value: Any, unit: str, *, what: str = "value") -> sp.Expr:
 
     Parameters
     ----------
-    value : pint quantity, str, number or SymPy expression
-        A quantity (``ureg.Quantity(300, "rpm")``) or text with a unit (``"300 rpm"``,
-        ``"10deg"``, ``"5 mm"``) is converted; a bare number or text without a unit is taken
-        to be in ``unit`` already.
+    value : pint quantity, number or SymPy expression
+        A quantity (``ureg.Quantity(300, "rpm")``) is converted; a bare number is taken to be
+        in ``unit`` already.
     unit : str
         The unit wanted, in pint's spelling (``"rad/s"``, ``"rad"``, ``"m"``, ``"s"``).
     what : str
@@ -75,20 +76,17 @@ def quantity(value: Any, unit: str, *, what: str = "value") -> sp.Expr:
     Raises
     ------
     InputError
-        An unknown unit, or one of another kind (``"3 kg"`` for a length), or a bad number.
+        A unit of another kind (kg for a length), or a bad number; text
+        (:class:`~symkin.errors.TextInputError`: read it with :func:`symkin.parse`).
 
     Examples
     --------
     >>> import pint
     >>> ureg = pint.get_application_registry()
-    >>> quantity(ureg.Quantity(90, "deg/s"), "rad/s"), quantity("5 mm", "m"), quantity(2, "rad")
+    >>> quantity(ureg.Quantity(90, "deg/s"), "rad/s"), quantity(ureg.Quantity(5, "mm"), "m"), quantity(2, "rad")
     (pi/2, 1/200, 2)
     """
-    if is_quantity(value) or isinstance(value, str):
-        return parse_quantity(value, unit, what=what)
-    from symkin._util.parsing import as_expr
-
-    return as_expr(value, what=what, text=False)
+    return as_expr(value, what=what, unit=unit)
 
 
 def factor(unit_from: str, unit_to: str) -> sp.Expr:

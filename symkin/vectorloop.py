@@ -38,8 +38,8 @@ from typing import Any
 import sympy as sp
 
 from symkin._util.budget import simplify_within
-from symkin._util.parsing import as_expr
 from symkin.errors import InputError, SingularConfigurationError, UnsupportedError
+from symkin.values import as_expr
 
 __all__ = ["LinkVector", "VectorLoop", "LoopSolution", "harmonics", "solve_linear"]
 
@@ -47,7 +47,7 @@ __all__ = ["LinkVector", "VectorLoop", "LoopSolution", "harmonics", "solve_linea
 
 
 def _sym(value: Any, what: str) -> sp.Expr:
-    return as_expr(value, what=what, text=False, finite=False)
+    return as_expr(value, what=what, finite=False)
 
 
 @dataclass(frozen=True)

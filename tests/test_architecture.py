@@ -11,7 +11,11 @@ level and inside functions) from the source and checks:
 - laws become numbers only in symkin/numeric (no lambdify, no exec of generated code
   elsewhere);
 - no module of the library imports the papers (derivations/), and the command-line
-  modules do no symbolic work of their own (no module-level SymPy import).
+  modules do no symbolic work of their own (no module-level SymPy import);
+- the edge: text and the operating system enter and leave at three borders only, the
+  command line (symkin/cli), train files (symkin/trains/file.py) and the papers' reports
+  (symkin/papers): only they import the parser (symkin.parsing) and the process and file
+  helpers (symkin._io).
 """
 
 from __future__ import annotations
@@ -27,7 +31,7 @@ PACKAGE = ROOT / "symkin"
 #: Layers from the bottom up: a module may import its own layer or a lower one.
 LAYERS: list[tuple[str, ...]] = [
     ("symkin._version", "symkin.errors", "symkin.symbols", "symkin.laws"),
-    ("symkin._util", "symkin._deprecated", "symkin.units"),
+    ("symkin._util", "symkin._deprecated", "symkin.values", "symkin.units", "symkin.parsing", "symkin._io"),
     ("symkin.numeric", "symkin.printing", "symkin.superposition"),
     ("symkin.model",),
     ("symkin.kinematics", "symkin.particles", "symkin.drives", "symkin.vectorloop"),
@@ -152,6 +156,25 @@ def test_laws_become_numbers_in_symkin_numeric_only(needle):
     outside = [f"{m} ({p.relative_to(ROOT)})" for m, p in MODULES.items()
                if not m.startswith("symkin.numeric") and needle in p.read_text()]
     assert not outside, f"{needle} outside symkin/numeric: " + ", ".join(outside)
+
+
+#: The borders where text and the operating system enter and leave (with the parser itself).
+BORDERS = ("symkin.cli", "symkin.papers", "symkin.trains.file", "symkin.parsing", "symkin._io")
+#: What only the borders may import: the parser of text, the process and file helpers.
+EDGE = ("symkin.parsing", "symkin._io")
+
+
+def _within(module: str, prefixes: tuple[str, ...]) -> bool:
+    return any(module == p or module.startswith(p + ".") for p in prefixes)
+
+
+def test_only_the_borders_import_the_parser_and_the_process_and_file_helpers():
+    inside = [
+        f"{m}:{line} imports {target}"
+        for m, edges in EDGES.items() if not _within(m, BORDERS)
+        for target, line, _ in edges if _within(target, EDGE)
+    ]
+    assert not inside, "library modules that read text or handle processes and files:\n" + "\n".join(inside)
 
 
 def test_the_library_never_imports_the_papers():

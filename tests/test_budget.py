@@ -10,8 +10,8 @@ import sympy as sp
 
 from symkin import SimplificationBudgetWarning
 from symkin._util.budget import simplify_within
-from symkin._util.parsing import parse_expression
 from symkin.mechanisms.cardan import CardanSlider
+from symkin.parsing import parse_expression
 
 #: A number whose simplification takes about a minute with SymPy 1.14 (trigsimp of the expanded power).
 SLOW = (sp.sin(1) + sp.cos(1) + sp.tan(1) + sp.sqrt(3)) ** 30 / (2 * sp.pi)

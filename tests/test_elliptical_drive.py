@@ -92,7 +92,8 @@ def test_zero_eccentricity_is_a_constant_speed():
         (dict(omega=1, eccentricity=0.5, order=-2), "order .* positive"),
         (dict(omega=0, eccentricity=0.5), "speed .* positive"),
         (dict(omega=1, eccentricity=t), "cannot depend on t"),
-        (dict(omega="pi", eccentricity=0.5), None),  # safe text is parsed
+        (dict(omega="pi", eccentricity=0.5), r"the text 'pi'.*symkin.parse"),  # text is the parser's
+        (dict(omega=sp.pi, eccentricity=0.5), None),
     ],
 )
 def test_bad_parameters_are_refused(kwargs, message):

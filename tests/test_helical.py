@@ -7,6 +7,7 @@ the geometry against textbook identities and a direct involute construction.
 
 import math
 import random
+from fractions import Fraction
 
 import numpy as np
 import pytest
@@ -236,7 +237,7 @@ def test_statics_ratio_is_the_engines_ratio_for_coaxial_trains():
     """Virtual work: carrier torque per input torque is i_1H^(4), exactly the engine's ratio."""
     from symkin.mechanisms.helical.synthesis import synthesise
 
-    res = synthesise(scheme="II", ratio="1/50", tolerance="0.05", satellites=3, normal_modules=(2, "2.5"),
+    res = synthesise(scheme="II", ratio=Fraction("1/50"), tolerance=Fraction("0.05"), satellites=3, normal_modules=(2, Fraction("2.5")),
                      teeth_max=100, top=None)
     assert res.designs
     for d in res.designs:

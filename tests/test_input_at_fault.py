@@ -132,7 +132,7 @@ def test_zero_in_disguise_prints_the_float_zero_not_a_rounding_residue(capsys):
                                         ("1\u00a0+ 1", "U+00A0")])
 def test_a_unicode_look_alike_is_named_in_the_refusal(text, char):
     # before: "'2·pi' is not a valid expression", which does not say what is wrong with it
-    from symkin._util.parsing import parse_expression
+    from symkin.parsing import parse_expression
 
     with pytest.raises(symkin.InputError, match=re.escape(f"({char}) is not allowed; write it in ASCII")):
         parse_expression(text, what="the speed")

@@ -10,11 +10,13 @@ from symkin import symbols as S
 from symkin.errors import InputError
 from symkin.mechanisms.multistage.lostmotion import (
     StageErrorModel,
+    U,
     lost_motion,
     max_lost_motion,
     probable_max_backlash,
     train_speeds,
 )
+from symkin.parsing import parse
 
 
 @pytest.mark.parametrize("n", [1, 2, 3])
@@ -90,9 +92,9 @@ def test_tolerance_stacks():
 
 
 def test_models_and_bad_input():
-    assert StageErrorModel.from_expression("0.854 + 0.858*u").expr == StageErrorModel.linear("0.854", "0.858").expr
+    assert StageErrorModel(parse("0.854 + 0.858*u", symbols={"u": U})).expr == StageErrorModel.linear(Fraction("0.854"), Fraction("0.858")).expr
     with pytest.raises(InputError, match="not allowed"):
-        StageErrorModel.from_expression("x + u")
+        StageErrorModel(parse("x + u", symbols={"u": U}))
     with pytest.raises(InputError, match="not positive"):
         StageErrorModel.linear(-3, 1).check_positive(2, 11)
     with pytest.raises(InputError, match="positive whole number"):
@@ -108,19 +110,19 @@ TOUCH = "Abs(u - 5.123456789)"
 def test_a_model_that_touches_zero_between_samples_is_refused():
     import numpy as np
 
-    model = StageErrorModel.from_expression(TOUCH)
+    model = StageErrorModel(parse(TOUCH, symbols={"u": U}))
     # 401 samples of [2, 12], as the check used to take, all see a positive value: sampling misses the touch
     grid = np.linspace(2.0, 12.0, 401)
     assert (np.abs(grid - 5.123456789) > 1e-3).all()
     with pytest.raises(InputError, match=r"not positive over \[2, 12\]: at u = 5.12346 it is not shown to be positive"):
         model.check_positive(2, 12)
     # a model that is positive everywhere, however closely it comes to 0, is shown so
-    StageErrorModel.from_expression("(u - 5.123456789)**2 + 1e-12").check_positive(2, 12)
+    StageErrorModel(parse("(u - 5.123456789)**2 + 1e-12", symbols={"u": U})).check_positive(2, 12)
     # at a bound, the bound is named
     with pytest.raises(InputError, match="at u = 12 it is not positive"):
-        StageErrorModel.from_expression("12 - u").check_positive(2, 12)
+        StageErrorModel(parse("12 - u", symbols={"u": U})).check_positive(2, 12)
     with pytest.raises(InputError, match="at u = 5 a divisor in it vanishes"):
-        StageErrorModel.from_expression("1/(u - 5)**2").check_positive(2, 12)
+        StageErrorModel(parse("1/(u - 5)**2", symbols={"u": U})).check_positive(2, 12)
 
 
 def test_the_split_command_refuses_a_model_that_touches_zero(capsys):

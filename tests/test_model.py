@@ -38,7 +38,6 @@ def test_derived_laws_are_cached_on_the_mechanism():
         (lambda: Gear("1", 0), "must be positive"),
         (lambda: Gear("1", sp.nan), "finite"),
         (lambda: Gear("1", sp.oo), "finite"),
-        (lambda: Gear("1", "3"), "not the string"),
         (lambda: Gear("", 3), "gear name"),
         (lambda: schemes.two_row("AX"), "unknown two-row scheme"),
         (lambda: schemes.scheme("nope"), "unknown scheme"),
@@ -50,6 +49,13 @@ def test_derived_laws_are_cached_on_the_mechanism():
 def test_bad_descriptions_raise_a_model_error(build, message):
     with pytest.raises(ModelError, match=message):
         build()
+
+
+def test_text_in_place_of_a_value_points_to_the_parser():
+    from symkin.errors import TextInputError
+
+    with pytest.raises(TextInputError, match=r"symkin.parse\('3'\)"):
+        Gear("1", "3")
 
 
 def test_two_internal_gears_cannot_mesh():

@@ -150,7 +150,9 @@ def test_exact_backend_gives_rationals_equal_to_sympy():
         expected = law.rhs.subs(dict(zip(Z, [int(z[i]) for z in zs])))
         assert got[i] == Fraction(int(expected.p), int(expected.q))
     diff = symkin.compile(differential_law(), [W1, W4, R[0], R[1], R[2]], backend="exact")
-    assert diff(1, 1, "3", Fraction(1, 2), "0.75") == 1  # omega_1 = omega_4: the carrier turns with them
+    assert diff(1, 1, 3, Fraction(1, 2), sp.Rational(3, 4)) == 1  # omega_1 = omega_4: the carrier turns with them
+    with pytest.raises(symkin.TextInputError, match="symkin.parse"):  # text is read by the parser, not here
+        diff(1, 1, "3", Fraction(1, 2), "0.75")
 
 
 def test_exact_backend_refuses_floats_and_transcendental_laws():

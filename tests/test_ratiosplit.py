@@ -10,7 +10,7 @@ import sympy as sp
 
 from symkin import schemes
 from symkin.errors import InputError
-from symkin.mechanisms.multistage.lostmotion import StageErrorModel
+from symkin.mechanisms.multistage.lostmotion import StageErrorModel, U
 from symkin.mechanisms.multistage.split import (
     SplitProblem,
     best_designs,
@@ -18,6 +18,7 @@ from symkin.mechanisms.multistage.split import (
     profile,
 )
 from symkin.mechanisms.multistage.stages import enumerate_stages
+from symkin.parsing import parse
 
 
 def objective_by_hand(u, F):
@@ -41,7 +42,7 @@ MODELS = {
 @pytest.mark.parametrize("total, lower, upper", [(60, 2.25, 11), (40, 2, 10), (99, 3, 12)])
 def test_two_stages_against_a_grid(name, total, lower, upper):
     text, F = MODELS[name]
-    best = optimise_split(total, 2, lower=lower, upper=upper, model=StageErrorModel.from_expression(text))
+    best = optimise_split(total, 2, lower=lower, upper=upper, model=StageErrorModel(parse(text, symbols={"u": U})))
     lo, hi = max(lower, total / upper), min(upper, total / lower)
     u1 = np.geomspace(lo, hi, 200001)
     values = objective_by_hand([u1, total / u1], F)
@@ -56,7 +57,7 @@ def test_two_stages_against_a_grid(name, total, lower, upper):
 @pytest.mark.parametrize("total, lower, upper", [(600, 2.25, 11), (100, 2, 9)])
 def test_three_stages_against_a_grid(name, total, lower, upper):
     text, F = MODELS[name]
-    best = optimise_split(total, 3, lower=lower, upper=upper, model=StageErrorModel.from_expression(text))
+    best = optimise_split(total, 3, lower=lower, upper=upper, model=StageErrorModel(parse(text, symbols={"u": U})))
     # a grid over two of the three ln u_i (bounds included), the third from the product;
     # each of the three pairs in turn, so an optimum with two stages on bounds is a grid point
     x = np.linspace(math.log(lower), math.log(upper), 801)
@@ -75,7 +76,7 @@ def test_three_stages_against_a_grid(name, total, lower, upper):
 
 
 def test_linear_models_fill_from_the_output_and_the_explanation_says_why():
-    best = optimise_split(6000, 4, lower="2.25", upper=11, model=StageErrorModel.linear("0.854", "0.858"))
+    best = optimise_split(6000, 4, lower=Fraction("2.25"), upper=11, model=StageErrorModel.linear(Fraction("0.854"), Fraction("0.858")))
     assert best.exact_ratios == (sp.Rational(6000, 1331), 11, 11, 11)
     assert best.active == ("free", "upper", "upper", "upper") and best.global_optimum
     g = best.log_gradient
@@ -89,7 +90,7 @@ def test_linear_models_fill_from_the_output_and_the_explanation_says_why():
     assert "upper bound" in text and "global minimum" in text and "g_j - g_(j+1) > 0" in text
     # the derivative of the optimum with respect to ln U is nu: a finite difference
     h = 1e-4
-    up = optimise_split(6000 * math.exp(h), 4, lower="2.25", upper=11, model=StageErrorModel.linear("0.854", "0.858"))
+    up = optimise_split(6000 * math.exp(h), 4, lower=Fraction("2.25"), upper=11, model=StageErrorModel.linear(Fraction("0.854"), Fraction("0.858")))
     assert (up.objective - best.objective) / h == pytest.approx(best.nu, rel=1e-3)
 
 
@@ -104,8 +105,8 @@ def test_a_reversed_linear_model_fills_from_the_input():
 
 
 def test_profile_touches_the_optimum():
-    p = SplitProblem.build(6000, 4, lower="2.25", upper=11, model=StageErrorModel.linear("0.854", "0.858"))
-    best = optimise_split(6000, 4, lower="2.25", upper=11, model=StageErrorModel.linear("0.854", "0.858"))
+    p = SplitProblem.build(6000, 4, lower=Fraction("2.25"), upper=11, model=StageErrorModel.linear(Fraction("0.854"), Fraction("0.858")))
+    best = optimise_split(6000, 4, lower=Fraction("2.25"), upper=11, model=StageErrorModel.linear(Fraction("0.854"), Fraction("0.858")))
     for i in range(1, 5):
         values = profile(p, i, [best.ratios[i - 1], 3.0])
         assert values[0] == pytest.approx(best.objective, rel=1e-9)
@@ -113,8 +114,8 @@ def test_profile_touches_the_optimum():
 
 
 SPLIT_BAD = [
-    (dict(total=6000, stages=4, lower=11, upper="2.25"), "reversed"),
-    (dict(total=6000, stages=2, lower="2.25", upper=11), "outside what 2 stages"),
+    (dict(total=6000, stages=4, lower=11, upper=Fraction("2.25")), "reversed"),
+    (dict(total=6000, stages=2, lower=Fraction("2.25"), upper=11), "outside what 2 stages"),
     (dict(total=-5, stages=2, lower=2, upper=11), "must be positive"),
     (dict(total=60, stages=0, lower=2, upper=11), "positive whole number"),
     (dict(total=60, stages=2, lower=0, upper=11), "must be positive"),
@@ -132,7 +133,7 @@ def test_bad_split_input(kwargs, message):
 
 # ---------------------------------------------------------------------------- discrete
 PAPER = enumerate_stages(180, 3, zmin=18, zmax=180)
-MODEL = StageErrorModel.linear("0.854", "0.858")
+MODEL = StageErrorModel.linear(Fraction("0.854"), Fraction("0.858"))
 
 
 def brute_force(stages, n, total, tol, F):
@@ -156,15 +157,15 @@ def brute_force(stages, n, total, tol, F):
 @pytest.mark.parametrize("n, total, tol", [(2, 60, "0.02"), (3, 600, "0.05"), (3, 250, "0.01"), (4, 6000, "0.05"), (4, 3000, "0.01")])
 def test_discrete_search_equals_brute_force(name, n, total, tol):
     text, F = MODELS[name]
-    model = StageErrorModel.from_expression(text)
+    model = StageErrorModel(parse(text, symbols={"u": U}))
     expected = brute_force(PAPER.stages, n, total, sp.Rational(tol), F)
-    got = best_designs(total, PAPER, n, model=model, tolerance=tol, top=8, distinct=False)
+    got = best_designs(total, PAPER, n, model=model, tolerance=Fraction(tol), top=8, distinct=False)
     assert got.meets_tolerance == bool(expected)
     if expected:
         assert [float(d.objective) for d in got.designs] == pytest.approx([e[0] for e in expected[:8]], rel=1e-12)
         assert got.designs[0].stages == expected[0][1]
         assert got.nodes < 22**n  # pruned, not enumerated
-    distinct = best_designs(total, PAPER, n, model=model, tolerance=tol, top=8)
+    distinct = best_designs(total, PAPER, n, model=model, tolerance=Fraction(tol), top=8)
     keys = [tuple(sorted(d.ratios)) for d in distinct.designs]
     assert len(keys) == len(set(keys))
     if expected:
@@ -177,7 +178,7 @@ def test_discrete_search_equals_brute_force(name, n, total, tol):
 
 
 def test_no_design_in_tolerance_gives_the_nearest():
-    got = best_designs(6000, PAPER, 4, model=MODEL, tolerance="0.01", top=3)
+    got = best_designs(6000, PAPER, 4, model=MODEL, tolerance=Fraction("0.01"), top=3)
     assert not got.meets_tolerance and "no design meets the tolerance" in got.message()
     ratios = [s.ratio for s in PAPER]
     products = {sp.Mul(*c) for c in itertools.combinations_with_replacement(ratios, 4)}
@@ -187,7 +188,7 @@ def test_no_design_in_tolerance_gives_the_nearest():
 
 
 def test_the_best_design_recomputed_from_its_teeth():
-    got = best_designs(60000, PAPER, 5, model=MODEL, tolerance="0.01", top=3)
+    got = best_designs(60000, PAPER, 5, model=MODEL, tolerance=Fraction("0.01"), top=3)
     best = got.designs[0]
     teeth = [(s.sun, s.planet) for s in best.stages]
     train = schemes.common_ring_train(teeth=teeth, ring=180)
@@ -205,19 +206,19 @@ def test_the_best_design_recomputed_from_its_teeth():
 
 def test_progress_is_reported():
     calls = []
-    best_designs(6000, PAPER, 4, model=MODEL, tolerance="0.05", progress=lambda f, nodes: calls.append((f, nodes)))
+    best_designs(6000, PAPER, 4, model=MODEL, tolerance=Fraction("0.05"), progress=lambda f, nodes: calls.append((f, nodes)))
     assert calls and calls[-1][0] == 1.0 and calls[-1][1] > 0
 
 
 @pytest.mark.parametrize("kwargs, message", [
-    (dict(tolerance="-0.1"), "must not be negative"),
-    (dict(tolerance="1.5"), "below 1"),
+    (dict(tolerance=Fraction("-0.1")), "must not be negative"),
+    (dict(tolerance=Fraction("1.5")), "below 1"),
     (dict(top=0), "positive whole number"),
     (dict(lower=12, upper=20), "no feasible stage"),
     (dict(lower=5, upper=3), "reversed"),
 ])
 def test_bad_discrete_input(kwargs, message):
-    args = dict(model=MODEL, tolerance="0.01")
+    args = dict(model=MODEL, tolerance=Fraction("0.01"))
     args.update(kwargs)
     with pytest.raises(InputError, match=message):
         best_designs(6000, PAPER, 4, **args)

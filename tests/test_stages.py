@@ -71,7 +71,7 @@ def test_the_papers_case_gives_22_stages_from_9_4_to_11():
 def test_neighbour_condition_is_decided_exactly_at_equality():
     # k = 6: sin(pi/6) = 1/2, so (z1 + z2)/2 = z2 + 2 h_a exactly when z1 = z2 + 4 h_a
     assert not neighbours_clear(24, 20, 6) and neighbours_clear(25, 20, 6)
-    assert not neighbours_clear(22, 20, 6, ha=Fraction(1, 2)) and neighbours_clear(23, 20, 6, ha="0.5")
+    assert not neighbours_clear(22, 20, 6, ha=Fraction(1, 2)) and neighbours_clear(23, 20, 6, ha=0.5)
     # k = 2: the chord is the full diameter: z1 > 2 h_a
     assert not neighbours_clear(2, 30, 2) and neighbours_clear(3, 30, 2)
     # k = 3: (z1 + z2) sqrt(3)/2 vs z2 + 2 is never equal; a close case checked with 50 digits

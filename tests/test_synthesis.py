@@ -166,8 +166,8 @@ def test_undercut_minimum_is_the_rack_limit():
 
     for alpha in (14.5, 20, 22.5, 25, 30):
         bound = 2 / math.sin(math.radians(alpha)) ** 2  # z sin^2(alpha) >= 2 h_a*
-        assert undercut_minimum(str(alpha)) == math.ceil(bound - 1e-12)
-    assert undercut_minimum(20) == 18 and undercut_minimum(20, "0.8") == 14
+        assert undercut_minimum(Fraction(str(alpha))) == math.ceil(bound - 1e-12)
+    assert undercut_minimum(20) == 18 and undercut_minimum(20, Fraction("0.8")) == 14
 
 
 # ---------------------------------------------------------------- completeness against brute forces
@@ -209,7 +209,7 @@ def test_ravigneaux_search_finds_exactly_the_brute_force_set():
             reach = (p1 + p2) / 2 + 2
             if all(a * a + b * b - 2 * a * b * math.cos(gamma + 2 * math.pi * t / k) > reach**2 for t in range(1, k)):
                 brute.add((s1, s2, p1, p2, r))
-    res = synthesize("ravigneaux", driver="S1", driven="R", fixed="C", ratio=target, tolerance="0.01", planets=k,
+    res = synthesize("ravigneaux", driver="S1", driven="R", fixed="C", ratio=target, tolerance=Fraction("0.01"), planets=k,
                      zmax=zmax, top=None)
     assert found_set(res, ["z_s1", "z_s2", "z_p1", "z_p2", "z_r"]) == brute and len(brute) > 10
 
@@ -299,10 +299,10 @@ def test_the_ready_made_and_textbook_sets_are_among_the_designs(name, request_, 
 # ---------------------------------------------------------------- every design re-checked
 def test_every_listed_design_is_rechecked_by_building_its_train():
     cases = [
-        ("simple", dict(driver="S", driven="C", fixed="R"), dict(ratio="4.5", planets=4)),
-        ("wolfrom", dict(state="drive"), dict(ratio=100, tolerance="0.05", planets=3, zmax=90)),
-        ("ravigneaux", dict(state="second"), dict(ratio="22/15", tolerance="0.01", planets=3, zmax=60)),
-        ("double-pinion", dict(driver="S", driven="C", fixed="R"), dict(ratio="-1.5", tolerance="0.02", planets=3,
+        ("simple", dict(driver="S", driven="C", fixed="R"), dict(ratio=Fraction("4.5"), planets=4)),
+        ("wolfrom", dict(state="drive"), dict(ratio=100, tolerance=Fraction("0.05"), planets=3, zmax=90)),
+        ("ravigneaux", dict(state="second"), dict(ratio=Fraction("22/15"), tolerance=Fraction("0.01"), planets=3, zmax=60)),
+        ("double-pinion", dict(driver="S", driven="C", fixed="R"), dict(ratio=Fraction("-1.5"), tolerance=Fraction("0.02"), planets=3,
                                                                         zmax=70)),
     ]
     for name, request_, options in cases:
@@ -318,7 +318,7 @@ def test_every_listed_design_is_rechecked_by_building_its_train():
 
 
 def test_a_wolfrom_design_has_the_ratio_willis_gives():
-    res = synthesize("wolfrom", state="drive", ratio=76, tolerance="0.02", planets=3, zmax=80, top=3)
+    res = synthesize("wolfrom", state="drive", ratio=76, tolerance=Fraction("0.02"), planets=3, zmax=80, top=3)
     for d in res.designs:
         t = dict(d.gear_teeth)
         willis = (1 + Fraction(t["r1"], t["s"])) / (1 - Fraction(t["r1"] * t["p2"], t["p1"] * t["r2"]))
@@ -328,8 +328,8 @@ def test_a_wolfrom_design_has_the_ratio_willis_gives():
 
 def test_profile_shift_lets_ferguson_s_suns_differ_and_the_train_stays_coaxial():
     with pytest.raises(InputError, match="no coaxial tooth numbers"):
-        synthesize("ferguson", state="s2", ratio=-99, tolerance="0.05", planets=1, zmax=130)
-    res = synthesize("ferguson", state="s2", ratio=-99, tolerance="0.05", planets=1, zmax=130, shift="0.5", top=20)
+        synthesize("ferguson", state="s2", ratio=-99, tolerance=Fraction("0.05"), planets=1, zmax=130)
+    res = synthesize("ferguson", state="s2", ratio=-99, tolerance=Fraction("0.05"), planets=1, zmax=130, shift=Fraction("0.5"), top=20)
     assert res.designs
     for d in res.designs:
         assert all(abs(y) <= sp.Rational(1, 2) for _, y in d.shifts)
@@ -341,7 +341,7 @@ def test_profile_shift_lets_ferguson_s_suns_differ_and_the_train_stays_coaxial()
 
 # ---------------------------------------------------------------- dask and chunking
 def test_any_chunking_gives_the_same_result():
-    kw = dict(driver="S1", driven="R", fixed="C", ratio="12/5", tolerance="0.01", planets=3, zmax=72, top=15)
+    kw = dict(driver="S1", driven="R", fixed="C", ratio=Fraction("12/5"), tolerance=Fraction("0.01"), planets=3, zmax=72, top=15)
     results = [synthesize("ravigneaux", chunk=c, **kw) for c in (None, 97, 5000)]
     first = results[0]
     for r in results[1:]:
@@ -352,7 +352,7 @@ def test_any_chunking_gives_the_same_result():
 def test_equal_ratio_errors_rank_equal_so_the_best_are_the_same_for_any_chunking():
     # in a range (error 0) or at +-x about the target, different ratios have equal errors: the size decides,
     # never the ratio's place among the batch's fractions (a bug that gave each chunking its own "best")
-    for target in (dict(ratio_range=(-120, -30)), dict(ratio=-60, tolerance="0.1")):
+    for target in (dict(ratio_range=(-120, -30)), dict(ratio=-60, tolerance=Fraction("0.1"))):
         kw = dict(state="drive", planets=3, zmax=70, **target)
         every = synthesize("wolfrom", top=None, **kw).designs
         expected = sorted(every, key=lambda d: (d.error, d.size, sum(d.values.values()), tuple(d.values.values())))
@@ -365,10 +365,10 @@ def test_dask_on_a_local_cluster_gives_the_same_result():
     pytest.importorskip("distributed")
     from symkin.synthesis.runner import local_cluster
 
-    kw = dict(driver="S1", driven="R", fixed="C", ratio="12/5", tolerance="0.01", planets=3, zmax=70, top=20,
+    kw = dict(driver="S1", driven="R", fixed="C", ratio=Fraction("12/5"), tolerance=Fraction("0.01"), planets=3, zmax=70, top=20,
               chunk=2000)
     here = synthesize("ravigneaux", **kw)
-    second = dict(state="second", ratio="22/15", tolerance="0.02", planets=3, zmax=70, top=20, chunk=500,
+    second = dict(state="second", ratio=Fraction("22/15"), tolerance=Fraction("0.02"), planets=3, zmax=70, top=20, chunk=500,
                   rank="efficiency")  # a two-piece efficiency law
     ranked_here = synthesize("ravigneaux", **second)
     with local_cluster(2) as cluster:
@@ -376,7 +376,7 @@ def test_dask_on_a_local_cluster_gives_the_same_result():
         ranked_there = synthesize("ravigneaux", scheduler=cluster.scheduler_address, **second)
         start = time.perf_counter()  # the time limit holds on Dask too: the chunks left are cancelled
         with pytest.raises(TimeLimitError, match="more than the time limit of 4 s"):
-            synthesize("ravigneaux", scheduler=cluster.scheduler_address, **{**kw, "zmax": 1500, "tolerance": "0.5",
+            synthesize("ravigneaux", scheduler=cluster.scheduler_address, **{**kw, "zmax": 1500, "tolerance": Fraction("0.5"),
                                                                              "time_limit": 4})
         assert time.perf_counter() - start < 30  # wall clock, as the limit is; the whole space takes hours
     assert [(d.gear_teeth, d.ratio, d.error, d.size) for d in there.designs] == \
@@ -395,8 +395,8 @@ def test_a_ratio_the_train_cannot_give_names_the_reachable_range():
 
 @pytest.mark.parametrize("options, words", [
     (dict(ratio=4, planets=7), "neighbour condition"),
-    (dict(ratio="4.1", tolerance=0, planets=3), "assembled with 3 equally spaced planets"),
-    (dict(ratio="3.95", tolerance="0.001"), "widen the tolerance"),
+    (dict(ratio=Fraction("4.1"), tolerance=0, planets=3), "assembled with 3 equally spaced planets"),
+    (dict(ratio=Fraction("3.95"), tolerance=Fraction("0.001")), "widen the tolerance"),
     (dict(ratio=4, ring_difference=60, zmax=70), "internal gear at least 60 teeth"),
 ])
 def test_no_design_says_which_condition_removed_the_last_candidates(options, words):
@@ -409,7 +409,7 @@ def test_no_design_says_which_condition_removed_the_last_candidates(options, wor
 def test_a_search_too_large_for_its_time_limit_says_so_and_suggests_bounds():
     start = time.perf_counter()
     with pytest.raises(TimeLimitError, match=r"more than the time limit of 1 s; narrow the tooth limits \(e.g. zmax \d+"):
-        synthesize("ravigneaux", driver="S1", driven="R", fixed="C", ratio="12/5", tolerance="0.5", zmax=2000,
+        synthesize("ravigneaux", driver="S1", driven="R", fixed="C", ratio=Fraction("12/5"), tolerance=Fraction("0.5"), zmax=2000,
                    time_limit=1)
     assert time.perf_counter() - start < 6
 
@@ -451,7 +451,7 @@ def test_a_pressure_angle_outside_involute_practice_is_one_clear_error(alpha):
     from symkin.synthesis import undercut_minimum
 
     with pytest.raises(InputError, match="between 5 and 45 degrees"):
-        undercut_minimum(alpha)
+        undercut_minimum(Fraction(alpha))
 
 
 # ---------------------------------------------------------------- ranking by efficiency
@@ -471,7 +471,7 @@ def test_simple_sets_ranked_by_efficiency_follow_the_textbook_formula():
     # order by hand: that value (largest first), then ratio error, size (the ring's pitch circle), tooth sum
     eta_sp, eta_pr = Fraction(97, 100), Fraction(99, 100)
     res = synthesize("simple", driver="S", driven="C", fixed="R", ratio_range=(3, 7), planets=3, zmax=90, top=None,
-                     rank="efficiency", mesh_efficiency={"s-p": "0.97", "p-r": "0.99"})
+                     rank="efficiency", mesh_efficiency={"s-p": Fraction("0.97"), "p-r": Fraction("0.99")})
     full = synthesize("simple", driver="S", driven="C", fixed="R", ratio_range=(3, 7), planets=3, zmax=90, top=None)
     assert res.found == full.found > 20 and res.rank[0] == "efficiency"
 
@@ -484,13 +484,13 @@ def test_simple_sets_ranked_by_efficiency_follow_the_textbook_formula():
     assert [d.gear_teeth for d in res.designs] == [d.gear_teeth for d in expected]
     assert all(sp.Rational(by_hand(d).numerator, by_hand(d).denominator) == d.ranked_efficiency for d in res.designs)
     top = synthesize("simple", driver="S", driven="C", fixed="R", ratio_range=(3, 7), planets=3, zmax=90, top=7,
-                     rank="efficiency", mesh_efficiency={"s-p": "0.97", "p-r": "0.99"}, chunk=3)
+                     rank="efficiency", mesh_efficiency={"s-p": Fraction("0.97"), "p-r": Fraction("0.99")}, chunk=3)
     assert [d.gear_teeth for d in top.designs] == [d.gear_teeth for d in res.designs[:7]]
 
 
 @pytest.mark.parametrize("name, request_, target", [
     ("wolfrom", dict(state="drive"), dict(ratio_range=(-120, -30), zmax=70)),
-    ("ravigneaux", dict(state="second"), dict(ratio_range=("1.3", "1.8"), zmax=60)),
+    ("ravigneaux", dict(state="second"), dict(ratio_range=(Fraction("1.3"), Fraction("1.8")), zmax=60)),
 ])
 def test_designs_ranked_by_efficiency_agree_with_each_train_s_own_statics(name, request_, target):
     # the law (derived once with symbolic teeth, evaluated exactly over the designs) against the statics of each
@@ -513,7 +513,7 @@ def test_the_efficiency_law_is_exact_in_python_integers_too_and_at_its_piece_bou
 
     problem = derive(load_train("wolfrom"), state="drive", zmax=150)
     fast = EfficiencyLaw.derive(problem, "default")
-    slow = EfficiencyLaw.derive(problem, "0.987654321")  # coefficients beyond 2^53: Python integers
+    slow = EfficiencyLaw.derive(problem, Fraction("0.987654321"))  # coefficients beyond 2^53: Python integers
     assert fast.f_float is not None and slow.f_float is None
     rng = np.random.default_rng(5)
     teeth = rng.integers(12, 151, size=(40, 5))
@@ -542,7 +542,7 @@ def test_the_efficiency_law_is_exact_in_python_integers_too_and_at_its_piece_bou
 def test_ranking_by_efficiency_needs_numbers_for_the_meshes():
     with pytest.raises(InputError, match="needs a number for every mesh efficiency"):
         synthesize("simple", driver="S", driven="C", fixed="R", ratio=4, zmax=60, rank="efficiency",
-                   mesh_efficiency={"s-p": "0.97"})  # the ring mesh left a symbol
+                   mesh_efficiency={"s-p": Fraction("0.97")})  # the ring mesh left a symbol
 
 
 def test_degenerate_designs_have_no_efficiency_and_rank_last_without_a_statics_each(monkeypatch):
@@ -585,8 +585,8 @@ def test_designs_that_lock_are_flagged_and_ranked_by_the_hand_formula():
     # relative power runs 4 -> 1 when i0 < 1 and eta = (1 - i0/eta0)/(1 - i0) (below zero, locking, for
     # eta0 < i0 < 1), 1 -> 4 when i0 > 1 and eta = (1 - i0 eta0)/(1 - i0); at i0 = 1 the carrier's speed has a pole
     eta0 = Fraction(99, 100) ** 2
-    res = synthesize(read_train(TWO_ROW_II), driver="A", driven="H", ratio_range=("-0.05", "0.05"), planets=1,
-                     zmin=17, zmax=40, top=None, rank="efficiency", mesh_efficiency="0.99")
+    res = synthesize(read_train(TWO_ROW_II), driver="A", driven="H", ratio_range=(Fraction("-0.05"), Fraction("0.05")), planets=1,
+                     zmin=17, zmax=40, top=None, rank="efficiency", mesh_efficiency=Fraction("0.99"))
     assert res.mesh_efficiency == (("g1-g2", sp.Rational(99, 100)), ("g3-g4", sp.Rational(99, 100)))
 
     def by_hand(d):
@@ -624,9 +624,9 @@ def test_ranking_by_efficiency_refuses_what_it_cannot_order_exactly_and_keeps_de
             rank_order(bad)
     with pytest.raises(InputError, match=r"needs each mesh efficiency as a rational number.*0\.785398"):
         synthesize("simple", driver="S", driven="C", fixed="R", ratio=4, zmax=60, rank="efficiency",
-                   mesh_efficiency="pi/4")
+                   mesh_efficiency=sp.pi / 4)
     res = synthesize("simple", driver="S", driven="C", fixed="R", ratio=4, zmax=100, top=None, rank="efficiency",
-                     mesh_efficiency={"s-p": "0.97", "p-r": Fraction(99, 100)})
+                     mesh_efficiency={"s-p": Fraction("0.97"), "p-r": Fraction(99, 100)})
     assert len(set(res.designs)) == len(res.designs) > 1  # a dict of mesh efficiencies left them hashable
     assert dict(res.designs[0].mesh_efficiency) == {"s-p": sp.Rational(97, 100), "p-r": sp.Rational(99, 100)}
     assert res.designs[0].check().efficiency_ok

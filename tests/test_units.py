@@ -11,9 +11,9 @@ import pytest
 import sympy as sp
 
 from symkin import schemes
-from symkin._util.parsing import parse_quantity
 from symkin.cli import main
-from symkin.errors import InputError
+from symkin.errors import InputError, TextInputError
+from symkin.parsing import parse, parse_quantity
 from symkin.units import factor, quantity
 
 pint = pytest.importorskip("pint")
@@ -57,11 +57,13 @@ def test_exact_factors_agree_with_pints_floats(src, dst):
 def test_pint_quantities_are_taken_exactly_and_give_what_bare_numbers_give():
     aa = schemes.two_row("AA", teeth=(54, 45, 44, 55))
     by_hand = aa.speeds({"1": 10 * sp.pi, "4": 0})
-    for given in (ureg.Quantity(300, "rpm"), "300 rpm", ureg.Quantity(1800, "deg/s")):
+    for given in (ureg.Quantity(300, "rpm"), parse("300 rpm", unit="rad/s"), ureg.Quantity(1800, "deg/s")):
         speeds = aa.speeds({"1": given, "4": 0})
         assert all(sp.simplify(speeds[k] - by_hand[k]) == 0 for k in ("1", "23", "H", "4"))
     # the AA ratio i_1H^(4) = 1 - z2 z4 / (z1 z3) = -1/24, so omega_H = -24 omega_1
-    assert aa.speeds({"1": "300 rpm", "4": 0})["H"] == -240 * sp.pi
+    assert aa.speeds({"1": 300 * ureg.rpm, "4": 0})["H"] == -240 * sp.pi
+    with pytest.raises(TextInputError, match=r"symkin.parse\('300 rpm', unit='rad/s'\)"):  # text is read by the parser
+        aa.speeds({"1": "300 rpm", "4": 0})
     assert quantity(ureg.Quantity(1.5, "deg"), "rad") == sp.pi / 120
     motion = aa.motion({"1": ureg.Quantity(60, "rpm"), "4": 0})
     assert motion.inputs == aa.motion({"1": 2 * sp.pi, "4": 0}).inputs
@@ -139,7 +141,7 @@ def test_a_unit_of_the_wrong_kind_on_the_command_line_is_exit_2(capsys):
 
 def test_a_run_without_units_does_not_import_pint():
     code = ("import sys, symkin; from symkin import schemes; "
-            "schemes.two_row('AA', teeth=(54, 45, 44, 55)).speeds({'1': '3/4', '4': 0}); print('pint' in sys.modules)")
+            "schemes.two_row('AA', teeth=(54, 45, 44, 55)).speeds({'1': symkin.parse('3/4'), '4': 0}); print('pint' in sys.modules)")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
     assert out.strip() == "False"
 

@@ -5,7 +5,8 @@ import sympy as sp
 
 from symkin import InputError, schemes
 from symkin import symbols as S
-from symkin._util.parsing import as_values, substitute
+from symkin.parsing import parse
+from symkin.values import as_values, substitute
 
 INJECTION = "__import__('os').system('touch PWNED') or 1"
 
@@ -17,13 +18,15 @@ def particle():
 
 def test_trajectory_values_are_never_executed(particle, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
-    with pytest.raises(InputError, match="not allowed"):
+    with pytest.raises(InputError, match="is the text .*symkin.parse"):
         particle.trajectory(1.0, values={"r_1": INJECTION, "r_2": 1, "r_4": 3})
+    with pytest.raises(InputError, match="not allowed"):
+        parse(INJECTION)
     assert not (tmp_path / "PWNED").exists()
 
 
 def test_keys_match_by_name_whatever_the_assumptions(particle):
-    plain = {sp.Symbol("r_1"): 1, "r_2": sp.Rational(1), sp.Symbol("r_4", real=True): "3"}
+    plain = {sp.Symbol("r_1"): 1, "r_2": sp.Rational(1), sp.Symbol("r_4", real=True): 3.0}
     _t, x, y = particle.trajectory(2.0, samples=3, values=plain)
     exact = substitute(particle.position, {"r_1": 1, "r_2": 1, "r_4": 3})
     assert x[-1] == pytest.approx(float(exact[0].subs(S.t, 2)))
@@ -45,9 +48,9 @@ def test_as_values_refuses_strange_keys():
 
 
 @pytest.mark.parametrize("text", ["E**1000", "-exp(800)"])
-def test_exact_values_beyond_float64_are_refused_with_the_range(text):
-    from symkin._util.parsing import as_real
+def test_typed_values_beyond_float64_are_refused_with_the_range(text):
+    from symkin.parsing import parse_real
 
     with pytest.raises(InputError, match="beyond the float64 range"):
-        as_real(text, what="--carrier-angle")
-    assert as_real("E**690") == sp.E**690  # large, still within the 1e300 bound on every number (E**700 is 1e304)
+        parse_real(text, what="--carrier-angle")
+    assert parse_real("E**690") == sp.E**690  # large, still within the 1e300 bound on every number (E**700 is 1e304)

@@ -100,7 +100,7 @@ print(", ".join(f"{s.sun}/{s.planet}: {s.ratio}" for s in stages))
 # is a posynomial, hence convex, so the KKT point below is the global minimum:
 
 # %%
-best = optimise_split(6000, 4, lower="2.25", upper=11, model=StageErrorModel.linear("0.854", "0.858"))
+best = optimise_split(6000, 4, lower=2.25, upper=11, model=StageErrorModel.linear(0.854, 0.858))
 print("u* =", best.exact_ratios, "  objective =", best.exact_objective, "=", sp.N(best.exact_objective, 6))
 for line in best.explain():
     print(" -", line)
@@ -133,8 +133,8 @@ print(f"{c.kind.value} check: the frozen-Fd objective has the same minimiser: {c
 # the nearest and says so:
 
 # %%
-model = StageErrorModel.linear("0.854", "0.858")
-for tol in ("0.01", "0.05"):
+model = StageErrorModel.linear(0.854, 0.858)
+for tol in (0.01, 0.05):
     result = best_designs(6000, stages, 4, model=model, tolerance=tol, top=3)
     print(result.message())
     for d in result.designs:
@@ -149,7 +149,7 @@ for tol in ("0.01", "0.05"):
 # %%
 from symkin.viz.split import split_figure
 
-split_figure(best, best_designs(6000, stages, 4, model=model, tolerance="0.05", top=5))
+split_figure(best, best_designs(6000, stages, 4, model=model, tolerance=0.05, top=5))
 
 # %% [markdown]
 # ## The verification table

@@ -9,10 +9,10 @@ from typing import TYPE_CHECKING, Any
 from symkin.cli.common import (
     add_command,
     add_teeth_argument,
-    as_real,
     emit,
     parse_expression,
     parse_integer,
+    parse_real,
     sign_of,
     teeth_list,
 )
@@ -81,18 +81,18 @@ def _drive(args: Any) -> Drive:
     if args.speed is None:
         raise InputError(f"the {kind} drive needs --speed W, the {'carrier' if kind == 'constant' else 'input gear'} "
                          "speed in rad/s")
-    omega = as_real(args.speed, what="--speed", positive=True, unit="rad/s")
+    omega = parse_real(args.speed, what="--speed", positive=True, unit="rad/s")
     if kind == "constant":
         return ConstantSpeed(omega)
     if args.eccentricity is None:
         raise InputError("the elliptical drive needs -e/--eccentricity E with 0 <= E < 1")
-    e = as_real(args.eccentricity, what="--eccentricity")
+    e = parse_real(args.eccentricity, what="--eccentricity")
     if sign_of(e, what="--eccentricity") is None:
         raise InputError(f"--eccentricity {args.eccentricity!r} is 0 to 1233 digits without being 0; write 0 for "
                          "circular gears")
     if sign_of(e, what="--eccentricity") == -1 or sign_of(1 - e, what="--eccentricity") != 1:
         raise InputError(f"--eccentricity must lie in [0, 1), got {args.eccentricity!r}; 0 gives circular gears")
-    m = as_real(args.order, what="--order", positive=True) if args.order is not None else 1
+    m = parse_real(args.order, what="--order", positive=True) if args.order is not None else 1
     return EllipticalGears(omega, e, m)
 
 
@@ -105,14 +105,14 @@ def _times(args: Any, slider: CardanSlider) -> Any:
         parts = [p for p in args.times.split(",") if p.strip()]
         if not parts:
             raise InputError("--times is empty; give at least one time, e.g. --times 0,0.5,1")
-        return as_times([float(as_real(p, what=f"time {i} in --times", unit="s")) for i, p in enumerate(parts, 1)])
+        return as_times([float(parse_real(p, what=f"time {i} in --times", unit="s")) for i, p in enumerate(parts, 1)])
     n = parse_integer(args.samples, what="--samples")
     if n < 1:
         raise InputError(f"--samples must be at least 1, got {n}")
     if n > MAX_SAMPLES:
         raise InputError(f"--samples is at most {MAX_SAMPLES}, got {n}")
-    end = as_real(args.t_end, what="--t-end", unit="s") if args.t_end is not None else None
-    return slider.times(t_start=as_real(args.t_start, what="--t-start", unit="s"), t_end=end, samples=int(n))
+    end = parse_real(args.t_end, what="--t-end", unit="s") if args.t_end is not None else None
+    return slider.times(t_start=parse_real(args.t_start, what="--t-start", unit="s"), t_end=end, samples=int(n))
 
 
 def run_cardan(args: Any) -> int:
@@ -125,16 +125,16 @@ def run_cardan(args: Any) -> int:
         warnings.warn("symkin cardan --omega W is deprecated: it is now --speed W (--omega LINK=VALUE names a link's "
                       "speed in the other commands)", SymkinWarning, stacklevel=1)
         args.speed = args.omega_deprecated
-    length = as_real(args.length, what="--length", positive=True, unit="m")
+    length = parse_real(args.length, what="--length", positive=True, unit="m")
     z1, z3 = teeth_list(args.teeth, (2,))
     if z3 <= z1:
         raise InputError(f"the ring needs more teeth than the planet: got z1 = {z1}, z3 = {z3}")
     drive = _drive(args)
-    pin_radius = as_real(args.pin_radius, what="--pin-radius", positive=True, unit="m") if args.pin_radius is not None else None
-    pin_angle = as_real(args.pin_angle, what="--pin-angle", unit="rad") if args.pin_angle is not None else None
+    pin_radius = parse_real(args.pin_radius, what="--pin-radius", positive=True, unit="m") if args.pin_radius is not None else None
+    pin_angle = parse_real(args.pin_angle, what="--pin-angle", unit="rad") if args.pin_angle is not None else None
     slider = CardanSlider.build(length, drive=drive, teeth=(z1, z3), pin_radius=pin_radius, pin_angle=pin_angle,
-                                guide_angle=as_real(args.guide_angle, what="--guide-angle", unit="rad"),
-                                carrier_angle=as_real(args.carrier_angle, what="--carrier-angle", unit="rad"))
+                                guide_angle=parse_real(args.guide_angle, what="--guide-angle", unit="rad"),
+                                carrier_angle=parse_real(args.carrier_angle, what="--carrier-angle", unit="rad"))
     table = slider.table(_times(args, slider))
     data = table.to_json()
     data["units"] = {"length": "m", "pin_radius": "m", "period_s": "s", "pin_angle_rad": "rad", "guide_angle_rad": "rad",

@@ -11,7 +11,7 @@ Conventions every command follows:
   rad/s, and a value may carry a unit (``1=300rpm``, ``H=90deg/s``); a plain speed has
   another name (``symkin cardan --speed``).
 - Values with a unit are accepted wherever a quantity is meant (speeds, lengths, angles of
-  motion, times; parsed by :func:`symkin._util.parsing.parse_quantity` through pint); bare
+  motion, times; parsed by :func:`symkin.parsing.parse_quantity` through pint); bare
   numbers keep the unit each option states.  With ``--json``, ``"units"`` gives the unit of
   every dimensional key of the output.
 - ``--out`` names what a command writes: a folder (``--out DIR``, reproduce) or a file
@@ -50,13 +50,12 @@ def _on_first_call(module: str, name: str) -> Callable[..., Any]:
 
 exact_json = _on_first_call("symkin._util.jsonout", "exact_json")
 float_text = _on_first_call("symkin._util.jsonout", "float_text")
-parse_expression = _on_first_call("symkin._util.parsing", "parse_expression")
-parse_integer = _on_first_call("symkin._util.parsing", "parse_integer")
-parse_number = _on_first_call("symkin._util.parsing", "parse_number")
-parse_quantity = _on_first_call("symkin._util.parsing", "parse_quantity")
-as_integer = _on_first_call("symkin._util.parsing", "as_integer")
-as_real = _on_first_call("symkin._util.parsing", "as_real")
-sign_of = _on_first_call("symkin._util.parsing", "sign_of")
+parse_expression = _on_first_call("symkin.parsing", "parse_expression")
+parse_integer = _on_first_call("symkin.parsing", "parse_integer")
+parse_number = _on_first_call("symkin.parsing", "parse_number")
+parse_quantity = _on_first_call("symkin.parsing", "parse_quantity")
+parse_real = _on_first_call("symkin.parsing", "parse_real")
+sign_of = _on_first_call("symkin.values", "sign_of")
 
 __all__ = [
     "teeth_list",

@@ -37,7 +37,7 @@ def register(sub: Any) -> None:
 
 def run_efficiency(args: Any) -> int:
     """Run ``symkin efficiency`` with the parsed ``args``: torques, power flow and efficiency of a train both ways; hands text and JSON to :func:`symkin.cli.common.emit` and returns 0 (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
-    from symkin._util.parsing import parse_number
+    from symkin.parsing import parse_number
     from symkin.printing import latex
     from symkin.statics import statics
 

@@ -12,6 +12,7 @@ from symkin.cli.common import (
     emit,
     exact_json,
     figure_file,
+    parse_expression,
     parse_integer,
     parse_number,
     save_figure,
@@ -114,12 +115,13 @@ def run_stages(args: Any) -> int:
 
 
 def _model(args: Any):
-    from symkin.mechanisms.multistage.lostmotion import StageErrorModel
+    from symkin.mechanisms.multistage.lostmotion import StageErrorModel, U
 
     if args.model and args.backlash_line:
         raise InputError("give either --model or --backlash-line, not both")
     if args.model:
-        return StageErrorModel.from_expression(args.model)
+        expr = parse_expression(args.model, symbols={"u": U}, what="the stage error model Phi/d")
+        return StageErrorModel(expr, f"Phi/d = {expr}")
     if args.backlash_line:
         if args.module is None or args.ring is None:
             missing = " and ".join(o for o, v in (("--module", args.module), ("--ring", args.ring)) if v is None)

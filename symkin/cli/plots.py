@@ -19,12 +19,12 @@ from symkin.cli.common import (
     add_quiet_flag,
     add_scheme_argument,
     add_teeth_argument,
-    as_integer,
     emit,
     figure_file,
     link_values,
     mechanism_of,
     parse_expression,
+    parse_integer,
     parse_number,
     save_figure,
 )
@@ -125,9 +125,10 @@ def _setup(args: Any) -> tuple[Any, Any, list, float, list[str], dict[str, Any],
 
     points = [_point(p, mech) for p in args.point] or default_particles(mech)
     if args.t_end is not None:
-        from symkin._util.parsing import as_real, sign_of
+        from symkin.parsing import parse_real
+        from symkin.values import sign_of
 
-        t_end = as_real(args.t_end, what="--t-end", unit="s")
+        t_end = parse_real(args.t_end, what="--t-end", unit="s")
         if sign_of(t_end, what="--t-end") != 1:  # on intervals: a 0 in disguise is not positive
             raise InputError(f"--t-end must be positive, got {args.t_end}")
         t_end = float(t_end)
@@ -249,9 +250,9 @@ def run_animate(args: Any) -> int:
     out = Path(args.out)
     if out.suffix.lower() not in WRITERS:
         raise InputError(f"--out {args.out}: give a file ending in {' or '.join(WRITERS)}")
-    fps = int(as_integer(args.fps, what="--fps", minimum=1, maximum=MAX_FPS))
-    dpi = int(as_integer(args.dpi, what="--dpi", minimum=10, maximum=MAX_DPI))
-    frames = int(as_integer(args.frames, what="--frames", minimum=2, maximum=MAX_FRAMES)) if args.frames is not None else None
+    fps = int(parse_integer(args.fps, what="--fps", minimum=1, maximum=MAX_FPS))
+    dpi = int(parse_integer(args.dpi, what="--dpi", minimum=10, maximum=MAX_DPI))
+    frames = int(parse_integer(args.frames, what="--frames", minimum=2, maximum=MAX_FRAMES)) if args.frames is not None else None
     mech, motion, points, t_end, labels, about, title = _setup(args)
     if motion.space is not None:
         from symkin.errors import UnsupportedError

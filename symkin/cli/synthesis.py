@@ -70,7 +70,7 @@ def register(sub: Any) -> None:
 
 
 def _ratio_range(text: str) -> tuple[Any, Any]:
-    from symkin._util.parsing import parse_number
+    from symkin.parsing import parse_number
 
     parts = [x.strip() for x in text.split(",")]
     if len(parts) != 2:
@@ -81,7 +81,7 @@ def _ratio_range(text: str) -> tuple[Any, Any]:
 def run_synthesize(args: Any) -> int:
     """Run ``symkin synthesize`` with the parsed ``args``: tooth numbers of a train file for a target ratio; hands text and JSON to :func:`symkin.cli.common.emit` and returns 0 (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
     from symkin._util.jsonout import exact_json
-    from symkin._util.parsing import parse_integer, parse_number
+    from symkin.parsing import parse_integer, parse_number
     from symkin.synthesis import synthesize
 
     if args.ratio is None and args.ratio_range is None:

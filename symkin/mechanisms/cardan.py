@@ -43,22 +43,21 @@ from symkin import schemes
 from symkin import symbols as S
 from symkin._util.budget import simplify_within
 from symkin._util.jsonout import exact_json
-from symkin._util.parsing import (
-    as_expr,
-    as_rational,
-    as_real,
-    as_values,
-    is_quantity,
-    parse_quantity,
-    sign_of,
-    substitute,
-)
 from symkin.drives import AngleLaw, ConstantSpeed, Drive, EllipticalGears, as_drive
 from symkin.errors import InputError, ModelError, UnsupportedError
 from symkin.laws import Law
 from symkin.model import Mechanism, as_length, as_teeth
 from symkin.numeric import compile
 from symkin.numeric.sampling import as_times, on_grid, time_grid
+from symkin.values import (
+    as_expr,
+    as_rational,
+    as_real,
+    as_values,
+    is_quantity,
+    sign_of,
+    substitute,
+)
 from symkin.vectorloop import LinkVector, VectorLoop, harmonics, solve_linear
 
 __all__ = [
@@ -296,8 +295,8 @@ def _clearly_away_from(q: sp.Expr, target: int | None) -> bool:
 
 
 def _in(value: Any, unit: str, what: str) -> Any:
-    """A quantity (text with a unit, or a pint quantity) in ``unit``; anything else as it is."""
-    return parse_quantity(value, unit, what=what) if isinstance(value, str) or is_quantity(value) else value
+    """A pint quantity in ``unit``; anything else as it is (text refused: read it with symkin.parse)."""
+    return as_expr(value, what=what, unit=unit) if isinstance(value, str) or is_quantity(value) else value
 
 
 @dataclass(frozen=True)
@@ -363,14 +362,16 @@ class CardanSlider:
 
         Notes
         -----
-        Lengths are in m and angles in rad, or quantities with a unit (``"20 mm"``, ``"30 deg"``,
-        pint quantities: :mod:`symkin.units`); the drive's speed in rad/s, or with a unit.
+        Lengths are in m and angles in rad, or pint quantities with a unit (:mod:`symkin.units`);
+        the drive's speed in rad/s, or a pint quantity.
 
         Examples
         --------
         >>> CardanSlider.build(20, teeth=(20, 60)).path().kind
         'hypocycloid'
-        >>> CardanSlider.build("20 mm", drive="24 rpm", carrier_angle="30 deg").laws()[0].rhs
+        >>> import pint
+        >>> q = pint.get_application_registry().Quantity
+        >>> CardanSlider.build(q(20, "mm"), drive=q(24, "rpm"), carrier_angle=q(30, "deg")).laws()[0].rhs
         cos(4*pi*t/5 + pi/6)/25
         """
         length, pin_radius = _in(length, "m", "carrier length l_H"), _in(pin_radius, "m", "pin radius l_1")

@@ -35,7 +35,6 @@ from typing import Any
 import sympy as sp
 
 from symkin._util.bounds import show
-from symkin._util.parsing import check_numbers
 from symkin.errors import InputError
 from symkin.laws import Law
 from symkin.numeric.backends import BACKENDS, Plan, numba_available, warn_no_numba
@@ -108,10 +107,31 @@ def _exprs(laws: Any) -> tuple[list[sp.Expr], list[str]]:
     for e, n in zip(exprs, names):
         if e.has(sp.zoo, sp.nan, sp.oo, -sp.oo):
             raise InputError(f"{n} is infinite or undefined ({show(e)}); there is nothing finite to compile")
-        # every constant part real and bounded (an unevaluated tan(pi/2), 2**(10**6)...); an exact
-        # rational may be of any size here: whether a float holds it is decided after the rewriting
-        check_numbers(e, n, rationals=False)
+        _check_constants(e, n)
     return exprs, names
+
+
+def _check_constants(expr: sp.Expr, name: str) -> None:
+    """Refuse a constant part of a law that has no finite float (an unevaluated ``log(0)``,
+    ``tan(pi/2)``, ``sqrt(2)**(10**6)``): float code would compute a nan, an inf, or a wrong
+    finite number from it.  An exact rational may be of any size: whether a float holds it is
+    decided after the stable rewriting (tooth-number products are computed in integers)."""
+    stack = [expr]
+    while stack:
+        e = stack.pop()
+        if e.is_Atom or not isinstance(e, sp.Expr):
+            continue
+        if not e.is_number:
+            stack.extend(e.args)
+            continue
+        value = e.evalf(17)
+        if not (value.is_Float and value.is_finite and abs(value) < _FLOAT_MAX):
+            raise InputError(f"{name}: its constant {show(e)} has no finite float value ({show(value)}); "
+                             "there is nothing finite to compile")
+
+
+#: The largest float64.
+_FLOAT_MAX = sp.Float(1.7976931348623157e308)
 
 
 @dataclass(frozen=True)
@@ -204,7 +224,7 @@ def compile(
     >>> f
     <NumericFunction sin(x)/x(x): mpmath 30 digits>
     >>> import mpmath
-    >>> mpmath.nstr(f("0.5"), 30)   # mpf values carry 30 digits; print them with nstr
+    >>> mpmath.nstr(f(0.5), 30)   # mpf values carry 30 digits; print them with nstr
     '0.958851077208406000546575870431'
     """
     if backend is None:

@@ -33,7 +33,6 @@ from typing import Any
 import numpy as np
 import sympy as sp
 
-from symkin._util.parsing import parse_number
 from symkin.errors import InputError, PoleError, PrecisionWarning, UnsupportedError
 from symkin.numeric import runtime
 from symkin.numeric.codegen import (
@@ -46,6 +45,7 @@ from symkin.numeric.codegen import (
     product_ratios,
 )
 from symkin.numeric.stable import ExactRatio, plain_form
+from symkin.values import refuse_text
 
 __all__ = ["Plan", "BACKENDS", "NumpyBackend", "NumbaBackend", "MpmathBackend", "ExactBackend", "numba_available"]
 
@@ -924,11 +924,10 @@ def _to_mpf(v: Any, name: str) -> Any:
     if isinstance(v, sp.Rational):
         return mpmath.mpf(int(v.p)) / int(v.q)
     if isinstance(v, str):
-        r = parse_number(v, what=name)
-        return mpmath.mpf(int(r.p)) / int(r.q)
+        raise refuse_text(v, name)
     if isinstance(v, sp.Expr) and v.is_number:
         return mpmath.mpf(sp.N(v, mpmath.mp.dps + 5))
-    raise InputError(f"{name} must be a number (int, float, Fraction or decimal text), got {v!r}")
+    raise InputError(f"{name} must be a number (int, float or Fraction), got {v!r}")
 
 
 def _object_points(values: Sequence[Any], names: Sequence[str]) -> tuple[tuple[int, ...], list[np.ndarray]]:
@@ -993,10 +992,9 @@ def _to_fraction(v: Any, name: str) -> Any:
     if isinstance(v, sp.Rational):
         return Fraction(int(v.p), int(v.q))
     if isinstance(v, str):
-        r = parse_number(v, what=name)
-        return Fraction(int(r.p), int(r.q))
+        raise refuse_text(v, name)
     raise InputError(
-        f"{name} must be exact for the exact backend (int, Fraction, or decimal text such as '0.8'), got {v!r}; "
+        f"{name} must be exact for the exact backend (int or Fraction), got {v!r}; "
         "use backend='mpmath' for floats"
     )
 

@@ -25,9 +25,9 @@ import numpy as np
 import sympy as sp
 
 from symkin import symbols as S
-from symkin._util.parsing import as_float, as_values, substitute
 from symkin.errors import InputError
 from symkin.numeric import compile
+from symkin.values import as_float, as_values, substitute
 
 __all__ = ["MAX_SAMPLES", "time_grid", "as_times", "on_grid"]
 

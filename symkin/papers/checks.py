@@ -47,8 +47,9 @@ from typing import Any
 import sympy as sp
 
 from symkin._util.display import markdown_table
-from symkin._util.parsing import as_expr, parse_number
+from symkin.parsing import parse, parse_number
 from symkin.printing import latex
+from symkin.values import as_expr
 
 __all__ = [
     "Kind",
@@ -193,7 +194,10 @@ class Comparison:
 
 # ---------------------------------------------------------------------------- numbers and text
 def _expr(value: Any) -> Any:
-    """A SymPy object from a value; text is parsed with the allow-list, never by Python."""
+    """A SymPy object from a value; text (a published item as printed) is parsed with the
+    allow-list, never by Python."""
+    if isinstance(value, str):
+        return parse(value, what="a compared value")
     return as_expr(value, what="a compared value", finite=False)
 
 

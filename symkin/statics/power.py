@@ -41,11 +41,11 @@ import sympy as sp
 from symkin import symbols as S
 from symkin._util.display import html_table
 from symkin._util.jsonout import exact_json, float_text
-from symkin._util.parsing import as_real
 from symkin.errors import InputError, ModelError, UnderdeterminedError
 from symkin.kinematics import solve_speeds
 from symkin.laws import Law
 from symkin.model import FRAME, LinkKind, Mechanism, Mesh
+from symkin.values import as_real
 
 __all__ = ["MeshPower", "Statics", "statics", "efficiency_symbol", "DEFAULT_EFFICIENCY"]
 

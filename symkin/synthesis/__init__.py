@@ -12,13 +12,16 @@
 - :func:`synthesize`: all of it in one call.
 
     >>> from symkin.synthesis import synthesize
-    >>> res = synthesize("ravigneaux", driver="S1", driven="R", fixed="C", ratio="12/5", tolerance=0, planets=3,
+    >>> from fractions import Fraction
+    >>> res = synthesize("ravigneaux", driver="S1", driven="R", fixed="C", ratio=Fraction(12, 5), tolerance=0, planets=3,
     ...                  zmax=72)
     >>> res.designs[0].gear_teeth, res.designs[0].check().passed
     ((('s1', 30), ('s2', 24), ('p1', 18), ('p2', 24), ('r', 72)), True)
 """
 
 from __future__ import annotations
+
+from fractions import Fraction
 
 from symkin.synthesis.api import synthesize
 from symkin.synthesis.problem import Condition, Options, Problem, derive, undercut_minimum

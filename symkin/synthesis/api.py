@@ -5,10 +5,10 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Callable, Sequence
+from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
-from symkin._util.parsing import as_integer, as_rational
 from symkin.errors import InputError
 from symkin.model import Mechanism
 from symkin.synthesis.efficiency import DEFAULT_RANK, rank_order
@@ -16,6 +16,7 @@ from symkin.synthesis.problem import Options, derive
 from symkin.synthesis.result import Design, SynthesisResult, empty_reason, funnel_of
 from symkin.synthesis.runner import Execution, run
 from symkin.synthesis.search import Plan, Target
+from symkin.values import as_integer, as_rational
 
 __all__ = ["synthesize", "MAX_TOP"]
 
@@ -29,7 +30,7 @@ def synthesize(
     train: Mechanism | str | Path,
     *,
     ratio: Any = None,
-    tolerance: Any = "0.01",
+    tolerance: Any = Fraction(1, 100),
     ratio_range: Sequence[Any] | None = None,
     driver: str | None = None,
     driven: str | None = None,
@@ -142,14 +143,14 @@ def synthesize(
         target = Target.of(ratio, tolerance)
     else:
         raise InputError("give the target ratio (and a tolerance), or a ratio range")
-    top_n = None if top is None else int(as_integer(top, what="top", text=False, minimum=1, maximum=MAX_TOP))
+    top_n = None if top is None else int(as_integer(top, what="top", minimum=1, maximum=MAX_TOP))
     if time_limit is not None:
         limit = as_rational(time_limit, what="the time limit")
         if limit <= 0:
             raise InputError(f"the time limit must be a positive number of seconds, got {time_limit!r}")
         time_limit = float(limit)
     if workers is not None:
-        workers = int(as_integer(workers, what="the number of workers", text=False, minimum=1, maximum=1024))
+        workers = int(as_integer(workers, what="the number of workers", minimum=1, maximum=1024))
     options = Options(planets=planets, zmin=zmin, zmax=zmax, pressure_angle=pressure_angle, addendum=addendum,
                       clearance=clearance, shift=shift, ring_difference=ring_difference)
     problem = derive(train, driver=driver, driven=driven, fixed=fixed, state=state, options=options)
@@ -157,7 +158,7 @@ def synthesize(
     if chunk is None:
         per = max(256, min(CHUNK, math.ceil(plan0.size / 64)))
     else:
-        per = int(as_integer(chunk, what="the chunk size", text=False, minimum=1, maximum=1 << 24))
+        per = int(as_integer(chunk, what="the chunk size", minimum=1, maximum=1 << 24))
     plan = plan0 if per == plan0.chunk else _plan(problem, target, top_n, per, order, mesh_efficiency)
     runs: list[Execution] = []
     merged = run(plan, scheduler=scheduler, workers=workers, time_limit=time_limit, progress=progress, execution=runs,

@@ -17,7 +17,7 @@ undefined, as the statics of that train says, and such designs rank last.
 
     >>> from symkin.trains import load_train
     >>> from symkin.synthesis.problem import derive
-    >>> law = EfficiencyLaw.derive(derive(load_train("simple"), driver="S", driven="C", fixed="R"), "0.98")
+    >>> law = EfficiencyLaw.derive(derive(load_train("simple"), driver="S", driven="C", fixed="R"), 0.98)
     >>> law.law
     (2401*z_r + 2500*z_s)/(2500*(z_r + z_s))
     >>> law.exact([(18, 18, 54), (21, 21, 63), (18, 36, 90)])

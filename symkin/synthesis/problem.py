@@ -54,11 +54,11 @@ from typing import Any
 import sympy as sp
 
 from symkin import symbols as S
-from symkin._util.parsing import as_integer, as_rational
 from symkin.errors import CoaxialityWarning, InputError, UnsupportedError
 from symkin.kinematics import contact_condition
 from symkin.laws import Law
 from symkin.model import FRAME, MAX_PLANETS, Gear, Link, LinkKind, Mechanism, Mesh
+from symkin.values import as_integer, as_rational
 
 __all__ = [
     "K", "Options", "Condition", "CentreMesh", "PlanetArm", "CoaxialRow", "AssemblyRow", "AssemblyGroup", "Rim",
@@ -92,7 +92,7 @@ PRESSURE_ANGLES = (5, 45)
 def undercut_minimum(pressure_angle_deg: Any = 20, addendum: Any = 1) -> int:
     """The least tooth number cut without undercut by a rack: ``z sin^2(alpha) >= 2 h_a*``.
 
-    >>> undercut_minimum(20), undercut_minimum("14.5"), undercut_minimum(25), undercut_minimum(20, "0.8")
+    >>> undercut_minimum(20), undercut_minimum(14.5), undercut_minimum(25), undercut_minimum(20, 0.8)
     (18, 32, 12, 14)
     """
     alpha = as_rational(pressure_angle_deg, what="the pressure angle")
@@ -149,15 +149,15 @@ class Options:
             object.__setattr__(self, name, value)
 
         if self.planets is not None:
-            put("planets", int(as_integer(self.planets, what="the number of planets k", text=False, minimum=1,
+            put("planets", int(as_integer(self.planets, what="the number of planets k", minimum=1,
                                           maximum=MAX_PLANETS)))
         put("pressure_angle", as_rational(self.pressure_angle, what="the pressure angle"))
         put("addendum", as_rational(self.addendum, what="the addendum coefficient h_a*"))
         default_min = undercut_minimum(self.pressure_angle, self.addendum)
-        zmin = default_min if self.zmin is None else int(as_integer(self.zmin, what="zmin", text=False, minimum=1,
+        zmin = default_min if self.zmin is None else int(as_integer(self.zmin, what="zmin", minimum=1,
                                                                     maximum=MAX_TEETH))
         put("zmin", zmin)
-        put("zmax", int(as_integer(self.zmax, what="zmax", text=False, minimum=1, maximum=MAX_TEETH)))
+        put("zmax", int(as_integer(self.zmax, what="zmax", minimum=1, maximum=MAX_TEETH)))
         if self.zmax < self.zmin:
             raise InputError(f"zmin = {self.zmin} is larger than zmax = {self.zmax}; give zmin <= zmax")
         put("clearance", as_rational(self.clearance, what="the tip clearance"))
@@ -166,7 +166,7 @@ class Options:
         put("shift", as_rational(self.shift, what="the profile shift limit"))
         if not 0 <= self.shift <= 2:
             raise InputError(f"the profile shift limit |a_w - a|/m must be from 0 to 2 modules, got {self.shift}")
-        put("ring_difference", int(as_integer(self.ring_difference, what="the ring difference", text=False,
+        put("ring_difference", int(as_integer(self.ring_difference, what="the ring difference",
                                               minimum=0, maximum=MAX_TEETH)))
 
 

@@ -210,7 +210,7 @@ class Design:
 
         >>> from symkin.synthesis import synthesize
         >>> best = synthesize("simple", driver="S", driven="C", fixed="R", ratio=4, zmax=80).designs[0]
-        >>> best.efficiency(), best.efficiency("0.97")
+        >>> best.efficiency(), best.efficiency(0.97)
         (19553/20000, 38227/40000)
         """
         from symkin.statics import statics

@@ -26,7 +26,7 @@ chunks, run anywhere, merges to the same result.
     >>> from symkin.trains import load_train
     >>> from symkin.synthesis.problem import derive
     >>> plan = Plan.build(derive(load_train("simple"), driver="S", driven="C", fixed="R", planets=3, zmax=80),
-    ...                   Target.of(4, "0.01"), top=3)
+    ...                   Target.of(4, 0.01), top=3)
     >>> plan.last, plan.outer, plan.dependents
     ('z_p', ('z_s',), ('z_r',))
     >>> found = evaluate_chunk(plan, 0, plan.size)
@@ -46,13 +46,13 @@ from typing import Any
 import numpy as np
 import sympy as sp
 
-from symkin._util.parsing import as_fraction
 from symkin.errors import InputError
 from symkin.model import LinkKind
 from symkin.numeric import compile
 from symkin.synthesis.efficiency import DEFAULT_RANK, EfficiencyLaw, rank_order
 from symkin.synthesis.integers import solvable
 from symkin.synthesis.problem import Problem
+from symkin.values import as_fraction
 
 __all__ = ["Target", "Plan", "Record", "ChunkResult", "evaluate_chunk", "merge", "STAGES"]
 
@@ -70,7 +70,8 @@ STAGES = ("ratio", "internal gears", "coaxiality", "assembly", "neighbours", "pl
 class Target:
     """The ratios a design may have: ``ratio`` within a relative ``tolerance``, or a range.
 
-    >>> Target.of("12/5", "0.005").window
+    >>> from fractions import Fraction
+    >>> Target.of(Fraction(12, 5), 0.005).window
     (Fraction(597, 250), Fraction(603, 250))
     >>> Target.range(2, 3).error(Fraction(5, 2))
     Fraction(0, 1)
@@ -82,10 +83,10 @@ class Target:
     tolerance: Fraction | None = None
 
     @classmethod
-    def of(cls, ratio: Any, tolerance: Any = "0.01") -> Target:
+    def of(cls, ratio: Any, tolerance: Any = Fraction(1, 100)) -> Target:
         """A target ratio with a relative tolerance (``0.01`` is 1 %), exact.
 
-        >>> Target.of(4, "0.01").window
+        >>> Target.of(4, 0.01).window
         (Fraction(99, 25), Fraction(101, 25))
         """
         r = as_fraction(ratio, what="the target ratio")

@@ -61,10 +61,11 @@ from typing import Any
 
 import sympy as sp
 
-from symkin._util.parsing import CONSTANTS, FUNCTIONS, as_rational, parse_expression
 from symkin.errors import ModelError, SymkinError, TrainFileError
 from symkin.model import FRAME, Gear, Link, Mesh
+from symkin.parsing import CONSTANTS, FUNCTIONS, parse_expression
 from symkin.trains.train import State, Train
+from symkin.values import as_rational
 
 if sys.version_info >= (3, 11):
     import tomllib

@@ -31,10 +31,10 @@ from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
 from symkin._util.atomic import replacing
-from symkin._util.parsing import as_values, substitute
 from symkin.errors import InputError, ToolError
 from symkin.model import FRAME, LinkKind
 from symkin.numeric.sampling import on_grid, time_grid
+from symkin.values import as_values, substitute
 from symkin.viz import style
 from symkin.viz.teeth import involute_outline, mesh_phases
 

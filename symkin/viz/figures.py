@@ -25,9 +25,9 @@ from matplotlib.figure import Figure
 from matplotlib.patches import Circle
 
 from symkin._util.atomic import replacing
-from symkin._util.parsing import as_values, substitute
 from symkin.errors import InputError
 from symkin.model import LinkKind, Mechanism
+from symkin.values import as_values, substitute
 from symkin.viz import style
 from symkin.viz.teeth import involute_outline, mesh_phases
 

@@ -19,8 +19,8 @@ from typing import Any
 import numpy as np
 import sympy as sp
 
-from symkin._util.parsing import as_values, substitute
 from symkin.errors import InputError
+from symkin.values import as_values, substitute
 
 __all__ = ["involute_outline", "mesh_phases", "PRESSURE_ANGLE"]
 

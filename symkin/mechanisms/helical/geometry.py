@@ -33,10 +33,10 @@ from typing import Any
 
 import sympy as sp
 
-from symkin._util.parsing import as_expr, as_float, as_integer
 from symkin.errors import ModelError
 from symkin.model import Gear
 from symkin.schemes import TWO_ROW
+from symkin.values import as_expr, as_float, as_integer
 
 __all__ = [
     "RIGHT",
@@ -96,7 +96,7 @@ def _is_sym(*values: Any) -> bool:
 
 def _expr(value: Any, what: str) -> sp.Expr:
     """A SymPy expression from a number or expression, never by parsing a string."""
-    return as_expr(value, what=what, text=False, finite=False, error=ModelError)
+    return as_expr(value, what=what, finite=False, error=ModelError)
 
 
 def transverse_pressure_angle(alpha_n: Any, beta: Any) -> Any:
@@ -303,8 +303,8 @@ class HelicalMesh:
     addendum: float = 1.0
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "teeth_external", int(as_integer(self.teeth_external, what="teeth of the external gear", text=False, error=ModelError, minimum=1)))
-        object.__setattr__(self, "teeth_mate", int(as_integer(self.teeth_mate, what="teeth of the mating gear", text=False, error=ModelError, minimum=1)))
+        object.__setattr__(self, "teeth_external", int(as_integer(self.teeth_external, what="teeth of the external gear", error=ModelError, minimum=1)))
+        object.__setattr__(self, "teeth_mate", int(as_integer(self.teeth_mate, what="teeth of the mating gear", error=ModelError, minimum=1)))
         object.__setattr__(self, "normal_module", as_float(self.normal_module, what="the normal module", positive=True, error=ModelError))
         object.__setattr__(self, "beta", _angle(self.beta, "the helix angle", 0.0, math.pi / 2))
         object.__setattr__(self, "alpha_n", _angle(self.alpha_n, "the normal pressure angle", 1e-9, math.pi / 2))

@@ -23,7 +23,6 @@ from typing import Any
 import sympy as sp
 
 from symkin import symbols as S
-from symkin._util.parsing import as_integer, as_rational
 from symkin.errors import InputError, ModelError
 from symkin.laws import Law
 from symkin.mechanisms.helical.geometry import (
@@ -37,6 +36,7 @@ from symkin.model import Mechanism
 from symkin.numeric import compile
 from symkin.schemes import two_row
 from symkin.statics import balancing_hands
+from symkin.values import as_integer, as_rational
 
 __all__ = ["HelicalTrain", "ratio_law", "ratio_function", "SCHEMES"]
 
@@ -144,12 +144,12 @@ class HelicalTrain:
             raise ModelError("teeth, helix angles and shifts must be sequences of numbers") from None
         if len(teeth) != 4 or len(betas) != 2 or len(shifts) != 4:
             raise ModelError("give four tooth numbers Z1..Z4, two helix angles (beta12, beta34) and four shifts")
-        teeth = tuple(int(as_integer(z, what=f"tooth number Z{n}", text=False, error=ModelError, minimum=1)) for n, z in enumerate(teeth, 1))
+        teeth = tuple(int(as_integer(z, what=f"tooth number Z{n}", error=ModelError, minimum=1)) for n, z in enumerate(teeth, 1))
         object.__setattr__(self, "teeth", teeth)
         object.__setattr__(self, "normal_modules", _as_modules(self.normal_modules))
         object.__setattr__(self, "betas", tuple(_angle(b, f"helix angle {n}", 0.0, math.pi / 2) for n, b in zip(("beta12", "beta34"), betas)))
         object.__setattr__(self, "shifts", shifts)
-        object.__setattr__(self, "satellites", int(as_integer(self.satellites, what="the number of satellites", text=False, error=ModelError, minimum=1)))
+        object.__setattr__(self, "satellites", int(as_integer(self.satellites, what="the number of satellites", error=ModelError, minimum=1)))
         if self.hands is None:
             object.__setattr__(self, "hands", balancing_hands(self.scheme))
         else:

@@ -35,11 +35,11 @@ import sympy as sp
 
 from symkin import symbols as S
 from symkin._util.jsonout import exact_json, exact_json_list
-from symkin._util.parsing import as_integer, as_rational
 from symkin.errors import InputError, ModelError
 from symkin.laws import Law
 from symkin.numeric import compile
 from symkin.schemes import single_row_AI
+from symkin.values import as_integer, as_rational
 
 __all__ = [
     "Stage",
@@ -218,7 +218,7 @@ def neighbours_clear(sun: int, planet: int, satellites: int, ha: Any = 1) -> boo
     >>> neighbours_clear(24, 20, 6), neighbours_clear(25, 20, 6)  # equality is not clearance
     (False, True)
     """
-    k = int(as_integer(satellites, what="the number of satellites", text=False, minimum=1))
+    k = int(as_integer(satellites, what="the number of satellites", minimum=1))
     if k == 1:
         return True
     h = _tip_height(ha)
@@ -400,12 +400,12 @@ def enumerate_stages(ring: int, satellites: int, *, zmin: int = 1, zmax: int | N
     ...
     symkin.errors.InputError: no single-row AI stage fits a ring of 40 teeth with 15 <= z <= 100: coaxiality z_ring = z_sun + 2 z_planet leaves no sun and planet of at least 15 teeth each; use a ring of at least 45 teeth or lower zmin
     """
-    ring = int(as_integer(ring, what="the ring's tooth number", text=False, minimum=1))
+    ring = int(as_integer(ring, what="the ring's tooth number", minimum=1))
     if ring > MAX_RING:
         raise InputError(f"the ring has {ring} teeth; the enumeration visits every sun, so at most {MAX_RING} are accepted")
-    k = int(as_integer(satellites, what="the number of satellites", text=False, minimum=1))
-    zmin = int(as_integer(zmin, what="zmin", text=False, minimum=1))
-    zmax = ring if zmax is None else int(as_integer(zmax, what="zmax", text=False, minimum=1))
+    k = int(as_integer(satellites, what="the number of satellites", minimum=1))
+    zmin = int(as_integer(zmin, what="zmin", minimum=1))
+    zmax = ring if zmax is None else int(as_integer(zmax, what="zmax", minimum=1))
     ha_value = _tip_height(ha)
     if zmax < zmin:
         raise InputError(f"zmin = {zmin} is larger than zmax = {zmax}; give zmin <= zmax")

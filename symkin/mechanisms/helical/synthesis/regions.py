@@ -18,7 +18,6 @@ import numpy as np
 import sympy as sp
 
 from symkin import symbols as S
-from symkin._util.parsing import as_integer, as_real
 from symkin.errors import InputError, UnsupportedError
 from symkin.mechanisms.helical.synthesis.conditions import (
     _S,
@@ -29,6 +28,7 @@ from symkin.mechanisms.helical.synthesis.conditions import (
 )
 from symkin.numeric import NumericFunction, compile
 from symkin.schemes import two_row
+from symkin.values import as_integer, as_real
 
 __all__ = ["ExistenceBounds", "existence_bounds", "existence_interval", "existence_range"]
 

@@ -1,6 +1,6 @@
 """What a designer asks of the synthesis, and what it answers: request, design and result types.
 
-    >>> SynthesisRequest(scheme="AI", ratio="25", tolerance="0.02").ratio_window
+    >>> SynthesisRequest(scheme="AI", ratio=25, tolerance=0.02).ratio_window
     (Fraction(49, 2), Fraction(51, 2))
 """
 
@@ -12,10 +12,10 @@ from fractions import Fraction
 from typing import Any
 
 from symkin._util.jsonout import exact_json, exact_json_list
-from symkin._util.parsing import as_fraction, as_integer
 from symkin.errors import InputError
 from symkin.mechanisms.helical import HelicalTrain, hand_name
 from symkin.mechanisms.helical.synthesis.conditions import _scheme
+from symkin.values import as_fraction, as_integer
 
 __all__ = ["SynthesisRequest", "HelicalDesign", "SynthesisResult"]
 

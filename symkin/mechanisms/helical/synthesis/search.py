@@ -140,7 +140,7 @@ def synthesise(request: SynthesisRequest | None = None, *, progress: Callable[[i
 
     Examples
     --------
-    >>> res = synthesise(scheme="AI", ratio=12, tolerance="0.01", satellites=3, normal_modules=(2, "2.5"),
+    >>> res = synthesise(scheme="AI", ratio=12, tolerance=0.01, satellites=3, normal_modules=(2, 2.5),
     ...                  teeth_min=17, teeth_max=80, top=3)
     >>> res.found, res.designs[0].teeth, [round(b, 3) for b in res.designs[0].betas_deg]
     (14, (17, 51, 21, 77), [15.905, 8.109])

@@ -20,13 +20,13 @@ import numpy as np
 import sympy as sp
 
 from symkin._util.jsonout import exact_json, exact_json_list
-from symkin._util.parsing import as_rational
 from symkin.errors import InputError, UnsupportedError
 from symkin.mechanisms.multistage.lostmotion import StageErrorModel  # noqa: F401  (the doctests use it)
 from symkin.mechanisms.multistage.split.problem import (
     _TABLE_SIZE,
     SplitProblem,
 )
+from symkin.values import as_rational
 
 __all__ = ["Design", "DiscreteSplit", "best_designs"]
 
@@ -422,10 +422,10 @@ def best_designs(total: Any, stage_set: Any, stages: int, *, model: Any, toleran
     >>> from symkin.mechanisms.multistage.stages import enumerate_stages
     >>> from symkin.mechanisms.multistage.lostmotion import StageErrorModel
     >>> found = enumerate_stages(72, 3, zmin=12, zmax=72)
-    >>> r = best_designs(20, found, 2, model=StageErrorModel.linear(1, 1), tolerance="0.05", top=3)
+    >>> r = best_designs(20, found, 2, model=StageErrorModel.linear(1, 1), tolerance=0.05, top=3)
     >>> r.meets_tolerance, [d.ratios for d in r.designs], [d.objective for d in r.designs]
     (True, [(3, 7), (19/7, 7), (4, 5)], [4/3, 178/133, 29/20])
-    >>> r = best_designs(30, enumerate_stages(60, 3, zmin=12), 2, model=StageErrorModel.linear(1, 1), tolerance="0.05")
+    >>> r = best_designs(30, enumerate_stages(60, 3, zmin=12), 2, model=StageErrorModel.linear(1, 1), tolerance=0.05)
     >>> r.meets_tolerance, r.designs[0].ratios, r.designs[0].total
     (False, (13/3, 6), 26)
     """

@@ -19,7 +19,6 @@ from typing import Any
 import sympy as sp
 
 from symkin._util.budget import simplify_within
-from symkin._util.parsing import as_rational
 from symkin.errors import InputError
 from symkin.mechanisms.multistage.lostmotion import (
     LostMotion,
@@ -27,6 +26,7 @@ from symkin.mechanisms.multistage.lostmotion import (
     lost_motion,
 )
 from symkin.numeric import NumericFunction, compile
+from symkin.values import as_rational
 
 __all__ = ["SplitProblem", "MAX_STAGES"]
 
