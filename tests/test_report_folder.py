@@ -21,7 +21,7 @@ from symkin.cli import main
 from symkin.papers.checks import Check, alternative, compare_exact, compare_symbolic, judge
 from symkin.papers.document import PREAMBLE, equations_document
 from symkin.papers.reproduce import run
-from symkin.papers.texbuild import compile_pdf, start_pdf
+from symkin.papers.texbuild import compile_pdf
 
 
 @pytest.fixture(autouse=True, scope="module")
@@ -36,13 +36,6 @@ def _alyushin2009_derived_once():
     with pytest.MonkeyPatch.context() as patch:
         patch.setattr(alyushin2009, "checks", lambda: list(derived))
         yield
-
-
-#: A preamble as a report's: the packages and the title page.
-PREAMBLE_FOR_TESTS = r"""\documentclass[10pt,a4paper]{article}
-\usepackage{amsmath,amssymb}
-\begin{document}
-"""
 
 
 def previous_report(folder: Path) -> Path:
@@ -159,29 +152,6 @@ def pdflatex_processes(folder: Path) -> list[int]:
     return found
 
 
-def test_pdflatex_started_on_the_preamble_compiles_the_body_given_later_as_the_whole_document(tmp_path, pdflatex):
-    """reproduce starts pdflatex on the preamble before the papers are derived and gives it
-    the body at the end (a pipe, its standard input).  Given at once, while pdflatex may still
-    be starting, and longer than a pipe holds (the writes wait for pdflatex), the PDF is the one
-    of the whole document compiled at once."""
-    body = "\n\n".join(rf"\section*{{Part {i}}} " + "Words of a long report. " * 60 for i in range(60)) + "\n\\end{document}\n"
-    assert len(body.encode()) > 2**16
-    head = PREAMBLE_FOR_TESTS
-    early = start_pdf(tmp_path, "streamed", head, pdflatex=pdflatex)
-    if early is None:
-        pytest.skip("not on Linux: the document is compiled whole")
-    streamed = early.finish(body, keep_log=True)
-    whole = tmp_path / "whole" / "whole.tex"
-    whole.parent.mkdir()
-    whole.write_text(head + body)
-    at_once = compile_pdf(whole, pdflatex=pdflatex, keep_log=True)
-    pages = [re.search(r"Output written on \S+ \((\d+) pages?, (\d+) bytes\)", b.log).groups() for b in (streamed, at_once)]
-    assert pages[0][0] == pages[1][0] and int(pages[0][0]) > 10
-    assert abs(int(pages[0][1]) - int(pages[1][1])) < 100  # (the file name and date in the PDF differ)
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["streamed.log", "streamed.pdf", "whole"]
-    assert not pdflatex_processes(tmp_path)
-
-
 @pytest.mark.parametrize("body", [r"\undefinedmacro\end{document}", "a body that never ends the document"])
 def test_a_body_pdflatex_rejects_or_that_never_ends_is_a_tool_error_at_once_and_the_previous_report_stays(
         tmp_path, monkeypatch, pdflatex, body):
@@ -195,39 +165,30 @@ def test_a_body_pdflatex_rejects_or_that_never_ends_is_a_tool_error_at_once_and_
     assert time.monotonic() - start < 60
     if "undefined" in body:  # the message names equations.tex and the line of the fault in it
         assert f"equations.tex:{PREAMBLE.count(chr(10)) + 1}: Undefined control sequence" in str(err.value)
-        assert "/dev/stdin" not in str(err.value)
     assert_untouched(out)
     assert not pdflatex_processes(tmp_path)
 
 
-def test_without_dev_stdin_the_document_is_compiled_whole(tmp_path, monkeypatch, pdflatex):
-    import os.path
-
-    real = os.path.exists
-    monkeypatch.setattr(os.path, "exists", lambda p: False if p == "/dev/stdin" else real(p))
-    assert start_pdf(tmp_path, "x", PREAMBLE, pdflatex=pdflatex) is None
-    out = tmp_path / "report"
-    run(["alyushin2009"], out, quiet=True)
-    assert (out / "equations.pdf").read_bytes().startswith(b"%PDF")
-
-
-def test_an_interrupt_leaves_no_pdflatex_running(tmp_path, capsys, monkeypatch, pdflatex):
-    from symkin.derivations import alyushin2009
-
+def test_an_interrupt_while_pdflatex_runs_ends_it_and_leaves_the_previous_report(tmp_path):
+    """The run is interrupted (Ctrl-C sent to symkin alone) while pdflatex compiles: pdflatex is
+    ended with it.  A stand-in that takes its time is called pdflatex, as the real one is."""
     out = previous_report(tmp_path / "report")
-    started = []
-    import symkin.papers.reproduce
-
-    real_start = symkin.papers.reproduce.start_pdf
-    monkeypatch.setattr(symkin.papers.reproduce, "start_pdf", lambda *a, **k: started.append(real_start(*a, **k)) or started[-1])
-
-    def interrupted(folder):
-        raise KeyboardInterrupt
-
-    monkeypatch.setattr(alyushin2009, "figures", interrupted)
-    code, _stdout, err = cli(capsys, "reproduce", "alyushin2009", "--out", str(out))
-    assert code == 130 and "interrupted; nothing was written" in err
-    assert started and started[0] is not None  # (pdflatex was waiting for the body)
+    slow = tmp_path / "bin" / "pdflatex"
+    slow.parent.mkdir()
+    slow.write_text(f"#!{sys.executable}\nimport time\ntime.sleep(120)\n")
+    slow.chmod(0o755)
+    proc = subprocess.Popen(
+        [sys.executable, "-c", "import sys; from symkin.cli import main; sys.exit(main())", "reproduce", "alyushin2009",
+         "--out", str(out), "--quiet"],
+        cwd=tmp_path, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env={**os.environ, "SYMKIN_PDFLATEX": str(slow)},
+    )
+    deadline = time.monotonic() + 120
+    while not pdflatex_processes(tmp_path) and proc.poll() is None and time.monotonic() < deadline:
+        time.sleep(0.02)
+    assert proc.poll() is None, "the run ended before pdflatex started"
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=60)
+    assert proc.returncode == 130 and "interrupted; nothing was written" in err, err
     assert_untouched(out)
     assert not pdflatex_processes(tmp_path)
 
@@ -466,25 +427,9 @@ def test_a_kill_between_the_two_renames_is_recovered_by_the_next_run(tmp_path, c
     assert_untouched(out)
 
 
-def test_a_kill_the_moment_pdflatex_starts_leaves_no_pdflatex_running(tmp_path, pdflatex):
-    """Killed before pdflatex has read its preamble: its input is its own from the start, and it
-    reads the end of it and stops (a named pipe it opened later waited for a writer for ever)."""
-    folder = tmp_path / "f"
-    folder.mkdir()
-    code = ("import os, signal, sys; from symkin.papers.texbuild import start_pdf; "
-            "from symkin.papers.document import PREAMBLE; "
-            "start_pdf(__import__('pathlib').Path(sys.argv[1]), 'equations', PREAMBLE); os.kill(os.getpid(), signal.SIGKILL)")
-    proc = subprocess.run([sys.executable, "-c", code, str(folder)], capture_output=True, text=True, timeout=60)
-    assert proc.returncode == -signal.SIGKILL, proc.stderr
-    deadline = time.monotonic() + 30
-    while pdflatex_processes(tmp_path) and time.monotonic() < deadline:
-        time.sleep(0.05)
-    assert not pdflatex_processes(tmp_path)
-
-
-def test_a_kill_while_pdflatex_waits_for_the_body_leaves_no_pdflatex_running(tmp_path, pdflatex):
-    """pdflatex waits for the body on a pipe the run holds open: when the run is killed, the pipe's
-    last writer closes (the workers die with it) and pdflatex reads its end and stops."""
+def test_a_kill_of_a_run_with_pdflatex_leaves_the_previous_report_and_no_pdflatex_running(tmp_path, pdflatex):
+    """Killed while it derives: nothing of the run is left working (its workers die with it, and
+    pdflatex, which compiles the finished file at the end, was not started)."""
     out = previous_report(tmp_path / "report")
     killed_run("while-building-with-pdflatex", out)
     deadline = time.monotonic() + 30

@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import json
 from collections.abc import Callable, Iterable
-from concurrent.futures import Future, ThreadPoolExecutor
 from dataclasses import dataclass, field
 from functools import cache
 from importlib import resources
@@ -24,10 +23,10 @@ from symkin._util.progress import Progress
 from symkin._version import __version__
 from symkin.errors import InputError
 from symkin.papers.checks import Check, ItemResult, PrintedItem, Verdict
-from symkin.papers.document import PREAMBLE, check_rows, equations_document
+from symkin.papers.document import check_rows, equations_document
 from symkin.papers.registry import load, paper_names
 from symkin.papers.summary import Summary, paper_items, summarize
-from symkin.papers.texbuild import PdfBuild, StreamedPdf, compile_pdf, find_pdflatex, start_pdf
+from symkin.papers.texbuild import compile_pdf, find_pdflatex
 
 __all__ = [
     "paper_names", "load", "PaperResult", "Summary", "summarize", "run", "check_target", "write_atomically",
@@ -139,16 +138,6 @@ def run(
     previous = _previous_seconds(out)
 
     def build(tmp: Path) -> None:
-        # pdflatex reads the document's fixed preamble now, on a core the start-up below leaves idle
-        early = start_pdf(tmp, "equations", PREAMBLE, pdflatex=pdflatex) if pdflatex else None
-        try:
-            derive(tmp, early)
-        except BaseException:
-            if early is not None:
-                early.cancel()
-            raise
-
-    def derive(tmp: Path, early: StreamedPdf | None) -> None:
         bar = Progress(2 * len(modules) + 1 + (pdflatex is not None), stream=progress, enabled=not quiet, lines=True)
         figures_dir = tmp / "figures"
         figures_dir.mkdir()
@@ -176,22 +165,13 @@ def run(
         bar.step("writing report.json, report.txt, equations.tex")
         document = equations_document(results, root=tmp)
         (tmp / "equations.tex").write_text(document)
-        # pdflatex is another process: it compiles while report.json and report.txt are written
-        with ThreadPoolExecutor(1) as latex:
-            compiled: Future[PdfBuild] | None = None
-            if early is not None and document.startswith(PREAMBLE):
-                compiled = latex.submit(early.finish, document[len(PREAMBLE):])
-            else:
-                if early is not None:
-                    early.cancel()
-                compiled = latex.submit(compile_pdf, tmp / "equations.tex", pdflatex=pdflatex) if pdflatex else None
-            data = report_json(results, tmp)
-            data["equations"] = {"tex": "equations.tex", "pdf": "equations.pdf" if pdflatex else None}
-            (tmp / "report.json").write_text(json.dumps(data, indent=2, ensure_ascii=False))
-            (tmp / "report.txt").write_text(format_table(results))
-            if compiled is not None:
-                bar.step("compiling equations.pdf with pdflatex")
-                compiled.result()
+        data = report_json(results, tmp)
+        data["equations"] = {"tex": "equations.tex", "pdf": "equations.pdf" if pdflatex else None}
+        (tmp / "report.json").write_text(json.dumps(data, indent=2, ensure_ascii=False))
+        (tmp / "report.txt").write_text(format_table(results))
+        if pdflatex:
+            bar.step("compiling equations.pdf with pdflatex")
+            compile_pdf(tmp / "equations.tex", pdflatex=pdflatex)
         for hook in _POST_BUILD:
             hook(tmp, results)
         bar.close()
