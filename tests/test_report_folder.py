@@ -471,123 +471,79 @@ def test_a_kill_while_building_leaves_the_previous_report_and_the_next_run_remov
     assert sorted(p.name for p in tmp_path.iterdir()) == ["report"]
 
 
-_GC_CHECK = """
-import gc, json, pathlib, sys
+_PAPERS = """
+import json, os, pathlib, sys
 from types import SimpleNamespace
-from symkin.papers import _pool
-assert _pool.can_fork()
+import sympy as sp
+from symkin.papers.reproduce import run_papers
 folder = pathlib.Path(sys.argv[1])
-paper = SimpleNamespace(checks=lambda: [gc.get_freeze_count() > 0, list(gc.get_threshold())], figures=lambda folder: [])
-found, out = {}, {}
-before = gc.get_freeze_count()
-_pool.run_tasks({"p": paper}, [("p", "checks"), ("p", "figures")], folder, jobs=2,
-                done=lambda task, value, seconds: found.__setitem__(task, value))
-out["workers"] = found["p", "checks"][0]
-out["parent_unfrozen"] = gc.get_freeze_count() == before
-settings = gc.get_threshold()
-_pool.run_tasks({"p": paper}, [("p", "checks")], folder, jobs=1,
-                done=lambda task, value, seconds: found.__setitem__(task, value))
-out["one_job"] = found["p", "checks"][0]
-out["restored"] = gc.get_freeze_count() == before and gc.get_threshold() == settings
-print(json.dumps(out))
-"""
+x = sp.Symbol("x", positive=True)
 
+def paper(name):  # modules the workers find as this process has them: never pickled
+    return SimpleNamespace(checks=lambda: [name, os.getpid(), sp.Eq(2, 2, evaluate=False), sp.Lt(x, 0, evaluate=False)],
+                           figures=lambda folder: [name + " drawn"])
 
-def test_the_workers_leave_what_the_parent_loaded_to_their_collector_s_permanent_generation(tmp_path):
-    # in a process of its own: a test worker of pytest-xdist runs threads, and forks only from one thread
-    import json
-    import subprocess
-    import sys
-
-    from symkin.papers import _pool
-
-    proc = subprocess.run([sys.executable, "-c", _GC_CHECK, str(tmp_path)], capture_output=True, text=True, timeout=120)
-    assert proc.returncode == 0, proc.stderr
-    out = json.loads(proc.stdout.strip().splitlines()[-1])
-    thresholds = list(_pool._WORKER_GC_THRESHOLDS)
-    assert out["workers"] == [True, thresholds]  # what the parent loaded is frozen; the worker's thresholds
-    assert out["parent_unfrozen"]  # the parent collects as before
-    assert out["one_job"] == [True, thresholds]  # one job: the tasks run here, collected as in a worker,
-    assert out["restored"]  # and the collector is restored after
-
-
-
-_TASKS_CHECK = """
-import json, pathlib, sys
-from types import SimpleNamespace
-from symkin.papers import _pool
-assert _pool.can_fork()
-folder = pathlib.Path(sys.argv[1])
-
-def paper(name):
-    return SimpleNamespace(checks=lambda: [name], figures=lambda folder: [name + " drawn"])
-
-found = {}
-_pool.run_tasks({"p": paper("p"), "q": paper("q"), "r": paper("r")},
-                [("p", "checks"), ("q", "checks"), ("r", "checks"), ("p", "figures")], folder, jobs=2,
-                done=lambda task, value, seconds: found.__setitem__(" ".join(task), value))
-out = {"found": found}
+out = {}
+for jobs in (1, 2):
+    found = {}
+    run_papers({n: paper(n) for n in "pqr"}, list("pqr"), folder, jobs=jobs, done=lambda name, value: found.__setitem__(name, value))
+    out[jobs] = {n: [v[0][0], v[0][1] != os.getpid(), repr(v[0][2]), repr(v[0][3]), v[1], v[2]] for n, v in found.items()}
 failing = SimpleNamespace(checks=lambda: 1 / 0, figures=lambda folder: [])
 try:
-    _pool.run_tasks({"p": paper("p"), "x": failing}, [("p", "checks"), ("x", "checks")], folder, jobs=2,
-                    done=lambda task, value, seconds: None)
+    run_papers({"p": paper("p"), "x": failing}, ["p", "x"], folder, jobs=2, done=lambda name, value: None)
 except ZeroDivisionError as err:
     out["error"] = str(err)
 print(json.dumps(out))
 """
 
 
-def test_every_task_reports_once_from_the_workers_and_a_failure_is_raised_in_the_parent(tmp_path):
-    # in a process of its own (see above)
-    import json
-    import subprocess
-    import sys
-
-    proc = subprocess.run([sys.executable, "-c", _TASKS_CHECK, str(tmp_path)], capture_output=True, text=True, timeout=120)
+def test_every_paper_reports_once_alike_for_any_jobs_and_a_failure_is_raised_in_the_caller(tmp_path):
+    # in a process of its own: a test worker of pytest-xdist runs threads, and the papers run in
+    # worker processes only from a process running one thread
+    proc = subprocess.run([sys.executable, "-c", _PAPERS, str(tmp_path)], capture_output=True, text=True, timeout=120)
     assert proc.returncode == 0, proc.stderr
     out = json.loads(proc.stdout.strip().splitlines()[-1])
-    assert out["found"] == {"p checks": [["p"], []], "q checks": [["q"], []], "r checks": [["r"], []],
-                            "p figures": ["p drawn"]}
+    for jobs, elsewhere in (("1", False), ("2", True)):
+        # every paper once, in a worker process with jobs 2; unevaluated relations arrive as they
+        # were made, not decided again (Eq(2, 2) is not True): the results do not depend on jobs
+        assert out[jobs] == {n: [n, elsewhere, "Eq(2, 2)", "x < 0", [], [n + " drawn"]] for n in "pqr"}
     assert out["error"] == "division by zero"
 
 
-_HANDOVER_CHECK = """
-import json, pathlib, sys, time
+_KILLED_WITH_WORKERS = """
+import os, pathlib, signal, sys, time
 from types import SimpleNamespace
-from symkin.papers import _pool
+from symkin.papers.reproduce import run_papers
 folder = pathlib.Path(sys.argv[1])
-rebuilt = []
+runner = os.getpid()
 
-def slow_to_rebuild(value):
-    time.sleep(0.5)  # a value the parent takes long to rebuild (as the SymPy objects of a paper's checks)
-    rebuilt.append(time.time())
-    return value
+def checks(name):
+    (folder / f"{name}.pid").write_text(str(os.getpid()))
+    if name == "p":
+        time.sleep(0.5)
+        os.kill(runner, signal.SIGKILL)
+    time.sleep(100)  # q: still at work when the run is killed
+    return []
 
-class Slow:
-    def __reduce__(self):
-        return slow_to_rebuild, (1,)
-
-papers = {"p": SimpleNamespace(checks=lambda: [Slow()]),
-          "q": SimpleNamespace(checks=lambda: [time.sleep(1.5)]),  # keeps the other worker busy
-          "r": SimpleNamespace(checks=lambda: [time.time()])}
-found = {}
-_pool.run_tasks(papers, [("p", "checks"), ("q", "checks"), ("r", "checks")], folder, jobs=2,
-                done=lambda task, value, seconds: found.__setitem__(task[0], value[0][0]))
-print(json.dumps({"r_started": found["r"], "p_rebuilt": rebuilt[0]}))
+papers = {n: SimpleNamespace(checks=lambda n=n: checks(n), figures=lambda folder: []) for n in "pq"}
+run_papers(papers, ["p", "q"], folder, jobs=2, done=lambda name, value: None)
 """
 
 
-def test_a_worker_is_given_its_next_task_before_the_parent_rebuilds_what_it_sent(tmp_path):
-    # in a process of its own (see above); the parent needs 0.5 s to rebuild p's value, and the
-    # worker that sent it starts r meanwhile, not after
-    import json
-    import subprocess
-    import sys
+def test_the_worker_processes_end_when_the_run_is_killed(tmp_path):
+    # (the run's output ends only when the workers, which hold it too, have ended)
+    proc = subprocess.run([sys.executable, "-c", _KILLED_WITH_WORKERS, str(tmp_path)], capture_output=True, text=True,
+                          timeout=60)
+    assert proc.returncode == -signal.SIGKILL, proc.stderr
 
-    proc = subprocess.run([sys.executable, "-c", _HANDOVER_CHECK, str(tmp_path)], capture_output=True, text=True, timeout=120)
-    assert proc.returncode == 0, proc.stderr
-    out = json.loads(proc.stdout.strip().splitlines()[-1])
-    assert out["r_started"] < out["p_rebuilt"] - 0.3
+    def running(pid):
+        try:
+            return Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0] not in "ZX"
+        except OSError:
+            return False
+
+    pids = [int((tmp_path / f"{n}.pid").read_text()) for n in "pq"]
+    assert pids[0] != pids[1] and not any(running(pid) for pid in pids)
 
 
 _CTRL_C_AT_THE_FOLDER = """
@@ -616,28 +572,3 @@ def test_a_ctrl_c_the_moment_the_partial_folder_exists_leaves_nothing(tmp_path):
     proc = subprocess.run([sys.executable, "-c", _CTRL_C_AT_THE_FOLDER, str(tmp_path)], capture_output=True, text=True,
                           timeout=60)
     assert proc.stdout.strip() == "[]", (proc.stdout, proc.stderr)
-
-
-def test_a_workers_value_keeps_its_relations_without_deciding_them_again(monkeypatch):
-    """Values come back from the workers with their SymPy relations rebuilt as they were, not
-    decided again from the assumptions (which cost the calling process 0.1 s a paper)."""
-    import pickle
-
-    import sympy.core.relational as relational
-
-    from symkin.papers import _pool
-
-    x, y = sp.symbols("x y", positive=True)
-    value = [sp.Eq(x + y, 2 * x), sp.Lt(x, y), {"k": (sp.Ge(x * y, 1), sp.Ne(x, y + 1))}, sp.Le(x, 3), sp.Gt(y, x**2)]
-    data, plain = _pool.dumps(value), pickle.dumps(value)
-
-    def decided(*args):
-        raise AssertionError("a relation was decided again")
-
-    for name in ("is_eq", "is_neq", "is_lt", "is_le", "is_gt", "is_ge"):
-        monkeypatch.setattr(relational, name, decided)
-    loaded = pickle.loads(data)
-    assert loaded == value and [type(v) for v in loaded] == [type(v) for v in value]
-    assert loaded[2]["k"][1] == value[2]["k"][1]
-    with pytest.raises(AssertionError, match="decided again"):  # SymPy's own pickles do decide them
-        pickle.loads(plain)
