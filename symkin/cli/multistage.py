@@ -18,7 +18,7 @@ from symkin.cli.common import (
 )
 from symkin.errors import InputError
 
-#: More stages than this take long to derive symbolically (about 5 s at 8 stages).
+#: More stages than this take long to derive symbolically (benchmarks/notes/cli.md).
 MAX_STAGES = 8
 
 

@@ -67,7 +67,7 @@ def run_reproduce(args: Any) -> Any:
     from symkin.papers.texbuild import MISSING, find_pdflatex
 
     names = list(dict.fromkeys(args.papers))
-    known = paper_names()  # read from the installed metadata (~8 ms a call): once
+    known = paper_names()  # read from the installed metadata: once
     if "all" in names:
         if len(names) > 1:
             raise InputError("give either all or paper names, not both")
