@@ -81,9 +81,8 @@ def test_console_script_runs_as_a_process():
     assert proc.returncode == 0 and "= 25/4 = 6.25" in proc.stdout  # 1 + 30*70/(20*20)
 
 
-def test_the_program_ends_without_teardown_but_with_its_status_output_and_exit_handlers(tmp_path):
-    # console_main skips Python's teardown (os._exit) once the command is done: the status,
-    # everything printed (to a pipe, block-buffered) and the atexit handlers are kept
+def test_the_program_ends_with_its_status_its_output_and_its_exit_handlers(tmp_path):
+    # console_main: everything printed (to a pipe, block-buffered), the status, the atexit handlers
     marker = tmp_path / "atexit-ran"
     code = ("import atexit, pathlib, sys; from symkin.cli import console_main; "
             f"atexit.register(pathlib.Path({str(marker)!r}).write_text, 'yes'); sys.argv[1:] = sys.argv[2:]; console_main()")

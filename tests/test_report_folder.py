@@ -21,7 +21,7 @@ from symkin.cli import main
 from symkin.papers.checks import Check, alternative, compare_exact, compare_symbolic, judge
 from symkin.papers.document import PREAMBLE, equations_document
 from symkin.papers.reproduce import run
-from symkin.papers.texbuild import compile_pdf, start_pdf
+from symkin.papers.texbuild import compile_pdf
 
 
 @pytest.fixture(autouse=True, scope="module")
@@ -36,13 +36,6 @@ def _alyushin2009_derived_once():
     with pytest.MonkeyPatch.context() as patch:
         patch.setattr(alyushin2009, "checks", lambda: list(derived))
         yield
-
-
-#: A preamble as a report's: the packages and the title page.
-PREAMBLE_FOR_TESTS = r"""\documentclass[10pt,a4paper]{article}
-\usepackage{amsmath,amssymb}
-\begin{document}
-"""
 
 
 def previous_report(folder: Path) -> Path:
@@ -159,29 +152,6 @@ def pdflatex_processes(folder: Path) -> list[int]:
     return found
 
 
-def test_pdflatex_started_on_the_preamble_compiles_the_body_given_later_as_the_whole_document(tmp_path, pdflatex):
-    """reproduce starts pdflatex on the preamble before the papers are derived and gives it
-    the body at the end (a pipe, its standard input).  Given at once, while pdflatex may still
-    be starting, and longer than a pipe holds (the writes wait for pdflatex), the PDF is the one
-    of the whole document compiled at once."""
-    body = "\n\n".join(rf"\section*{{Part {i}}} " + "Words of a long report. " * 60 for i in range(60)) + "\n\\end{document}\n"
-    assert len(body.encode()) > 2**16
-    head = PREAMBLE_FOR_TESTS
-    early = start_pdf(tmp_path, "streamed", head, pdflatex=pdflatex)
-    if early is None:
-        pytest.skip("not on Linux: the document is compiled whole")
-    streamed = early.finish(body, keep_log=True)
-    whole = tmp_path / "whole" / "whole.tex"
-    whole.parent.mkdir()
-    whole.write_text(head + body)
-    at_once = compile_pdf(whole, pdflatex=pdflatex, keep_log=True)
-    pages = [re.search(r"Output written on \S+ \((\d+) pages?, (\d+) bytes\)", b.log).groups() for b in (streamed, at_once)]
-    assert pages[0][0] == pages[1][0] and int(pages[0][0]) > 10
-    assert abs(int(pages[0][1]) - int(pages[1][1])) < 100  # (the file name and date in the PDF differ)
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["streamed.log", "streamed.pdf", "whole"]
-    assert not pdflatex_processes(tmp_path)
-
-
 @pytest.mark.parametrize("body", [r"\undefinedmacro\end{document}", "a body that never ends the document"])
 def test_a_body_pdflatex_rejects_or_that_never_ends_is_a_tool_error_at_once_and_the_previous_report_stays(
         tmp_path, monkeypatch, pdflatex, body):
@@ -195,39 +165,30 @@ def test_a_body_pdflatex_rejects_or_that_never_ends_is_a_tool_error_at_once_and_
     assert time.monotonic() - start < 60
     if "undefined" in body:  # the message names equations.tex and the line of the fault in it
         assert f"equations.tex:{PREAMBLE.count(chr(10)) + 1}: Undefined control sequence" in str(err.value)
-        assert "/dev/stdin" not in str(err.value)
     assert_untouched(out)
     assert not pdflatex_processes(tmp_path)
 
 
-def test_without_dev_stdin_the_document_is_compiled_whole(tmp_path, monkeypatch, pdflatex):
-    import os.path
-
-    real = os.path.exists
-    monkeypatch.setattr(os.path, "exists", lambda p: False if p == "/dev/stdin" else real(p))
-    assert start_pdf(tmp_path, "x", PREAMBLE, pdflatex=pdflatex) is None
-    out = tmp_path / "report"
-    run(["alyushin2009"], out, quiet=True)
-    assert (out / "equations.pdf").read_bytes().startswith(b"%PDF")
-
-
-def test_an_interrupt_leaves_no_pdflatex_running(tmp_path, capsys, monkeypatch, pdflatex):
-    from symkin.derivations import alyushin2009
-
+def test_an_interrupt_while_pdflatex_runs_ends_it_and_leaves_the_previous_report(tmp_path):
+    """The run is interrupted (Ctrl-C sent to symkin alone) while pdflatex compiles: pdflatex is
+    ended with it.  A stand-in that takes its time is called pdflatex, as the real one is."""
     out = previous_report(tmp_path / "report")
-    started = []
-    import symkin.papers.reproduce
-
-    real_start = symkin.papers.reproduce.start_pdf
-    monkeypatch.setattr(symkin.papers.reproduce, "start_pdf", lambda *a, **k: started.append(real_start(*a, **k)) or started[-1])
-
-    def interrupted(folder):
-        raise KeyboardInterrupt
-
-    monkeypatch.setattr(alyushin2009, "figures", interrupted)
-    code, _stdout, err = cli(capsys, "reproduce", "alyushin2009", "--out", str(out))
-    assert code == 130 and "interrupted; nothing was written" in err
-    assert started and started[0] is not None  # (pdflatex was waiting for the body)
+    slow = tmp_path / "bin" / "pdflatex"
+    slow.parent.mkdir()
+    slow.write_text(f"#!{sys.executable}\nimport time\ntime.sleep(120)\n")
+    slow.chmod(0o755)
+    proc = subprocess.Popen(
+        [sys.executable, "-c", "import sys; from symkin.cli import main; sys.exit(main())", "reproduce", "alyushin2009",
+         "--out", str(out), "--quiet"],
+        cwd=tmp_path, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env={**os.environ, "SYMKIN_PDFLATEX": str(slow)},
+    )
+    deadline = time.monotonic() + 120
+    while not pdflatex_processes(tmp_path) and proc.poll() is None and time.monotonic() < deadline:
+        time.sleep(0.02)
+    assert proc.poll() is None, "the run ended before pdflatex started"
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=60)
+    assert proc.returncode == 130 and "interrupted; nothing was written" in err, err
     assert_untouched(out)
     assert not pdflatex_processes(tmp_path)
 
@@ -466,25 +427,9 @@ def test_a_kill_between_the_two_renames_is_recovered_by_the_next_run(tmp_path, c
     assert_untouched(out)
 
 
-def test_a_kill_the_moment_pdflatex_starts_leaves_no_pdflatex_running(tmp_path, pdflatex):
-    """Killed before pdflatex has read its preamble: its input is its own from the start, and it
-    reads the end of it and stops (a named pipe it opened later waited for a writer for ever)."""
-    folder = tmp_path / "f"
-    folder.mkdir()
-    code = ("import os, signal, sys; from symkin.papers.texbuild import start_pdf; "
-            "from symkin.papers.document import PREAMBLE; "
-            "start_pdf(__import__('pathlib').Path(sys.argv[1]), 'equations', PREAMBLE); os.kill(os.getpid(), signal.SIGKILL)")
-    proc = subprocess.run([sys.executable, "-c", code, str(folder)], capture_output=True, text=True, timeout=60)
-    assert proc.returncode == -signal.SIGKILL, proc.stderr
-    deadline = time.monotonic() + 30
-    while pdflatex_processes(tmp_path) and time.monotonic() < deadline:
-        time.sleep(0.05)
-    assert not pdflatex_processes(tmp_path)
-
-
-def test_a_kill_while_pdflatex_waits_for_the_body_leaves_no_pdflatex_running(tmp_path, pdflatex):
-    """pdflatex waits for the body on a pipe the run holds open: when the run is killed, the pipe's
-    last writer closes (the workers die with it) and pdflatex reads its end and stops."""
+def test_a_kill_of_a_run_with_pdflatex_leaves_the_previous_report_and_no_pdflatex_running(tmp_path, pdflatex):
+    """Killed while it derives: nothing of the run is left working (its workers die with it, and
+    pdflatex, which compiles the finished file at the end, was not started)."""
     out = previous_report(tmp_path / "report")
     killed_run("while-building-with-pdflatex", out)
     deadline = time.monotonic() + 30
@@ -526,123 +471,79 @@ def test_a_kill_while_building_leaves_the_previous_report_and_the_next_run_remov
     assert sorted(p.name for p in tmp_path.iterdir()) == ["report"]
 
 
-_GC_CHECK = """
-import gc, json, pathlib, sys
+_PAPERS = """
+import json, os, pathlib, sys
 from types import SimpleNamespace
-from symkin.papers import _pool
-assert _pool.can_fork()
+import sympy as sp
+from symkin.papers.reproduce import run_papers
 folder = pathlib.Path(sys.argv[1])
-paper = SimpleNamespace(checks=lambda: [gc.get_freeze_count() > 0, list(gc.get_threshold())], figures=lambda folder: [])
-found, out = {}, {}
-before = gc.get_freeze_count()
-_pool.run_tasks({"p": paper}, [("p", "checks"), ("p", "figures")], folder, jobs=2,
-                done=lambda task, value, seconds: found.__setitem__(task, value))
-out["workers"] = found["p", "checks"][0]
-out["parent_unfrozen"] = gc.get_freeze_count() == before
-settings = gc.get_threshold()
-_pool.run_tasks({"p": paper}, [("p", "checks")], folder, jobs=1,
-                done=lambda task, value, seconds: found.__setitem__(task, value))
-out["one_job"] = found["p", "checks"][0]
-out["restored"] = gc.get_freeze_count() == before and gc.get_threshold() == settings
-print(json.dumps(out))
-"""
+x = sp.Symbol("x", positive=True)
 
+def paper(name):  # modules the workers find as this process has them: never pickled
+    return SimpleNamespace(checks=lambda: [name, os.getpid(), sp.Eq(2, 2, evaluate=False), sp.Lt(x, 0, evaluate=False)],
+                           figures=lambda folder: [name + " drawn"])
 
-def test_the_workers_leave_what_the_parent_loaded_to_their_collector_s_permanent_generation(tmp_path):
-    # in a process of its own: a test worker of pytest-xdist runs threads, and forks only from one thread
-    import json
-    import subprocess
-    import sys
-
-    from symkin.papers import _pool
-
-    proc = subprocess.run([sys.executable, "-c", _GC_CHECK, str(tmp_path)], capture_output=True, text=True, timeout=120)
-    assert proc.returncode == 0, proc.stderr
-    out = json.loads(proc.stdout.strip().splitlines()[-1])
-    thresholds = list(_pool._WORKER_GC_THRESHOLDS)
-    assert out["workers"] == [True, thresholds]  # what the parent loaded is frozen; the worker's thresholds
-    assert out["parent_unfrozen"]  # the parent collects as before
-    assert out["one_job"] == [True, thresholds]  # one job: the tasks run here, collected as in a worker,
-    assert out["restored"]  # and the collector is restored after
-
-
-
-_TASKS_CHECK = """
-import json, pathlib, sys
-from types import SimpleNamespace
-from symkin.papers import _pool
-assert _pool.can_fork()
-folder = pathlib.Path(sys.argv[1])
-
-def paper(name):
-    return SimpleNamespace(checks=lambda: [name], figures=lambda folder: [name + " drawn"])
-
-found = {}
-_pool.run_tasks({"p": paper("p"), "q": paper("q"), "r": paper("r")},
-                [("p", "checks"), ("q", "checks"), ("r", "checks"), ("p", "figures")], folder, jobs=2,
-                done=lambda task, value, seconds: found.__setitem__(" ".join(task), value))
-out = {"found": found}
+out = {}
+for jobs in (1, 2):
+    found = {}
+    run_papers({n: paper(n) for n in "pqr"}, list("pqr"), folder, jobs=jobs, done=lambda name, value: found.__setitem__(name, value))
+    out[jobs] = {n: [v[0][0], v[0][1] != os.getpid(), repr(v[0][2]), repr(v[0][3]), v[1], v[2]] for n, v in found.items()}
 failing = SimpleNamespace(checks=lambda: 1 / 0, figures=lambda folder: [])
 try:
-    _pool.run_tasks({"p": paper("p"), "x": failing}, [("p", "checks"), ("x", "checks")], folder, jobs=2,
-                    done=lambda task, value, seconds: None)
+    run_papers({"p": paper("p"), "x": failing}, ["p", "x"], folder, jobs=2, done=lambda name, value: None)
 except ZeroDivisionError as err:
     out["error"] = str(err)
 print(json.dumps(out))
 """
 
 
-def test_every_task_reports_once_from_the_workers_and_a_failure_is_raised_in_the_parent(tmp_path):
-    # in a process of its own (see above)
-    import json
-    import subprocess
-    import sys
-
-    proc = subprocess.run([sys.executable, "-c", _TASKS_CHECK, str(tmp_path)], capture_output=True, text=True, timeout=120)
+def test_every_paper_reports_once_alike_for_any_jobs_and_a_failure_is_raised_in_the_caller(tmp_path):
+    # in a process of its own: a test worker of pytest-xdist runs threads, and the papers run in
+    # worker processes only from a process running one thread
+    proc = subprocess.run([sys.executable, "-c", _PAPERS, str(tmp_path)], capture_output=True, text=True, timeout=120)
     assert proc.returncode == 0, proc.stderr
     out = json.loads(proc.stdout.strip().splitlines()[-1])
-    assert out["found"] == {"p checks": [["p"], []], "q checks": [["q"], []], "r checks": [["r"], []],
-                            "p figures": ["p drawn"]}
+    for jobs, elsewhere in (("1", False), ("2", True)):
+        # every paper once, in a worker process with jobs 2; unevaluated relations arrive as they
+        # were made, not decided again (Eq(2, 2) is not True): the results do not depend on jobs
+        assert out[jobs] == {n: [n, elsewhere, "Eq(2, 2)", "x < 0", [], [n + " drawn"]] for n in "pqr"}
     assert out["error"] == "division by zero"
 
 
-_HANDOVER_CHECK = """
-import json, pathlib, sys, time
+_KILLED_WITH_WORKERS = """
+import os, pathlib, signal, sys, time
 from types import SimpleNamespace
-from symkin.papers import _pool
+from symkin.papers.reproduce import run_papers
 folder = pathlib.Path(sys.argv[1])
-rebuilt = []
+runner = os.getpid()
 
-def slow_to_rebuild(value):
-    time.sleep(0.5)  # a value the parent takes long to rebuild (as the SymPy objects of a paper's checks)
-    rebuilt.append(time.time())
-    return value
+def checks(name):
+    (folder / f"{name}.pid").write_text(str(os.getpid()))
+    if name == "p":
+        time.sleep(0.5)
+        os.kill(runner, signal.SIGKILL)
+    time.sleep(100)  # q: still at work when the run is killed
+    return []
 
-class Slow:
-    def __reduce__(self):
-        return slow_to_rebuild, (1,)
-
-papers = {"p": SimpleNamespace(checks=lambda: [Slow()]),
-          "q": SimpleNamespace(checks=lambda: [time.sleep(1.5)]),  # keeps the other worker busy
-          "r": SimpleNamespace(checks=lambda: [time.time()])}
-found = {}
-_pool.run_tasks(papers, [("p", "checks"), ("q", "checks"), ("r", "checks")], folder, jobs=2,
-                done=lambda task, value, seconds: found.__setitem__(task[0], value[0][0]))
-print(json.dumps({"r_started": found["r"], "p_rebuilt": rebuilt[0]}))
+papers = {n: SimpleNamespace(checks=lambda n=n: checks(n), figures=lambda folder: []) for n in "pq"}
+run_papers(papers, ["p", "q"], folder, jobs=2, done=lambda name, value: None)
 """
 
 
-def test_a_worker_is_given_its_next_task_before_the_parent_rebuilds_what_it_sent(tmp_path):
-    # in a process of its own (see above); the parent needs 0.5 s to rebuild p's value, and the
-    # worker that sent it starts r meanwhile, not after
-    import json
-    import subprocess
-    import sys
+def test_the_worker_processes_end_when_the_run_is_killed(tmp_path):
+    # (the run's output ends only when the workers, which hold it too, have ended)
+    proc = subprocess.run([sys.executable, "-c", _KILLED_WITH_WORKERS, str(tmp_path)], capture_output=True, text=True,
+                          timeout=60)
+    assert proc.returncode == -signal.SIGKILL, proc.stderr
 
-    proc = subprocess.run([sys.executable, "-c", _HANDOVER_CHECK, str(tmp_path)], capture_output=True, text=True, timeout=120)
-    assert proc.returncode == 0, proc.stderr
-    out = json.loads(proc.stdout.strip().splitlines()[-1])
-    assert out["r_started"] < out["p_rebuilt"] - 0.3
+    def running(pid):
+        try:
+            return Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0] not in "ZX"
+        except OSError:
+            return False
+
+    pids = [int((tmp_path / f"{n}.pid").read_text()) for n in "pq"]
+    assert pids[0] != pids[1] and not any(running(pid) for pid in pids)
 
 
 _CTRL_C_AT_THE_FOLDER = """
@@ -671,28 +572,3 @@ def test_a_ctrl_c_the_moment_the_partial_folder_exists_leaves_nothing(tmp_path):
     proc = subprocess.run([sys.executable, "-c", _CTRL_C_AT_THE_FOLDER, str(tmp_path)], capture_output=True, text=True,
                           timeout=60)
     assert proc.stdout.strip() == "[]", (proc.stdout, proc.stderr)
-
-
-def test_a_workers_value_keeps_its_relations_without_deciding_them_again(monkeypatch):
-    """Values come back from the workers with their SymPy relations rebuilt as they were, not
-    decided again from the assumptions (which cost the calling process 0.1 s a paper)."""
-    import pickle
-
-    import sympy.core.relational as relational
-
-    from symkin.papers import _pool
-
-    x, y = sp.symbols("x y", positive=True)
-    value = [sp.Eq(x + y, 2 * x), sp.Lt(x, y), {"k": (sp.Ge(x * y, 1), sp.Ne(x, y + 1))}, sp.Le(x, 3), sp.Gt(y, x**2)]
-    data, plain = _pool.dumps(value), pickle.dumps(value)
-
-    def decided(*args):
-        raise AssertionError("a relation was decided again")
-
-    for name in ("is_eq", "is_neq", "is_lt", "is_le", "is_gt", "is_ge"):
-        monkeypatch.setattr(relational, name, decided)
-    loaded = pickle.loads(data)
-    assert loaded == value and [type(v) for v in loaded] == [type(v) for v in value]
-    assert loaded[2]["k"][1] == value[2]["k"][1]
-    with pytest.raises(AssertionError, match="decided again"):  # SymPy's own pickles do decide them
-        pickle.loads(plain)

@@ -7,9 +7,3 @@
 - :mod:`.jsonout`: the JSON shape of exact numbers;
 - :mod:`.progress`: the one progress display of long work.
 """
-
-#: The garbage collector's thresholds of the symkin program and of reproduce's workers: SymPy
-#: allocates (and drops) objects by the million, and collecting every 700 net allocations
-#: (Python's default) spent about 1 s of a reproduce run's CPU in the collector; every 10,000
-#: about half that, with the same results.
-GC_THRESHOLDS = (10_000, 10, 10)

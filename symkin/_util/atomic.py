@@ -22,7 +22,7 @@ next run removes what a dead process left and never what a running one is buildi
 A folder symkin wrote holds a manifest (:data:`MANIFEST`) of every file in it with its
 SHA-256.  Only a folder with a valid manifest is replaced; files a user added to it since
 (notes, data) are carried over into the new folder, and a file symkin wrote that was
-changed since is a reason to refuse (:func:`survey`), so nothing a user put there is lost.
+changed since is a reason to refuse (:func:`check_replaceable`), so nothing a user put there is lost.
 """
 
 from __future__ import annotations
@@ -39,12 +39,11 @@ import signal
 import tempfile
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
-from dataclasses import dataclass, field
 from pathlib import Path
 
 from symkin.errors import InputError
 
-__all__ = ["replacing", "write_atomically", "MANIFEST", "Survey", "survey", "check_replaceable", "recover", "write_manifest"]
+__all__ = ["replacing", "write_atomically", "MANIFEST", "check_replaceable", "recover", "write_manifest"]
 
 #: The manifest symkin writes into a folder it owns: every file's relative path and SHA-256.
 MANIFEST = ".symkin-manifest.json"
@@ -208,48 +207,6 @@ def _read_manifest(folder: Path) -> dict[str, str] | None:
     return files
 
 
-@dataclass(frozen=True)
-class Survey:
-    """What a folder holds, measured against the manifest symkin wrote into it.
-
-    Attributes
-    ----------
-    owned : bool
-        The folder holds a valid manifest (symkin wrote it), or is empty.
-    added : list of str
-        Files, links and empty folders not in the manifest (a user's), relative paths.
-    changed : list of str
-        Files symkin wrote that differ from what it wrote.
-    """
-
-    owned: bool
-    added: list[str] = field(default_factory=list)
-    changed: list[str] = field(default_factory=list)
-
-
-def survey(folder: Path) -> Survey:
-    """Compare ``folder`` with its manifest.
-
-    >>> import tempfile
-    >>> with tempfile.TemporaryDirectory() as d:
-    ...     _ = (Path(d) / "report.txt").write_text("symkin's")
-    ...     write_manifest(Path(d), "0.2")
-    ...     _ = (Path(d) / "notes.txt").write_text("mine")
-    ...     survey(Path(d))
-    Survey(owned=True, added=['notes.txt'], changed=[])
-    """
-    folder = Path(folder)
-    files, folders = _entries(folder)
-    manifest = _read_manifest(folder)
-    if manifest is None:
-        return Survey(owned=not files and not folders and not (folder / MANIFEST).exists(), added=files + folders)
-    added = [f for f in files if f not in manifest]
-    changed = [f for f in files if f in manifest and _hash(folder / f) != manifest[f]]
-    needed = {p.as_posix() for f in [*manifest, *added] for p in Path(f).parents}
-    added += [d for d in folders if d not in needed]
-    return Survey(owned=True, added=sorted(added), changed=changed)
-
-
 def _carry(old: Path, new: Path, added: list[str], out: Path) -> None:
     """Put the user's files of the old folder into the new one: hard links (no copy, and the old
     folder keeps its own until it is removed), or copies where links cannot be made."""
@@ -267,11 +224,8 @@ def _carry(old: Path, new: Path, added: list[str], out: Path) -> None:
             continue
         try:
             os.link(src, dst, follow_symlinks=False)
-        except OSError:
-            if src.is_symlink():
-                os.symlink(os.readlink(src), dst)
-            else:
-                shutil.copy2(src, dst)
+        except OSError:  # (a file system without hard links; a link is copied as a link)
+            shutil.copy2(src, dst, follow_symlinks=False)
 
 
 def _names(paths: list[str], most: int = 5) -> str:
@@ -284,14 +238,12 @@ _LITTER = re.compile(r"^\.(?P<name>.+)\.(?P<kind>partial|old)-(?P<pid>\d+)(?:-.*
 
 
 def _alive(pid: int) -> bool:
-    if pid == os.getpid():
-        return True
     try:
         os.kill(pid, 0)
     except ProcessLookupError:
         return False
     except PermissionError:  # another user's process
-        return True
+        pass
     return True
 
 
@@ -409,8 +361,7 @@ def write_atomically(out: Path, build: Callable[[Path], None], *, version: str |
         if version is not None:
             write_manifest(tmp, version)
             if target.is_dir():
-                found = check_replaceable(out)
-                _carry(target, tmp, found.added, out)
+                _carry(target, tmp, check_replaceable(out), out)
         old = _swap(tmp, target)
     except OSError as err:
         if err.errno in _UNWRITABLE:
@@ -423,11 +374,18 @@ def write_atomically(out: Path, build: Callable[[Path], None], *, version: str |
         shutil.rmtree(old, ignore_errors=True)
 
 
-def check_replaceable(out: Path, what: str = "a folder symkin wrote") -> Survey:
-    """The :func:`survey` of folder ``out``, or InputError if symkin must not replace it: it is
-    not empty and has no valid manifest, or a file symkin wrote there was changed since.
+def check_replaceable(out: Path, what: str = "a folder symkin wrote") -> list[str]:
+    """What a user added to folder ``out`` since symkin wrote it (files, links and empty folders,
+    as relative paths), or InputError if symkin must not replace it: it is not empty and has no
+    valid manifest (:data:`MANIFEST`), or a file symkin wrote there was changed since.
 
     >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     _ = (Path(d) / "report.txt").write_text("symkin's")
+    ...     write_manifest(Path(d), "0.2")
+    ...     _ = (Path(d) / "notes.txt").write_text("mine")
+    ...     check_replaceable(Path(d))
+    ['notes.txt']
     >>> with tempfile.TemporaryDirectory() as d:
     ...     _ = (Path(d) / "thesis.tex").write_text("years of work")
     ...     check_replaceable(Path(d), "a symkin report")
@@ -435,15 +393,22 @@ def check_replaceable(out: Path, what: str = "a folder symkin wrote") -> Survey:
     ...
     symkin.errors.InputError: --out ... is not a symkin report (it has no .symkin-manifest.json, the list of the files symkin wrote there) and symkin replaces the whole folder; choose a new or empty folder
     """
-    found = survey(Path(out))
-    if not found.owned:
+    folder = Path(out)
+    files, folders = _entries(folder)
+    manifest = _read_manifest(folder)
+    if manifest is None:
+        if not files and not folders and not (folder / MANIFEST).exists():
+            return []  # an empty folder
         raise InputError(
             f"--out {out} is not {what} (it has no {MANIFEST}, the list of the files symkin wrote there) and symkin "
             "replaces the whole folder; choose a new or empty folder"
         )
-    if found.changed:
+    changed = [f for f in files if f in manifest and _hash(folder / f) != manifest[f]]
+    if changed:
         raise InputError(
-            f"--out {out}: {_names(found.changed)} changed since symkin wrote them and would be replaced; "
+            f"--out {out}: {_names(changed)} changed since symkin wrote them and would be replaced; "
             "move them out of the folder (or delete them), or choose another --out"
         )
-    return found
+    added = [f for f in files if f not in manifest]
+    needed = {p.as_posix() for f in [*manifest, *added] for p in Path(f).parents}
+    return sorted(added + [d for d in folders if d not in needed])

@@ -11,7 +11,7 @@ evaluating it exactly, and without trusting a float that cancelled.
 
 The working precision starts at 64 bits and grows (256, 1024, 4096 bits) only while an
 answer is undecided (an interval that straddles 0 or a domain boundary).  The parser
-(:mod:`symkin._util.parsing`) checks every node of an expression as it builds it, so every
+(:mod:`symkin.parsing`) checks every node of an expression as it builds it, so every
 operation here sees operands already known to lie between 1e-300 and 1e300 in size, and
 each step costs microseconds whatever the expression.
 

@@ -9,18 +9,13 @@ simplification when its time is up, and then returns the expression as it was, w
 
 The time limit uses the interval timer (SIGALRM) of the main thread, which interrupts
 SymPy's pure-Python work wherever it is, at no cost per call; an outer timer (a test
-harness's, say) is kept and re-armed.  Off the main thread (a Dask worker, a Jupyter
-background thread, a web server's request thread), or where the platform has no interval
-timer, signals cannot be used: there a watchdog thread raises the same exception in the
-working thread when the time is up (CPython's ``PyThreadState_SetAsyncExc``), again at no
-cost per call.  Both raise it again every 0.1 s until the work has stopped, since one
-interrupt can land where Python drops exceptions (a weakref callback) or in a bare
-``except``.  Where neither is available (another Python implementation) a call
-tracer (:func:`sys.settrace`, for the calling thread only) looks at the clock every few
-hundred Python calls; it about doubles the time of the simplification
-(``benchmarks/bench_budget.py``) and suspends a debugger's tracer in that thread while
-it runs.  Work inside one C call (a large integer product, say) is not interrupted by any
-route.
+harness's, say) is kept and re-armed.  The interrupt is raised again every 0.1 s until the
+work has stopped, since one can land where Python drops exceptions (a weakref callback) or
+in a bare ``except``.  Work inside one C call (a large integer product, say) is not
+interrupted.  Off the main thread (a Dask worker, a Jupyter background thread, a web
+server's request thread), or where the platform has no interval timer, signals cannot be
+used and there is no time limit: the operation count of :func:`simplify_within` still
+bounds what is simplified.
 
     >>> import sympy as sp
     >>> x = sp.Symbol("x")
@@ -39,7 +34,6 @@ route.
 from __future__ import annotations
 
 import signal
-import sys
 import threading
 import time
 import warnings
@@ -77,7 +71,7 @@ def simplify_within(
     ----------
     expr : sympy expression (or anything ``simplifier`` takes)
     seconds : float or None
-        Time budget; None for no time limit.
+        Time budget; None for no time limit.  Kept in the main thread only (see above).
     max_ops : int or None
         Largest :func:`sympy.count_ops` of an expression that is simplified at all.
     simplifier : callable
@@ -126,8 +120,8 @@ def time_limit(seconds: float, message: str, error: type[Exception] = InputError
 
     For work whose time follows what a user typed (evaluating an expression, deciding a
     sign) and that has no useful partial result: the user gets a one-line error instead of a
-    hang.  The block is interrupted as :func:`simplify_within` is (a timer signal in the main
-    thread, a watchdog elsewhere).
+    hang.  The block is interrupted as :func:`simplify_within` is: by a timer signal, in the
+    main thread only (elsewhere the block runs to its end).
 
     >>> import time
     >>> with time_limit(0.05, "the angle took too long to evaluate; simplify it"):
@@ -146,16 +140,11 @@ def time_limit(seconds: float, message: str, error: type[Exception] = InputError
 #: Seconds between repeated interrupts once the time is up (until the block has stopped).
 _REFIRE = 0.1
 
-#: The tracer off the main thread looks at the clock once in this many Python calls.
-_CALLS_PER_CHECK = 256
-
 
 @contextmanager
 def _time_limit(seconds: float) -> Iterator[None]:
     if threading.current_thread() is not threading.main_thread() or not hasattr(signal, "setitimer"):
-        limit = _watchdog_time_limit if _set_async_exc() is not None else _traced_time_limit
-        with limit(seconds):
-            yield
+        yield  # no signals here: no time limit
         return
 
     active = [True]
@@ -179,80 +168,3 @@ def _time_limit(seconds: float) -> Iterator[None]:
         if outer_left > 0:  # re-arm the outer timer with what is left of it (at least a moment)
             left = outer_left - (time.monotonic() - start)
             signal.setitimer(signal.ITIMER_REAL, max(left, 1e-6), outer_interval)
-
-
-def _set_async_exc() -> Any:
-    """CPython's PyThreadState_SetAsyncExc, or None where there is none."""
-    try:
-        import ctypes
-
-        return ctypes.pythonapi.PyThreadState_SetAsyncExc
-    except (ImportError, AttributeError):  # pragma: no cover - not CPython
-        return None
-
-
-def _checkpoint() -> None:
-    """A Python call, nothing more: CPython raises a pending asynchronous exception on entering it.
-
-    (Clearing it with ``PyThreadState_SetAsyncExc(id, NULL)`` instead leaves CPython 3.11's
-    eval-breaker flag set for good, and a later call tracer never gets to run: not used.)
-    """
-
-
-@contextmanager
-def _watchdog_time_limit(seconds: float) -> Iterator[None]:
-    """A time limit without signals: a watchdog thread raises _OutOfTime in this thread when the time is up.
-
-    As with the timer signal, the exception is raised again every ``_REFIRE`` seconds until the
-    block has stopped: one that lands where Python drops exceptions (a weakref or gc callback,
-    "Exception ignored in ...") would otherwise leave the block running to its end.
-    """
-    import ctypes
-
-    target = ctypes.c_ulong(threading.get_ident())
-    lock = threading.Lock()
-    done = threading.Event()
-
-    def expire() -> None:
-        wait = seconds
-        while not done.wait(wait):
-            with lock:
-                if not done.is_set():
-                    _set_async_exc()(target, ctypes.py_object(_OutOfTime))
-            wait = _REFIRE
-
-    watchdog = threading.Thread(target=expire, name="symkin-time-limit", daemon=True)
-    watchdog.start()
-    try:
-        yield
-    finally:
-        while True:  # an interrupt may land in this clause too: then stop the watchdog again
-            try:
-                with lock:
-                    done.set()
-                _checkpoint()  # an interrupt set before done.set() but not yet raised is raised here
-                break
-            except _OutOfTime:
-                continue
-        watchdog.join()
-
-
-@contextmanager
-def _traced_time_limit(seconds: float) -> Iterator[None]:
-    """A time limit without signals: a call tracer of this thread raises when the time is up."""
-    deadline = time.monotonic() + seconds
-    calls = 0
-
-    def tracer(frame: Any, event: str, arg: Any) -> None:
-        nonlocal calls
-        calls += 1
-        if calls % _CALLS_PER_CHECK == 0 and time.monotonic() > deadline:
-            raise _OutOfTime
-        return None  # no line tracing: only calls are counted
-
-    previous = sys.gettrace()
-    sys.settrace(tracer)
-    try:
-        yield
-    finally:
-        sys.settrace(previous)

@@ -2,7 +2,7 @@
 
 An exact value (a tooth ratio, a total, a period of ``2*pi/omega``) is written as
 ``{"exact": text, "float": number or null}``: the text is exact and can be read back
-with :func:`symkin._util.parsing.parse_expression`; the float is for plotting and sorting, and
+with :func:`symkin.parsing.parse_expression`; the float is for plotting and sorting, and
 ``null`` where the value has none (a symbol, an infinity), so the JSON stays strict.
 
     >>> from fractions import Fraction

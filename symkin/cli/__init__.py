@@ -23,6 +23,7 @@ from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from typing import Any, NoReturn
 
+from symkin.cli.common import Output
 from symkin.errors import SymkinError, SymkinWarning
 
 __all__ = ["main", "console_main", "COMMANDS", "ArgumentParser", "output_schema", "JSON_SCHEMA_VERSION"]
@@ -51,9 +52,8 @@ class ArgumentParser(argparse.ArgumentParser):
         raise UsageExit(message)
 
 
-def build_parser(command: str | None = None) -> ArgumentParser:
-    """The parser of every command, or (``command`` given) one whose other commands have
-    their names and help only: ``symkin --help`` and ``symkin ratio ...`` need no more.
+def build_parser() -> ArgumentParser:
+    """The parser of every command.
 
     >>> build_parser().parse_args(["ratio", "AA", "--teeth", "1,2,3,4", "--driver", "H", "--driven", "1", "--fixed", "4"]).scheme
     'AA'
@@ -67,37 +67,9 @@ def build_parser(command: str | None = None) -> ArgumentParser:
     parser.add_argument("--version", action="version", version=f"symkin {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=ArgumentParser)
     sub.required = True
-    target = sub if command is None else _Only(sub, command)
     for name in COMMANDS:
-        importlib.import_module(f"{__name__}.{name}").register(target)
+        importlib.import_module(f"{__name__}.{name}").register(sub)
     return parser
-
-
-class _Only:
-    """Subparsers that fill in the arguments of one command only: the others are added
-    with their name and help, and what their ``register`` adds to them is dropped."""
-
-    def __init__(self, sub: Any, command: str):
-        self._sub, self._command = sub, command
-
-    def add_parser(self, name: str, **kwargs: Any) -> Any:
-        parser = self._sub.add_parser(name, **kwargs)
-        return parser if name == self._command else _Dropped()
-
-    def __getattr__(self, name: str) -> Any:
-        return getattr(self._sub, name)
-
-
-class _Dropped:
-    """Takes every call a command's ``register`` makes on its parser, and keeps none."""
-
-    def __getattr__(self, name: str) -> Any:
-        return lambda *args, **kwargs: self
-
-
-def _command(argv: Sequence[str]) -> str:
-    """The command a command line names (its first word that is not an option), or ""."""
-    return next((a for a in argv if not a.startswith("-")), "")
 
 
 def one_line(message: object, word: int = 80) -> str:
@@ -110,50 +82,28 @@ def one_line(message: object, word: int = 80) -> str:
     return " ".join(w if len(w) <= word else f"{w[: word * 3 // 4]}...({len(w)} characters)" for w in words)
 
 
-def _negative_lists_attached(argv: list[str]) -> list[str]:
-    """``--ratio-range -120,-30`` read as ``--ratio-range=-120,-30``.
-
-    argparse takes a token that begins with ``-`` for an option unless it is one plain
-    negative number, so a list that starts with a negative number would be refused as an
-    unknown option; a minus, a digit and later a comma never make an option's name.
-
-    >>> _negative_lists_attached(["synthesize", "--ratio-range", "-120,-30", "--ratio", "-3"])
-    ['synthesize', '--ratio-range=-120,-30', '--ratio', '-3']
-    """
-    out: list[str] = []
-    for token in argv:
-        if (out and out[-1].startswith("--") and out[-1] != "--" and "=" not in out[-1]
-                and len(token) > 2 and token[0] == "-" and token[1].isdigit() and "," in token):
-            out[-1] = f"{out[-1]}={token}"
-        else:
-            out.append(token)
-    return out
-
-
 def _negative_values_attached(argv: list[str], parser: ArgumentParser) -> list[str]:
-    """``--carrier-angle -pi/6`` read as ``--carrier-angle=-pi/6``: a token that begins with one
-    minus after an option that takes a value is that value when it is not an option of the
-    command itself (argparse refused it as an option: "expected one argument").
+    """``--carrier-angle -pi/6`` read as ``--carrier-angle=-pi/6`` (and ``--ratio-range -120,-30``
+    as ``--ratio-range=-120,-30``).
 
-    >>> p = build_parser("cardan")
-    >>> _negative_values_attached(["cardan", "--carrier-angle", "-pi/6", "-e", "0.3", "--json"], p)
+    argparse takes a token that begins with ``-`` for an option unless it is one plain negative
+    number, and then refuses it ("expected one argument").  After an option that takes a value, a
+    token that begins with one minus and is not an option of the command is that value.
+
+    >>> _negative_values_attached(["cardan", "--carrier-angle", "-pi/6", "-e", "0.3", "--json"], build_parser())
     ['cardan', '--carrier-angle=-pi/6', '-e', '0.3', '--json']
     """
-    taking: set[str] = set()
-    known: set[str] = set()
-    parsers = [parser]
-    while parsers:
-        current = parsers.pop()
-        for action in current._actions:
-            known.update(action.option_strings)
-            if action.option_strings and action.nargs != 0:
-                taking.update(action.option_strings)
-            if isinstance(action, argparse._SubParsersAction):
-                parsers.extend(action.choices.values())
+    command = next((a for a in argv if not a.startswith("-")), "")
+    actions = list(parser._actions)
+    for action in parser._actions:
+        if isinstance(action, argparse._SubParsersAction) and command in action.choices:
+            actions += action.choices[command]._actions
+    known = {option for action in actions for option in action.option_strings}
+    taking = {option for action in actions if action.nargs != 0 for option in action.option_strings}
     out: list[str] = []
     for token in argv:
-        if (out and out[-1] in taking and len(token) > 1 and token[0] == "-" and token[1] != "-"
-                and token not in known and f"-{token[1]}" not in known):
+        if out and out[-1] in taking and token[:1] == "-" and token[1:2] not in ("", "-") and token not in known \
+                and token[:2] not in known:
             out[-1] = f"{out[-1]}={token}"
         else:
             out.append(token)
@@ -171,9 +121,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     says what went wrong.  A command line argparse refuses raises :class:`UsageExit`
     (a ``SystemExit`` with status 2) after the same output.
     """
-    argv = _negative_lists_attached(list(sys.argv[1:] if argv is None else argv))
+    argv = list(sys.argv[1:] if argv is None else argv)
     wants_json = "--json" in argv
-    parser = build_parser(_command(argv))
+    parser = build_parser()
     argv = _negative_values_attached(argv, parser)
     try:
         args = parser.parse_args(argv)
@@ -184,75 +134,33 @@ def main(argv: Sequence[str] | None = None) -> int:
     prog = f"symkin {args.command}"
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        code = _run(args, prog)
-    if code not in (EXIT_OK, EXIT_DIFFERS):
-        return code
+        output = _run(args, prog)
+    if isinstance(output, int):  # a failure, already reported
+        return output
     from symkin.errors import NullFloatWarning
 
     json_out = getattr(args, "json", False)  # (a null JSON float is news only where JSON is written)
     notes = list(dict.fromkeys(_note(w) for w in caught if json_out or not issubclass(w.category, NullFloatWarning)))
-    output = getattr(args, "_output", None)
     try:
-        if output is not None:
-            text, data = output
-            if getattr(args, "json", False):
-                _print_json({**data, "warnings": list(dict.fromkeys([*data.get("warnings", []), *notes]))})
-            else:
-                sys.stdout.write(text if text.endswith("\n") else text + "\n")
-            sys.stdout.flush()
+        if json_out:
+            _print_json({**output.data, "warnings": list(dict.fromkeys([*output.data.get("warnings", []), *notes]))})
+        else:
+            sys.stdout.write(output.text if output.text.endswith("\n") else output.text + "\n")
+        sys.stdout.flush()
     except BrokenPipeError:  # the reader stopped (| head): nothing more to say
         devnull = os.open(os.devnull, os.O_WRONLY)
         os.dup2(devnull, sys.stdout.fileno())
-        return code
-    if output is None or not getattr(args, "json", False):
+        return output.code
+    if not json_out:
         for note in notes:
             print(f"{prog}: note: {note}", file=sys.stderr)
-    return code
+    return output.code
 
 
 def console_main() -> NoReturn:
-    """The ``symkin`` program (and ``python -m symkin``): :func:`main` with the command line,
-    then the process ends with its status.
-
-    The program ends at once once the command is done and its output flushed: the exit
-    handlers run (:mod:`atexit`, hence temporary files' finalizers), but Python's own
-    teardown of every module and object it loaded (about 0.5 s after SymPy, matplotlib and
-    the papers) is skipped.  While another thread still runs it exits the ordinary way,
-    which waits for that thread.
-
-    The garbage collector runs every 10,000 net allocations instead of 700: loading SymPy,
-    matplotlib and the papers (what ``symkin reproduce`` does before its workers start)
-    took about 0.15 s less CPU of about 1.7 s.
-    """
-    import gc
-
-    from symkin._util import GC_THRESHOLDS
-
-    gc.set_threshold(*GC_THRESHOLDS)
-    try:
-        code: Any = main()
-    except SystemExit as exc:
-        code = exc.code
-    _exit(code)
-
-
-def _exit(code: Any) -> NoReturn:
-    """End the process with ``code`` as ``sys.exit`` would, without Python's teardown."""
-    import atexit
-    import threading
-
-    if any(t.is_alive() and not t.daemon and t is not threading.main_thread() for t in threading.enumerate()):
-        sys.exit(code)
-    status = code if isinstance(code, int) else 0 if code is None else 1
-    if not isinstance(code, int) and code is not None:
-        print(code, file=sys.stderr)
-    atexit._run_exitfuncs()
-    for stream in (sys.stdout, sys.stderr):
-        try:
-            stream.flush()
-        except (OSError, ValueError):  # what Python reports when it cannot flush at exit
-            status = status or 120
-    os._exit(status)
+    """The ``symkin`` program (and ``python -m symkin``): :func:`main` with the command line;
+    the process ends with its status."""
+    sys.exit(main())
 
 
 def _note(w: warnings.WarningMessage) -> str:
@@ -314,10 +222,11 @@ def _terminate_as_interrupt() -> Iterator[None]:
         signal.signal(signal.SIGTERM, previous)
 
 
-def _run(args: argparse.Namespace, prog: str) -> int:
+def _run(args: argparse.Namespace, prog: str) -> Output | int:
+    """The command's output, or the exit status of its failure (reported here)."""
     try:
         with _terminate_as_interrupt():
-            return int(args.run(args) or EXIT_OK)
+            return args.run(args)
     except SymkinError as err:
         return _fail(args, prog, "error", one_line(err), EXIT_USAGE)
     except KeyboardInterrupt:

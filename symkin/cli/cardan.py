@@ -115,8 +115,8 @@ def _times(args: Any, slider: CardanSlider) -> Any:
     return slider.times(t_start=parse_real(args.t_start, what="--t-start", unit="s"), t_end=end, samples=int(n))
 
 
-def run_cardan(args: Any) -> int:
-    """Run ``symkin cardan`` with the parsed ``args``: the Cardan slider's table s, v, a on a time grid; hands text and JSON to :func:`symkin.cli.common.emit` and returns 0 (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
+def run_cardan(args: Any) -> Any:
+    """Run ``symkin cardan`` with the parsed ``args``: the Cardan slider's table s, v, a on a time grid; returns its output, :func:`symkin.cli.common.emit` (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
     from symkin.mechanisms.cardan import CardanSlider
 
     if args.omega_deprecated is not None:
@@ -140,5 +140,4 @@ def run_cardan(args: Any) -> int:
     data["units"] = {"length": "m", "pin_radius": "m", "period_s": "s", "pin_angle_rad": "rad", "guide_angle_rad": "rad",
                      "carrier_angle_rad": "rad", "columns": {"t": "s", "s": "m", "v": "m/s", "a": "m/s^2", "x": "m", "y": "m",
                                                              "deviation": "m"}}
-    emit(args, table.text(), data)
-    return 0
+    return emit(table.text(), data)

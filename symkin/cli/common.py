@@ -21,12 +21,15 @@ Conventions every command follows:
   ``_rad``): gear-design angles (helix, pressure) in degrees, angles of motion (guide,
   carrier, pin) in radians.
 - ``--quiet`` turns off the progress display of a command that has one.
+- A command's run function returns its :class:`Output` (``return emit(text, data)``), which
+  :func:`symkin.cli.main` prints.
 """
 
 from __future__ import annotations
 
 import argparse
 from collections.abc import Callable, Sequence
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -65,6 +68,7 @@ __all__ = [
     "link_value",
     "exact_json",
     "emit",
+    "Output",
     "add_command",
     "add_json_flag",
     "add_quiet_flag",
@@ -82,7 +86,7 @@ __all__ = [
 SCHEME_HELP = "AI1 (single-row AI, teeth Z1,Z2,Z4), AI, AA or II (two-row, teeth Z1,Z2,Z3,Z4)"
 
 
-def add_command(sub: Any, name: str, *, help: str, description: str, run: Callable[[Any], int]) -> argparse.ArgumentParser:
+def add_command(sub: Any, name: str, *, help: str, description: str, run: Callable[[Any], Output]) -> argparse.ArgumentParser:
     """A subcommand with ``--json``; ``run(args)`` is called with the parsed arguments."""
     p = sub.add_parser(name, help=help, description=description)
     add_json_flag(p)
@@ -250,7 +254,17 @@ def link_values(items: Sequence[str], what: str = "--omega") -> dict[str, Any]:
     return known
 
 
-def emit(args: Any, text: str, data: dict[str, Any]) -> None:
-    """Hand the command's result to :func:`symkin.cli.main`, which prints it after the run:
-    ``text`` (and the warnings as notes on stderr), or ``data`` as JSON with its ``"warnings"``."""
-    args._output = (text, data)
+@dataclass(frozen=True)
+class Output:
+    """What a command's run function returns to :func:`symkin.cli.main`, which prints it after
+    the run: ``text`` (and the warnings as notes on stderr), or with ``--json`` ``data`` as JSON
+    with its ``"warnings"``; ``code`` is the exit status (1: a check failed)."""
+
+    text: str
+    data: dict[str, Any]
+    code: int = 0
+
+
+def emit(text: str, data: dict[str, Any], code: int = 0) -> Output:
+    """The command's output, for its run function to return: ``return emit(text, data)``."""
+    return Output(text, data, code)

@@ -35,8 +35,8 @@ def register(sub: Any) -> None:
     p.add_argument("--latex", action="store_true", help="print the efficiency law in LaTeX, mesh efficiencies as symbols")
 
 
-def run_efficiency(args: Any) -> int:
-    """Run ``symkin efficiency`` with the parsed ``args``: torques, power flow and efficiency of a train both ways; hands text and JSON to :func:`symkin.cli.common.emit` and returns 0 (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
+def run_efficiency(args: Any) -> Any:
+    """Run ``symkin efficiency`` with the parsed ``args``: torques, power flow and efficiency of a train both ways; returns its output, :func:`symkin.cli.common.emit` (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
     from symkin.parsing import parse_number
     from symkin.printing import latex
     from symkin.statics import statics
@@ -83,5 +83,4 @@ def run_efficiency(args: Any) -> int:
         data["latex"] = latex(symbolic.efficiency)
         data["latex_backward"] = latex(symbolic.backward.efficiency)
         text += f"\nLaTeX: {data['latex']}\nLaTeX, driven back: {data['latex_backward']}"
-    emit(args, text, data)
-    return 0
+    return emit(text, data)

@@ -49,8 +49,8 @@ def register(sub: Any) -> None:
     add_omega_argument(q)
 
 
-def run_ratio(args: Any) -> int:
-    """Run ``symkin ratio`` with the parsed ``args``: the exact ratio i_ab^(c) of a scheme or a train; hands text and JSON to :func:`symkin.cli.common.emit` and returns 0 (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
+def run_ratio(args: Any) -> Any:
+    """Run ``symkin ratio`` with the parsed ``args``: the exact ratio i_ab^(c) of a scheme or a train; returns its output, :func:`symkin.cli.common.emit` (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
     from symkin.printing import latex
 
     mech, about, title = mechanism_of(args)
@@ -70,12 +70,11 @@ def run_ratio(args: Any) -> int:
     f = float_text(value)
     if f and f != str(value):
         text += f" = {f}"
-    emit(args, text, data)
-    return 0
+    return emit(text, data)
 
 
-def run_speeds(args: Any) -> int:
-    """Run ``symkin speeds`` with the parsed ``args``: every link's angular velocity from the known ones; hands text and JSON to :func:`symkin.cli.common.emit` and returns 0 (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
+def run_speeds(args: Any) -> Any:
+    """Run ``symkin speeds`` with the parsed ``args``: every link's angular velocity from the known ones; returns its output, :func:`symkin.cli.common.emit` (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
     known = link_values(args.omega)
     mech, about, title = mechanism_of(args)
     speeds = mech.speeds(known)
@@ -94,5 +93,4 @@ def run_speeds(args: Any) -> int:
         "coaxial": not mech.coaxiality_defects(),
         "units": {"speeds": "rad/s"},
     }
-    emit(args, f"{title}\n" + "\n".join(rows), data)
-    return 0
+    return emit(f"{title}\n" + "\n".join(rows), data)

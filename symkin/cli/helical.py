@@ -70,8 +70,8 @@ def _request(args: Any) -> SynthesisRequest:
     )
 
 
-def run_helical(args: Any) -> int:
-    """Run ``symkin helical`` with the parsed ``args``: the synthesis of helical stepped-planet trains with balanced axial forces; hands text and JSON to :func:`symkin.cli.common.emit` and returns 0 (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
+def run_helical(args: Any) -> Any:
+    """Run ``symkin helical`` with the parsed ``args``: the synthesis of helical stepped-planet trains with balanced axial forces; returns its output, :func:`symkin.cli.common.emit` (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
     from symkin.mechanisms.helical.synthesis import synthesise
     from symkin.statics import planet_forces
 
@@ -90,8 +90,7 @@ def run_helical(args: Any) -> int:
     for design, check in zip(data["designs"], checks):
         design["force_check"] = check
     data["seconds"] = round(result.seconds, 3)
-    emit(args, _text(result, checks), data)
-    return 0 if all(c["passed"] for c in checks) else 1
+    return emit(_text(result, checks), data, 0 if all(c["passed"] for c in checks) else 1)
 
 
 def _text(result: Any, checks: list[dict[str, Any]]) -> str:

@@ -19,7 +19,7 @@ from symkin.cli.common import (
 )
 from symkin.errors import InputError
 
-#: More stages than this take long to derive symbolically (about 5 s at 8 stages).
+#: More stages than this take long to derive symbolically (benchmarks/notes/cli.md).
 MAX_STAGES = 8
 
 
@@ -107,11 +107,10 @@ def _stage_table(found: Any) -> str:
     return "\n".join(lines)
 
 
-def run_stages(args: Any) -> int:
-    """Run ``symkin stages`` with the parsed ``args``: every feasible single-row AI stage of a ring; hands text and JSON to :func:`symkin.cli.common.emit` and returns 0 (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
+def run_stages(args: Any) -> Any:
+    """Run ``symkin stages`` with the parsed ``args``: every feasible single-row AI stage of a ring; returns its output, :func:`symkin.cli.common.emit` (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
     found = _stage_set(args)
-    emit(args, _stage_table(found), found.to_json())
-    return 0
+    return emit(_stage_table(found), found.to_json())
 
 
 def _model(args: Any):
@@ -136,8 +135,8 @@ def _model(args: Any):
                      "or --backlash-line C0,C1 with --module and --ring")
 
 
-def run_split(args: Any) -> int:
-    """Run ``symkin split`` with the parsed ``args``: the split of a total ratio over a common-ring train for the least lost motion; hands text and JSON to :func:`symkin.cli.common.emit` and returns 0 (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
+def run_split(args: Any) -> Any:
+    """Run ``symkin split`` with the parsed ``args``: the split of a total ratio over a common-ring train for the least lost motion; returns its output, :func:`symkin.cli.common.emit` (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
     from symkin.mechanisms.multistage.split import (
         SplitProblem,
         best_designs,
@@ -195,8 +194,7 @@ def run_split(args: Any) -> int:
         "stage_set": {"ring": found.ring, "satellites": found.satellites, "count": len(found)} if found is not None else None,
         "plot": plots,
     }
-    emit(args, _split_text(problem, best, discrete, found, plots), data)
-    return 0
+    return emit(_split_text(problem, best, discrete, found, plots), data)
 
 
 def _split_text(problem: Any, best: Any, discrete: Any, found: Any, plots: list[str]) -> str:

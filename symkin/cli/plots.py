@@ -188,7 +188,7 @@ def _fmt(v: Any) -> str:
 
 
 def _report(args: Any, kind: str, out: Path, mech: Any, points: list, t_end: float, about: dict[str, Any], title: str,
-            extra: dict | None = None) -> None:
+            extra: dict | None = None) -> Any:
     data = {
         "command": kind,
         **about,
@@ -198,12 +198,12 @@ def _report(args: Any, kind: str, out: Path, mech: Any, points: list, t_end: flo
         "particles": [{"link": mech.link(name).name, **{k: float(c) for k, c in zip("abc", xy)}} for name, xy in points],
         **(extra or {}),
     }
-    emit(args, f"{kind} of {title} over t = 0 ... {t_end:.4g} s written to {out}", data)
+    return emit(f"{kind} of {title} over t = 0 ... {t_end:.4g} s written to {out}", data)
 
 
 # --------------------------------------------------------------------------- commands
-def run_trajectory(args: Any) -> int:
-    """Run ``symkin trajectory`` with the parsed ``args``: writes the particles' paths to ``--out``; hands text and JSON to :func:`symkin.cli.common.emit` and returns 0 (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
+def run_trajectory(args: Any) -> Any:
+    """Run ``symkin trajectory`` with the parsed ``args``: writes the particles' paths to ``--out``; returns its output, :func:`symkin.cli.common.emit` (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
     from symkin.viz import style
     from symkin.viz.figures import draw_pitch_circles, draw_trajectories, label_plane
 
@@ -215,8 +215,7 @@ def run_trajectory(args: Any) -> int:
         fig = space_figure(motion, points, t_end, relative_to="pole", labels=labels,
                            title=f"{title}: particle paths in space, t = 0 ... {t_end:.3g} s")
         save_figure(fig, out)
-        _report(args, "trajectory", out, mech, points, t_end, about, title)
-        return 0
+        return _report(args, "trajectory", out, mech, points, t_end, about, title)
     fig = style.new_figure(style.COLUMN, style.COLUMN + 0.9)
     ax = fig.add_subplot()
     style.style_axes(ax)
@@ -226,12 +225,11 @@ def run_trajectory(args: Any) -> int:
     ax.set_title(f"{title}: particle paths,\nt = 0 ... {t_end:.3g} s", fontsize=style.FONT)
     style.legend_outside(ax)
     save_figure(style.finish(fig), out)
-    _report(args, "trajectory", out, mech, points, t_end, about, title)
-    return 0
+    return _report(args, "trajectory", out, mech, points, t_end, about, title)
 
 
-def run_curves(args: Any) -> int:
-    """Run ``symkin curves`` with the parsed ``args``: writes the particles' speed and acceleration against time to ``--out``; hands text and JSON to :func:`symkin.cli.common.emit` and returns 0 (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
+def run_curves(args: Any) -> Any:
+    """Run ``symkin curves`` with the parsed ``args``: writes the particles' speed and acceleration against time to ``--out``; returns its output, :func:`symkin.cli.common.emit` (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
     from symkin.viz.figures import kinematics_figure
 
     out = figure_file(args.out)
@@ -239,12 +237,11 @@ def run_curves(args: Any) -> int:
     fig = kinematics_figure(motion, points, t_end, relative_to="pole", labels=labels,
                             title=f"{title}: speed and acceleration, eqs. (5), (6)")
     save_figure(fig, out)
-    _report(args, "curves", out, mech, points, t_end, about, title)
-    return 0
+    return _report(args, "curves", out, mech, points, t_end, about, title)
 
 
-def run_animate(args: Any) -> int:
-    """Run ``symkin animate`` with the parsed ``args``: writes the mechanism's animation (GIF, or MP4 with ffmpeg) to ``--out``; hands text and JSON to :func:`symkin.cli.common.emit` and returns 0 (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
+def run_animate(args: Any) -> Any:
+    """Run ``symkin animate`` with the parsed ``args``: writes the mechanism's animation (GIF, or MP4 with ffmpeg) to ``--out``; returns its output, :func:`symkin.cli.common.emit` (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
     from symkin.viz.animation import MAX_DPI, MAX_FPS, WRITERS, Frames, animate
 
     out = Path(args.out)
@@ -271,5 +268,4 @@ def run_animate(args: Any) -> int:
         animate(sampled, out, fps=fps, dpi=dpi, progress=lambda done, total: bar.step(f"drawing {out.name}"))
     finally:
         bar.close()
-    _report(args, "animation", out, mech, points, t_end, about, title, {"frames": frames, "fps": fps})
-    return 0
+    return _report(args, "animation", out, mech, points, t_end, about, title, {"frames": frames, "fps": fps})

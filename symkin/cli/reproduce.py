@@ -60,14 +60,14 @@ def _jobs(text: str) -> int:
     return n
 
 
-def run_reproduce(args: Any) -> int:
-    """Run ``symkin reproduce`` with the parsed ``args``: derive and check the papers named, print the table and write the report folder; returns 0, or 1 when some check differs."""
+def run_reproduce(args: Any) -> Any:
+    """Run ``symkin reproduce`` with the parsed ``args``: derive and check the papers named, print the table and write the report folder; returns its output (exit status 1 when some check differs)."""
     from symkin.papers.registry import paper_names
     from symkin.papers.reproduce import run
     from symkin.papers.texbuild import MISSING, find_pdflatex
 
     names = list(dict.fromkeys(args.papers))
-    known = paper_names()  # read from the installed metadata (~8 ms a call): once
+    known = paper_names()  # read from the installed metadata: once
     if "all" in names:
         if len(names) > 1:
             raise InputError("give either all or paper names, not both")
@@ -87,5 +87,4 @@ def run_reproduce(args: Any) -> int:
         warnings.warn(pdf_note, SymkinWarning, stacklevel=1)
     written = ["report.json", "report.txt", "equations.tex"] + (["equations.pdf"] if (out / "equations.pdf").exists() else []) + ["figures/"]
     table = (out / "report.txt").read_text()  # format_table(results), as written
-    emit(args, table + f"report written to {out}/: {', '.join(written)}\n", data)
-    return 0 if all(r.ok for r in results) else 1
+    return emit(table + f"report written to {out}/: {', '.join(written)}\n", data, 0 if all(r.ok for r in results) else 1)

@@ -78,8 +78,8 @@ def _ratio_range(text: str) -> tuple[Any, Any]:
     return parse_number(parts[0], what="--ratio-range LO"), parse_number(parts[1], what="--ratio-range HI")
 
 
-def run_synthesize(args: Any) -> int:
-    """Run ``symkin synthesize`` with the parsed ``args``: tooth numbers of a train file for a target ratio; hands text and JSON to :func:`symkin.cli.common.emit` and returns 0 (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
+def run_synthesize(args: Any) -> Any:
+    """Run ``symkin synthesize`` with the parsed ``args``: tooth numbers of a train file for a target ratio; returns its output, :func:`symkin.cli.common.emit` (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
     from symkin._util.jsonout import exact_json
     from symkin.parsing import parse_integer, parse_number
     from symkin.synthesis import synthesize
@@ -139,8 +139,7 @@ def run_synthesize(args: Any) -> int:
         if etas is not None:
             design["efficiency"] = exact_json(etas[i])
             design["locks"] = locks(etas[i])
-    emit(args, _text(result, checks, args.latex, etas, meshes), data)
-    return 0 if all(c.passed for c in checks) else 1
+    return emit(_text(result, checks, args.latex, etas, meshes), data, 0 if all(c.passed for c in checks) else 1)
 
 
 def _efficiency(design: Any, mesh: Any) -> Any:

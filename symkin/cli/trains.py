@@ -33,8 +33,8 @@ def register(sub: Any) -> None:
     q.set_defaults(train=None)
 
 
-def run_states(args: Any) -> int:
-    """Run ``symkin states`` with the parsed ``args``: the shift table of a train's gear states; hands text and JSON to :func:`symkin.cli.common.emit` and returns 0 (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
+def run_states(args: Any) -> Any:
+    """Run ``symkin states`` with the parsed ``args``: the shift table of a train's gear states; returns its output, :func:`symkin.cli.common.emit` (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
     from symkin.trains import ShiftTable, load_train
 
     train = load_train(args.train)
@@ -44,17 +44,15 @@ def run_states(args: Any) -> int:
         raise InputError(f"{args.train}: the train has no [states.NAME] tables; add one per gear state")
     states = [train.state(n) for n in args.state] if args.state else list(train.states)
     table = ShiftTable(train, tuple(train.shift(s) for s in states))
-    emit(args, table.text(), table.to_json())
-    return 0
+    return emit(table.text(), table.to_json())
 
 
-def run_trains(args: Any) -> int:
-    """Run ``symkin trains`` with the parsed ``args``: the ready-made train files and what each is; hands text and JSON to :func:`symkin.cli.common.emit` and returns 0 (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
+def run_trains(args: Any) -> Any:
+    """Run ``symkin trains`` with the parsed ``args``: the ready-made train files and what each is; returns its output, :func:`symkin.cli.common.emit` (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
     from symkin.trains import ready_made
 
     found = ready_made()
     width = max(len(n) for n in found)
     lines = [f"{name.ljust(width)}  {text}" for name, text in found.items()]
     lines.append("use a name wherever --train FILE is taken, e.g. symkin states --train ravigneaux")
-    emit(args, "\n".join(lines), {"trains": [{"name": n, "description": d} for n, d in found.items()]})
-    return 0
+    return emit("\n".join(lines), {"trains": [{"name": n, "description": d} for n, d in found.items()]})

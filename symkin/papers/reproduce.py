@@ -10,24 +10,32 @@ only when complete, so an interrupted or failing run leaves the previous report 
 
 from __future__ import annotations
 
+import copyreg
 import json
+import multiprocessing
+import os
+import signal
+import sys
+import threading
+import time
 from collections.abc import Callable, Iterable
-from concurrent.futures import Future, ThreadPoolExecutor
+from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import dataclass, field
 from functools import cache
 from importlib import resources
 from pathlib import Path
+from types import ModuleType
 from typing import Any, TextIO
 
-from symkin._util.atomic import check_replaceable, recover, write_atomically
+from symkin._util.atomic import STOP_SIGNALS, check_replaceable, recover, stop_signals_held, write_atomically
 from symkin._util.progress import Progress
 from symkin._version import __version__
 from symkin.errors import InputError
 from symkin.papers.checks import Check, ItemResult, PrintedItem, Verdict
-from symkin.papers.document import PREAMBLE, check_rows, equations_document
+from symkin.papers.document import check_rows, equations_document
 from symkin.papers.registry import load, paper_names
 from symkin.papers.summary import Summary, paper_items, summarize
-from symkin.papers.texbuild import PdfBuild, StreamedPdf, compile_pdf, find_pdflatex, start_pdf
+from symkin.papers.texbuild import compile_pdf, find_pdflatex
 
 __all__ = [
     "paper_names", "load", "PaperResult", "Summary", "summarize", "run", "check_target", "write_atomically",
@@ -128,70 +136,45 @@ def run(
     ToolError
         pdflatex is installed but fails on the document (``out`` is left as it was).
     """
-    from symkin.papers import _pool
-
     names = list(names)
     modules = {n: load(n) for n in names}
     check_target(out)
     pdflatex = find_pdflatex() if pdf else None
     results: list[PaperResult] = []
-    jobs = _pool.cores() if jobs is None else max(1, int(jobs))
+    if jobs is None:  # one worker per core this process may run on (only Linux has workers)
+        jobs = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else 1
     previous = _previous_seconds(out)
 
     def build(tmp: Path) -> None:
-        # pdflatex reads the document's fixed preamble now, on a core the start-up below leaves idle
-        early = start_pdf(tmp, "equations", PREAMBLE, pdflatex=pdflatex) if pdflatex else None
-        try:
-            derive(tmp, early)
-        except BaseException:
-            if early is not None:
-                early.cancel()
-            raise
-
-    def derive(tmp: Path, early: StreamedPdf | None) -> None:
         bar = Progress(2 * len(modules) + 1 + (pdflatex is not None), stream=progress, enabled=not quiet, lines=True)
         figures_dir = tmp / "figures"
         figures_dir.mkdir()
-        found: dict[tuple[str, str], tuple[Any, float]] = {}
+        found: dict[str, PaperResult] = {}
 
-        def done(task: tuple[str, str], value: Any, seconds: float) -> None:
-            found[task] = (value, seconds)
-            _print_ahead(task, value)
-            bar.step(f"{task[0]}: {'derived and compared' if task[1] == 'checks' else 'figures drawn'}")
+        def done(name: str, value: tuple[list[Check], list[str], list[Path], float]) -> None:
+            checks, notes, figures, seconds = value
+            mod = modules[name]
+            found[name] = PaperResult(name, mod.CITATION, checks, figures, notes, seconds,
+                                      list(getattr(mod, "PRINTED_ITEMS", ())), dict(getattr(mod, "REPORT_FIGURES", {})))
+            _print_ahead(checks)
+            bar.step(f"{name}: derived and compared")
+            bar.step(f"{name}: figures drawn")
 
         # the slowest paper first, so that no worker is left alone with it at the end: slowest
-        # in the report already in ``out``, else the one with the most figures (the longest tasks)
+        # in the report already in ``out``, else the one with the most figures
         order = sorted(names, key=lambda n: (-previous.get(n, 0.0), -len(getattr(modules[n], "REPORT_FIGURES", {}))))
-        tasks = [(n, "checks") for n in order] + [(n, "figures") for n in order]
-        if jobs > 1 and _pool.can_fork():
-            _import_figures()  # once here, not once in each worker
-        _pool.run_tasks(modules, tasks, figures_dir, jobs=jobs, done=done)
-        for name, mod in modules.items():
-            (checks, notes), checks_seconds = found[(name, "checks")]
-            figures, figures_seconds = found[(name, "figures")]
-            results.append(
-                PaperResult(name, mod.CITATION, checks, figures, notes, checks_seconds + figures_seconds,
-                            list(getattr(mod, "PRINTED_ITEMS", ())), dict(getattr(mod, "REPORT_FIGURES", {})))
-            )
+        run_papers(modules, order, figures_dir, jobs=max(1, int(jobs)), done=done)
+        results.extend(found[name] for name in names)
         bar.step("writing report.json, report.txt, equations.tex")
         document = equations_document(results, root=tmp)
         (tmp / "equations.tex").write_text(document)
-        # pdflatex is another process: it compiles while report.json and report.txt are written
-        with ThreadPoolExecutor(1) as latex:
-            compiled: Future[PdfBuild] | None = None
-            if early is not None and document.startswith(PREAMBLE):
-                compiled = latex.submit(early.finish, document[len(PREAMBLE):])
-            else:
-                if early is not None:
-                    early.cancel()
-                compiled = latex.submit(compile_pdf, tmp / "equations.tex", pdflatex=pdflatex) if pdflatex else None
-            data = report_json(results, tmp)
-            data["equations"] = {"tex": "equations.tex", "pdf": "equations.pdf" if pdflatex else None}
-            (tmp / "report.json").write_text(json.dumps(data, indent=2, ensure_ascii=False))
-            (tmp / "report.txt").write_text(format_table(results))
-            if compiled is not None:
-                bar.step("compiling equations.pdf with pdflatex")
-                compiled.result()
+        data = report_json(results, tmp)
+        data["equations"] = {"tex": "equations.tex", "pdf": "equations.pdf" if pdflatex else None}
+        (tmp / "report.json").write_text(json.dumps(data, indent=2, ensure_ascii=False))
+        (tmp / "report.txt").write_text(format_table(results))
+        if pdflatex:
+            bar.step("compiling equations.pdf with pdflatex")
+            compile_pdf(tmp / "equations.tex", pdflatex=pdflatex)
         for hook in _POST_BUILD:
             hook(tmp, results)
         bar.close()
@@ -200,24 +183,106 @@ def run(
     return results
 
 
+#: The papers' modules a worker process runs (set in each worker by :func:`_start_worker`).
+_MODULES: dict[str, ModuleType] = {}
+
+
+def _paper(mod: ModuleType, figures_dir: Path) -> tuple[list[Any], list[str], list[Path], float]:
+    """One paper's checks, notes and figures, and the seconds they took, in this process."""
+    start = time.perf_counter()
+    checks = list(mod.checks())
+    notes = list(getattr(mod, "notes", lambda: [])())
+    figures = list(mod.figures(figures_dir))
+    return checks, notes, figures, time.perf_counter() - start
+
+
+def _paper_in_worker(name: str, figures_dir: Path) -> tuple[list[Any], list[str], list[Path], float]:
+    return _paper(_MODULES[name], figures_dir)
+
+
+def run_papers(modules: dict[str, ModuleType], order: list[str], figures_dir: Path, *, jobs: int,
+               done: Callable[[str, Any], None]) -> None:
+    """Run each paper of ``order`` (its checks, then its figures: one task, so that what its
+    module caches is computed once) and call ``done(name, (checks, notes, figures, seconds))``
+    in this process as each ends.  An exception of a paper is raised here.
+
+    With ``jobs`` > 1, on Linux and from a process running one thread, the papers run in a
+    process pool whose workers are forked: they run the modules as this process has them
+    (patched, as tests patch the engine or a paper) and find them without pickling.  A fork from
+    a process running threads can deadlock, and elsewhere fork is unsafe or missing: there, as
+    with ``jobs`` 1, the papers run here one after the other.
+    """
+    jobs = min(jobs, len(order))
+    can_fork = sys.platform.startswith("linux") and threading.active_count() == 1
+    if jobs <= 1 or not can_fork:
+        for name in order:
+            done(name, _paper(modules[name], figures_dir))
+        return
+    _import_figures()  # once here, not once in each worker
+    before = set(multiprocessing.active_children())
+    # a Ctrl-C while the workers are forked would be raised in the fork's own callbacks, where
+    # Python drops it: held until they are started, then raised here
+    with stop_signals_held():
+        pool = ProcessPoolExecutor(jobs, mp_context=multiprocessing.get_context("fork"), initializer=_start_worker,
+                                   initargs=(modules, os.getpid()))
+        futures = {pool.submit(_paper_in_worker, name, figures_dir): name for name in order}
+    workers = set(multiprocessing.active_children()) - before
+    try:
+        for future in as_completed(futures):
+            done(futures[future], future.result())
+    except BaseException:
+        for worker in workers:  # a failure or an interrupt ends the other papers at once
+            worker.kill()
+        raise
+    finally:
+        pool.shutdown(cancel_futures=True)
+
+
+def _start_worker(modules: dict[str, ModuleType], parent: int) -> None:
+    """Set up a worker process: the papers' modules; Ctrl-C left to the calling process (which
+    ends its workers) and SIGTERM ending it; its relations sent back as they are; its end when
+    the calling process ends (killed, it cannot end its workers)."""
+    _MODULES.update(modules)
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    signal.pthread_sigmask(signal.SIG_UNBLOCK, STOP_SIGNALS)  # held by the calling process while it forked
+    import sympy as sp
+
+    for cls in (sp.Eq, sp.Ne, sp.Lt, sp.Le, sp.Gt, sp.Ge):
+        copyreg.pickle(cls, _reduce_relation)
+    threading.Thread(target=_end_with, args=(parent,), daemon=True).start()
+
+
+def _end_with(parent: int) -> None:
+    while os.getppid() == parent:
+        time.sleep(0.2)
+    os._exit(1)
+
+
+def _reduce_relation(rel: Any) -> tuple[Any, tuple[Any, ...]]:
+    """SymPy's relations travel from a worker as they are: by default ``Eq(lhs, rhs)`` is called
+    again when one is loaded, which decides it (an unevaluated ``Eq(2, 2)`` arrives as ``True``),
+    and the results would depend on ``--jobs``."""
+    return _relation, (type(rel), rel.lhs, rel.rhs)
+
+
+def _relation(cls: type, lhs: Any, rhs: Any) -> Any:
+    return cls(lhs, rhs, evaluate=False)
+
+
 def _import_figures() -> None:
     """Import what the papers' figures are drawn with (matplotlib's figure, its PNG and PDF
-    backends: about 0.7 s of CPU) in the calling process, before the workers are forked."""
+    backends) in the calling process, before the workers are forked."""
     import matplotlib.backends.backend_agg
     import matplotlib.backends.backend_pdf  # noqa: F401
 
     import symkin.viz.figures  # noqa: F401
 
 
-def _print_ahead(task: tuple[str, str], value: Any) -> None:
-    """Print a checks task's checks for the report (their text for report.json and
-    report.txt, their rows for equations.tex) as they arrive, while the workers derive the
-    other papers, not after them all.  In the calling process, not in the worker: the time
-    falls on both cores, not on the worker that derived the paper, which keeps the two
-    workers' ends together (0.25 s apart in a run before, 0.03-0.1 s after)."""
-    if task[1] != "checks":
-        return
-    for check in value[0]:
+def _print_ahead(checks: list[Check]) -> None:
+    """Print a paper's checks for the report (their text for report.json and report.txt, their
+    rows for equations.tex) as they arrive, while the workers derive the other papers."""
+    for check in checks:
         if isinstance(check, Check):
             check.to_json()
             check_rows(check)

@@ -21,8 +21,6 @@
 
 from __future__ import annotations
 
-from fractions import Fraction
-
 from symkin.synthesis.api import synthesize
 from symkin.synthesis.problem import Condition, Options, Problem, derive, undercut_minimum
 from symkin.synthesis.result import Design, DesignCheck, SynthesisResult
