@@ -54,7 +54,7 @@ MODULES: dict[str, str] = {
     "symkin.texbuild": "symkin.papers.texbuild",
     "symkin.budget": "symkin._util.budget",
     "symkin.jsonout": "symkin._util.jsonout",
-    "symkin.atomic": "symkin._util.atomic",
+    "symkin.atomic": "symkin._io.atomic",
     "symkin.numeric.scene": "symkin.study",
 }
 

@@ -10,7 +10,6 @@ from matplotlib.figure import Figure
 from symkin.cli import main
 from symkin.errors import InputError
 from symkin.viz import figures
-from symkin.viz.figures import save
 
 AI1 = ["AI1", "--teeth", "20,30,80", "--omega", "4=0", "--omega", "H=1"]
 #: command line, files it writes (relative to the working folder), the writers to break (a figure is written by
@@ -68,33 +67,12 @@ def test_a_complete_write_replaces_the_previous_file(name, tmp_path, monkeypatch
     assert leftovers(tmp_path) == []
 
 
-def test_save_writes_png_and_pdf_together_or_neither(tmp_path, monkeypatch):
-    fig = Figure()
-    fig.add_subplot().plot([0, 1], [1, 0])
-    (tmp_path / "f.png").write_bytes(b"\x89PNG previous")
-    real = Figure.savefig
-
-    def pdf_fails(self, path, *args, **kwargs):
-        if str(path).endswith(".pdf"):
-            raise OSError("no space left")
-        return real(self, path, *args, **kwargs)
-
-    monkeypatch.setattr(Figure, "savefig", pdf_fails)
-    with pytest.raises(OSError):
-        save(fig, tmp_path / "f")
-    assert (tmp_path / "f.png").read_bytes() == b"\x89PNG previous"  # the PNG written first was not put in place
-    assert not (tmp_path / "f.pdf").exists() and leftovers(tmp_path) == []
-    monkeypatch.setattr(Figure, "savefig", real)
-    assert save(fig, tmp_path / "f") == [tmp_path / "f.png", tmp_path / "f.pdf"]
-    assert (tmp_path / "f.png").read_bytes().startswith(MAGIC[".png"])
-
-
 @pytest.mark.parametrize("name, content", [("mine.png", b"my notes"), ("mine.gif", b"\x89PNG not a gif"),
                                            ("mine.pdf", b"draft"), ("mine.mp4", b"0123notavideo"), ("mine.eps", b"notes")])
 def test_an_existing_file_of_another_kind_is_not_replaced(tmp_path, name, content):
     """--out names a file that is not an earlier output of that kind (a user's notes called
     mine.png): refused, and the file kept.  An earlier output, or an empty file, is replaced."""
-    from symkin._util.atomic import replacing
+    from symkin._io.atomic import replacing
 
     target = tmp_path / name
     target.write_bytes(content)

@@ -16,7 +16,7 @@ import sympy as sp
 
 from symkin import ToolError, schemes
 from symkin import symbols as S
-from symkin._util.atomic import MANIFEST, write_manifest
+from symkin._io.atomic import MANIFEST, write_manifest
 from symkin.cli import main
 from symkin.papers.checks import Check, alternative, compare_exact, compare_symbolic, judge
 from symkin.papers.document import PREAMBLE, equations_document
@@ -375,7 +375,7 @@ def test_a_full_disk_is_one_line_and_exit_2_and_the_previous_report_stays(tmp_pa
 # ---- a run killed at any step: the next run finds the report whole
 KILL = """
 import os, signal, sys
-from symkin._util import atomic
+from symkin._io import atomic
 from symkin.cli import main
 step = sys.argv[1]
 real_rename, real_exchange = os.rename, getattr(atomic, "_exchange", None)
@@ -440,7 +440,7 @@ def test_a_kill_of_a_run_with_pdflatex_leaves_the_previous_report_and_no_pdflate
 
 
 def test_a_kill_after_the_atomic_exchange_leaves_the_new_report_whole(tmp_path, capsys):
-    from symkin._util.atomic import _exchange
+    from symkin._io.atomic import _exchange
 
     probe_a, probe_b = tmp_path / "a", tmp_path / "b"
     probe_a.mkdir()
@@ -548,7 +548,7 @@ def test_the_worker_processes_end_when_the_run_is_killed(tmp_path):
 
 _CTRL_C_AT_THE_FOLDER = """
 import os, pathlib, signal, sys, tempfile
-from symkin._util.atomic import write_atomically
+from symkin._io.atomic import write_atomically
 parent = pathlib.Path(sys.argv[1])
 made = tempfile.mkdtemp
 

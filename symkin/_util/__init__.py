@@ -1,9 +1,8 @@
-"""Internal helpers shared across symkin (not public API; they may change without notice).
+"""Internal helpers shared across the library (not public API; they may change without notice).
 
-- :mod:`.parsing`: the one gate for user numbers and expressions (safe parsing, bounds);
-- :mod:`.bounds`: rigorous bounds on the numbers of an expression (interval arithmetic);
+- :mod:`.bounds`: rigorous bounds on the numbers of an expression (interval arithmetic), which
+  the parser (:mod:`symkin.parsing`) uses to bound what a user types;
 - :mod:`.budget`: simplification under a size and time budget, and time limits;
-- :mod:`.atomic`: outputs that appear whole or not at all;
 - :mod:`.jsonout`: the JSON shape of exact numbers;
-- :mod:`.progress`: the one progress display of long work.
+- :mod:`.display`: compact HTML and Markdown tables for notebooks and reports.
 """

@@ -33,7 +33,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from symkin._util.progress import Progress
+from symkin._io.progress import Progress
 from symkin.errors import InputError
 
 
@@ -157,10 +157,14 @@ def figure_file(text: str, option: str = "--out") -> Path:
 
 
 def save_figure(fig: Any, out: Path) -> list[Path]:
-    """Save under a temporary name beside ``out``, then rename (never a half-written file)."""
+    """Save under a temporary name beside ``out``, then rename (never a half-written file, and
+    an earlier file kept when saving fails)."""
+    from symkin._io.atomic import replacing
     from symkin.viz.figures import save
 
-    return save(fig, out, formats=(out.suffix.lstrip(".").lower(),))
+    with replacing(out) as (tmp,):
+        save(fig, tmp)
+    return [out]
 
 
 def mechanism_of(args: Any, module: Any = None) -> tuple[Any, dict[str, Any], str]:

@@ -261,11 +261,13 @@ def run_animate(args: Any) -> Any:
         frames = max(2, min(2000, round(4 * fps * turns)))
     sampled = Frames.build(motion, points, t_end=t_end, frames=frames, labels=labels,
                            title=title)
-    from symkin._util.progress import Progress
+    from symkin._io.atomic import replacing
+    from symkin._io.progress import Progress
 
     bar = Progress(frames, enabled=not args.quiet)
     try:
-        animate(sampled, out, fps=fps, dpi=dpi, progress=lambda done, total: bar.step(f"drawing {out.name}"))
+        with replacing(out) as (tmp,):  # (its checks of out first: then the frames are drawn)
+            animate(sampled, tmp, fps=fps, dpi=dpi, progress=lambda done, total: bar.step(f"drawing {out.name}"))
     finally:
         bar.close()
     return _report(args, "animation", out, mech, points, t_end, about, title, {"frames": frames, "fps": fps})

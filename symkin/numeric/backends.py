@@ -721,11 +721,18 @@ def _kernel_from_file(source: str, precision: str, parallel: bool) -> Any:
     path = folder / f"{name}.py"
     try:
         if not path.exists() or path.read_text() != text:
-            from symkin._util.atomic import replacing
+            # written whole under a private name, then renamed: another process never reads half a file
+            import tempfile
 
-            with replacing(path) as (tmp,):
-                tmp.write_text(text)
-    except (OSError, InputError):
+            fd, tmp = tempfile.mkstemp(prefix=f".{name}.", suffix=".py", dir=folder)
+            try:
+                with os.fdopen(fd, "w") as f:
+                    f.write(text)
+                os.replace(tmp, path)
+            finally:
+                if os.path.exists(tmp):
+                    os.unlink(tmp)
+    except OSError:
         return None
     spec = importlib.util.spec_from_file_location(name, path)
     if spec is None or spec.loader is None:  # pragma: no cover - a .py file always has a loader

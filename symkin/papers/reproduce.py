@@ -27,8 +27,8 @@ from pathlib import Path
 from types import ModuleType
 from typing import Any, TextIO
 
-from symkin._util.atomic import STOP_SIGNALS, check_replaceable, recover, stop_signals_held, write_atomically
-from symkin._util.progress import Progress
+from symkin._io.atomic import STOP_SIGNALS, check_replaceable, recover, stop_signals_held, write_atomically
+from symkin._io.progress import Progress
 from symkin._version import __version__
 from symkin.errors import InputError
 from symkin.papers.checks import Check, ItemResult, PrintedItem, Verdict
@@ -336,10 +336,10 @@ def report_json(results: list[PaperResult], root: Path) -> dict[str, Any]:
 def check_target(out: Path) -> None:
     """Refuse a report folder symkin must not replace: a file, the current folder or one
     holding it, a non-empty folder that is not a report symkin wrote (one with symkin's
-    manifest of the files it wrote, :data:`symkin._util.atomic.MANIFEST`), or a report
+    manifest of the files it wrote, :data:`symkin._io.atomic.MANIFEST`), or a report
     whose files were changed since.  Files a user added to a report are kept (carried into
     the new one).  What a killed run left beside ``out`` is tidied first
-    (:func:`symkin._util.atomic.recover`).
+    (:func:`symkin._io.atomic.recover`).
 
     >>> check_target(Path("/"))
     Traceback (most recent call last):

@@ -30,7 +30,6 @@ import sympy as sp
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
-from symkin._util.atomic import replacing
 from symkin.errors import InputError, ToolError
 from symkin.model import FRAME, LinkKind
 from symkin.numeric.sampling import on_grid, time_grid
@@ -404,18 +403,23 @@ def animate(
             "ffmpeg was not found, so an MP4 cannot be written; write a GIF instead (a file ending in .gif) "
             "or install ffmpeg (Debian/Ubuntu: sudo apt-get install ffmpeg)"
         )
+    if not out.resolve().parent.is_dir():
+        raise InputError(f"cannot write {out}: the folder {out.resolve().parent} does not exist")
     if suffix == ".html":
-        if not out.resolve().parent.is_dir():
-            raise InputError(f"cannot write {out}: the folder {out.resolve().parent} does not exist")
-        with replacing(out) as (tmp,):  # (its checks of out first: then the page is drawn)
-            tmp.write_text(frames.html(fps=fps, dpi=dpi, size=size), encoding="utf-8")
+        out.write_text(frames.html(fps=fps, dpi=dpi, size=size), encoding="utf-8")
         return out
     _fig, anim = _animation(frames, size)
     writer = animation.writers[WRITERS[suffix]](fps=fps)
     try:
-        with replacing(out) as (tmp,):
-            anim.save(str(tmp), writer=writer, dpi=dpi,
-                      progress_callback=None if progress is None else lambda i, n: progress(i + 1, n))
+        anim.save(str(out), writer=writer, dpi=dpi,
+                  progress_callback=None if progress is None else lambda i, n: progress(i + 1, n))
+    except Exception as err:
+        # an interrupt before the first frame: the writer, finishing, fails on no frames (pillow's
+        # IndexError) over it; it stays the interrupt it was
+        anim._draw_was_started = True
+        if isinstance(err.__context__, KeyboardInterrupt):
+            raise err.__context__ from None
+        raise
     except BaseException:
         # no "deleted without rendering" warning on top of the error (a private attribute)
         anim._draw_was_started = True

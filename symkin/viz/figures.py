@@ -24,7 +24,6 @@ import sympy as sp
 from matplotlib.figure import Figure
 from matplotlib.patches import Circle
 
-from symkin._util.atomic import replacing
 from symkin.errors import InputError
 from symkin.model import LinkKind, Mechanism
 from symkin.values import as_values, substitute
@@ -297,8 +296,9 @@ def save(fig: Figure, path: Path, formats: Sequence[str] | None = None) -> list[
     The format is the suffix of ``path`` when it is one of :data:`FORMATS` (``.pdf``, ``.svg``
     and ``.eps`` are vector files, ``.png`` is raster at 200 dpi); a path without one gets a PNG
     and a PDF, or each suffix in ``formats``.  A figure with a layout engine is laid out once,
-    for the first file; the others keep that layout.  The files appear together when all are
-    written (:func:`symkin._util.atomic.replacing`): a failure leaves any earlier ones as they were.
+    for the first file; the others keep that layout.  The files are written as matplotlib writes
+    them (the command line writes under a temporary name and renames, so that a failure keeps an
+    earlier file: :mod:`symkin._io.atomic`).
 
     >>> import tempfile
     >>> from matplotlib.figure import Figure
@@ -314,20 +314,21 @@ def save(fig: Figure, path: Path, formats: Sequence[str] | None = None) -> list[
     unknown = [f for f in formats if f.lower() not in FORMATS]
     if unknown:
         raise InputError(f"cannot save a figure as {', '.join(unknown)}: give one of {', '.join(FORMATS)}")
-    targets = [path.with_suffix("." + fmt.lower()) for fmt in formats]
+    targets = [path if path.suffix[1:].lower() == fmt.lower() else path.with_suffix("." + fmt.lower())
+               for fmt in formats]
     # a figure laid out by matplotlib's constrained layout already fits its page: no second
     # draw to find a tight box (which doubles the time of saving)
     tight = None if fig.get_layout_engine() is not None else "tight"
-    with replacing(*targets) as temps:
-        for k, (tmp, target) in enumerate(zip(temps, targets)):
-            dpi = 200 if target.suffix == ".png" else 150
-            if tight is None and target.suffix in (".png", ".pdf") and _savefig_defaults():
-                # after the first file, its layout: the axes stay where it put them (a layout costs as much as a draw)
-                with _layout_kept(fig) if k else contextlib.nullcontext():
-                    _print_once(fig, tmp, target.suffix[1:], dpi)
-            else:
-                extra: dict[str, Any] = {"pil_kwargs": dict(_PNG_OPTIONS)} if target.suffix == ".png" else {}
-                fig.savefig(tmp, dpi=dpi, bbox_inches=tight, format=target.suffix[1:], **extra)
+    for k, target in enumerate(targets):
+        kind = target.suffix[1:].lower()
+        dpi = 200 if kind == "png" else 150
+        if tight is None and kind in ("png", "pdf") and _savefig_defaults():
+            # after the first file, its layout: the axes stay where it put them (a layout costs as much as a draw)
+            with _layout_kept(fig) if k else contextlib.nullcontext():
+                _print_once(fig, target, kind, dpi)
+        else:
+            extra: dict[str, Any] = {"pil_kwargs": dict(_PNG_OPTIONS)} if kind == "png" else {}
+            fig.savefig(target, dpi=dpi, bbox_inches=tight, format=kind, **extra)
     return targets
 
 
