@@ -15,8 +15,6 @@ speed in closed form, or refuses with the degrees of freedom and an admissible c
 from __future__ import annotations
 
 import itertools
-import math
-import random
 from collections.abc import Iterator, Mapping, Sequence
 from collections.abc import Mapping as MappingABC
 from dataclasses import dataclass, field
@@ -32,6 +30,7 @@ from symkin.errors import (
     UnderdeterminedError,
 )
 from symkin.laws import Law
+from symkin.linsolve import generic_values, independent_rows, is_zero, nullspace, solve_factored, solve_rational
 from symkin.model import FRAME, LinkKind, Mechanism, Mesh
 from symkin.superposition import vec, velocity
 from symkin.values import as_expr
@@ -198,11 +197,6 @@ class KinematicSystem:
         return central + [n for n in self.links if n not in central]
 
 
-def _generic_values(symbols: set[sp.Symbol], seed: int) -> dict[sp.Symbol, sp.Rational]:
-    rng = random.Random(seed)
-    return {s: sp.Rational(rng.randint(1000, 9999), rng.randint(100, 999)) for s in sorted(symbols, key=str)}
-
-
 def kinematic_system(mech: Mechanism) -> KinematicSystem:
     """The contact conditions of ``mech`` and its degrees of freedom (cached).
 
@@ -225,8 +219,8 @@ def kinematic_system(mech: Mechanism) -> KinematicSystem:
         matrix = sp.ImmutableMatrix(matrix.applyfunc(sp.expand))
         best = None
         for seed in (1, 2):
-            generic = matrix.xreplace(_generic_values(matrix.free_symbols, seed))
-            basis = _nullspace(generic)
+            generic = matrix.xreplace(generic_values(matrix.free_symbols, seed))
+            basis = nullspace(generic)
             if best is None or basis.cols < best.cols:
                 best = basis
             if not matrix.free_symbols:
@@ -235,30 +229,6 @@ def kinematic_system(mech: Mechanism) -> KinematicSystem:
         return KinematicSystem(mech, links, equations, matrix, sp.ImmutableMatrix(best), best.cols)
 
     return mech._memo("kinematic_system", build)
-
-
-def _nullspace(M: sp.Matrix) -> sp.Matrix:
-    """A basis of the null space of a rational matrix, as columns: one per free column of
-    its reduced row echelon form, 1 there and minus the pivots' entries (``Matrix.nullspace``)."""
-    n = M.cols
-    if not M.rows:
-        return sp.eye(n)
-    dM = _domain_matrix(M)
-    if dM is None:  # irrational constants (sqrt(2), pi, exp(1000)): SymPy's general route
-        basis = M.nullspace()
-        return sp.Matrix.hstack(*basis) if basis else sp.zeros(n, 0)
-    rref, pivots = dM.rref()
-    rows = rref.to_sdm()
-    columns = []
-    for free in (j for j in range(n) if j not in set(pivots)):
-        v = [sp.Integer(0)] * n
-        v[free] = sp.Integer(1)
-        for i, p in enumerate(pivots):
-            entry = rows.get(i, {}).get(free)
-            if entry:
-                v[p] = -rref.domain.to_sympy(entry)
-        columns.append(v)
-    return sp.Matrix(n, len(columns), lambda i, j: columns[j][i]) if columns else sp.zeros(n, 0)
 
 
 # --------------------------------------------------------------------------- solving
@@ -514,7 +484,7 @@ def _coefficient_table(mech: Mechanism, names: tuple[str, ...]) -> dict[str, tup
 
     The contact conditions M omega = 0 split into A omega_unknown = B omega_known; A and B
     hold polynomials in the dimensions, so the system is solved in their fraction field,
-    block by block (:func:`_solve_factored`): a train of n stages in series is n small
+    block by block (:func:`solve_factored`): a train of n stages in series is n small
     solves, and an entry keeps its factored form where the cancelled one would be large.
     The composed forms are kept beside the table (:func:`_factored_coefficient`).
     """
@@ -527,7 +497,7 @@ def _coefficient_table(mech: Mechanism, names: tuple[str, ...]) -> dict[str, tup
         if not unknown:
             return table, table
         column = {n: i for i, n in enumerate(system.links)}
-        rows = _independent_rows(system.matrix.extract(list(range(system.matrix.rows)), [column[u] for u in unknown]))
+        rows = independent_rows(system.matrix.extract(list(range(system.matrix.rows)), [column[u] for u in unknown]))
         if len(rows) < len(unknown):
             raise SingularConfigurationError(
                 f"the speeds of {_fmt_links(names)} do not determine every other link",
@@ -536,7 +506,7 @@ def _coefficient_table(mech: Mechanism, names: tuple[str, ...]) -> dict[str, tup
             )
         A = system.matrix.extract(rows, [column[u] for u in unknown])
         B = -system.matrix.extract(rows, [column[k] for k in names])
-        solved = _solve_factored(A, B)
+        solved = solve_factored(A, B)
         if solved is None:  # (an infinite or undefined entry is refused where it is solved)
             raise SingularConfigurationError(
                 f"the contact conditions cannot be solved for the speeds of {_fmt_links(names)} with these dimensions",
@@ -599,7 +569,7 @@ def _joined_table(
         unknown = [n for n in links if n not in names]
         A = N.extract(list(range(N.rows)), [column[u] for u in unknown])
         B = -N.extract(list(range(N.rows)), [column[k] for k in names])
-        generic = _generic_values(N.free_symbols, 1)
+        generic = generic_values(N.free_symbols, 1)
         Ag, Bg = A.subs(generic), B.subs(generic)
         rank = Ag.rank() if unknown else 0
         joints = ", ".join(f"{a} = {b}" for a, b in pairs)
@@ -619,8 +589,8 @@ def _joined_table(
         table = {n: tuple(sp.Integer(int(n == k)) for k in names) for n in names}
         if not unknown:
             return table
-        chosen = _independent_rows(A)
-        X = _solve_rational(A.extract(chosen, list(range(A.cols))), B.extract(chosen, list(range(B.cols))))
+        chosen = independent_rows(A)
+        X = solve_rational(A.extract(chosen, list(range(A.cols))), B.extract(chosen, list(range(B.cols))))
         if X is None:
             raise SingularConfigurationError(
                 f"the joints {joints} and the contact conditions cannot be solved for these dimensions",
@@ -631,352 +601,6 @@ def _joined_table(
         return table
 
     return mech._memo(("joined", names, pairs), build)
-
-
-def _independent_rows(A: sp.Matrix) -> list[int]:
-    """Rows of A that are independent for generic dimensions, up to A's column count: the
-    first row, then each row independent of those before it (the pivots of A's transpose
-    in reduced row echelon form)."""
-    generic = A.xreplace(_generic_values(A.free_symbols, 1)) if A.free_symbols else A
-    if not generic.rows:
-        return []
-    dM = _domain_matrix(generic.T)
-    if dM is None:  # irrational constants: row by row with SymPy's rank
-        chosen: list[int] = []
-        for i in range(A.rows):
-            if len(chosen) == A.cols:
-                break
-            if generic.extract([*chosen, i], list(range(A.cols))).rank() > len(chosen):
-                chosen.append(i)
-        return chosen
-    _, pivots = dM.rref()
-    return list(pivots)[: A.cols]
-
-
-def _domain_matrix(M: sp.Matrix) -> Any:
-    """A matrix of rational numbers as a sparse DomainMatrix over QQ (fast elimination);
-    None when an entry is not rational (an irrational constant such as sqrt(2) or pi)."""
-    from sympy.polys.domains import QQ
-    from sympy.polys.matrices import DomainMatrix
-
-    if any(not e.is_Rational for e in M.values()):
-        return None
-    rows = {}
-    for i in range(M.rows):
-        row = {j: QQ.from_sympy(M[i, j]) for j in range(M.cols) if M[i, j] != 0}
-        if row:
-            rows[i] = row
-    return DomainMatrix(rows, M.shape, QQ)
-
-
-def _solve_rational(A: sp.Matrix, B: sp.Matrix) -> sp.Matrix | None:
-    """X with A X = B, computed in the fraction field of A's and B's entries (see
-    :func:`_solve_factored`); None when A is singular."""
-    solved = _solve_factored(A, B)
-    return None if solved is None else solved[0]
-
-
-def _solve_factored(A: sp.Matrix, B: sp.Matrix) -> tuple[sp.Matrix, sp.Matrix] | None:
-    """X with A X = B, computed in the fraction field of A's and B's entries, twice:
-    cancelled where that is cheap, and as composed (products of the blocks' solutions).
-
-    Non-polynomial atoms (cos(beta), sqrt(2), ...) are treated as independent generators.
-    Returns None when A is singular.
-
-    The system is first put in block triangular form (a matching of equations to
-    unknowns, then the strongly connected components of the unknowns' dependencies): a
-    train of stages in series splits into one small block per stage.  Each block is
-    solved in the fraction field of its own entries, and the solutions are composed as
-    products and sums without expanding them; an entry whose expanded form is small is
-    then brought to the cancelled form of the whole fraction field (the form a single
-    solve gives), a larger one keeps its factored form (the total ratio of n stages in
-    series is a product of n stage ratios, whose expanded numerator has 2^n terms).
-    """
-    if A.rows != A.cols:
-        single = _solve_whole(A, B)
-        return None if single is None else (single, single)
-    entries = [e for e in list(A) + list(B) if e != 0]
-    atoms = {a for e in entries for a in sp.preorder_traversal(e) if _is_generator(a)}
-    to_dummy = {a: sp.Dummy() for a in atoms}
-    back = {d: a for a, d in to_dummy.items()}
-    if to_dummy:
-        A, B = A.xreplace(to_dummy), B.xreplace(to_dummy)
-    A, B = _without_denominators(A, B)
-    blocks = _triangular_blocks(A)
-    if blocks is None:
-        return None
-    if len(blocks) == 1:  # nothing to split: one solve
-        whole = _solve_whole(A, B)
-        if whole is None:
-            return None
-        whole = whole.xreplace(back) if back else whole
-        return whole, whole
-    X: list[list[sp.Expr]] = [[sp.Integer(0)] * B.cols for _ in range(A.cols)]
-    nonzero: list[list[tuple[int, sp.Expr]]] = [[] for _ in range(A.rows)]
-    for (r, c), value in sorted(A.todok().items()):
-        nonzero[r].append((c, value))
-    for rows, cols in blocks:
-        inside = set(cols)
-        outside = sorted({c for r in rows for c, _ in nonzero[r] if c not in inside})
-        # the block's own solution: X_block = M - L X_outside, M = A_bb^-1 B_b, L = A_bb^-1 A_b,outside
-        local = _block_solve(
-            [[A[r, c] for c in cols] for r in rows],
-            [[A[r, c] for c in outside] + [B[r, j] for j in range(B.cols)] for r in rows],
-        )
-        if local is None:
-            return None
-        for a, c in enumerate(cols):
-            coefficients, given = local[a][: len(outside)], local[a][len(outside):]
-            for j in range(B.cols):
-                terms = [given[j]] + [-k * X[o][j] for k, o in zip(coefficients, outside) if k != 0 and X[o][j] != 0]
-                X[c][j] = sp.Add(*terms)
-    composed = sp.Matrix(X)
-    result = _canonical(composed, A, B)
-    if back:
-        return result.xreplace(back), composed.xreplace(back)
-    return result, composed
-
-
-def _without_denominators(A: sp.Matrix, B: sp.Matrix) -> tuple[sp.Matrix, sp.Matrix]:
-    """Each equation (a row of A and B) times the lcm of its entries' denominators, so the
-    blocks are solved over polynomials (working pitch radii of a profile-shifted mesh,
-    ``60 z_p/(z_p + z_s)``, are fractions); the solution is unchanged."""
-    A, B = A.as_mutable(), B.as_mutable()
-    for r in range(A.rows):
-        row = [e for e in [*A.row(r), *B.row(r)] if e != 0]
-        dens = [sp.fraction(sp.together(e))[1] for e in row]
-        den = sp.lcm_list(dens) if any(d != 1 for d in dens) else sp.Integer(1)
-        if den != 1:
-            A[r, :] = (A.row(r) * den).applyfunc(sp.cancel)
-            B[r, :] = (B.row(r) * den).applyfunc(sp.cancel)
-    return A, B
-
-
-def _block_solve(block: list[list[sp.Expr]], rhs: list[list[sp.Expr]]) -> list[list[sp.Expr]] | None:
-    """``block^-1 rhs`` in the fraction field of the entries' symbols, each entry cancelled;
-    None when the block is singular.  Solved without fractions (one denominator), then
-    each entry cancelled once."""
-    from sympy.polys.domains import QQ, ZZ
-    from sympy.polys.matrices import DomainMatrix
-    from sympy.polys.matrices.exceptions import DMNonInvertibleMatrixError
-    from sympy.polys.polyerrors import CoercionFailed
-
-    n = len(block)
-    symbols = sorted({s for row in block + rhs for e in row for s in e.free_symbols}, key=sp.default_sort_key)
-    for ground in (ZZ, QQ):  # integer polynomials, or rational coefficients
-        ring = ground[tuple(symbols)] if symbols else QQ
-        try:
-            M = DomainMatrix([[ring.from_sympy(e) for e in row] for row in block], (n, n), ring)
-            R = DomainMatrix([[ring.from_sympy(e) for e in row] for row in rhs], (n, len(rhs[0])), ring)
-        except (CoercionFailed, ValueError):  # a rational coefficient in ZZ[...]
-            continue
-        break
-    else:  # pragma: no cover - entries are polynomials with rational coefficients
-        return None
-    try:
-        num, den = M.solve_den(R)
-    except (DMNonInvertibleMatrixError, ZeroDivisionError):
-        return None
-    if den == ring.zero:
-        return None
-    out = []
-    for row in num.to_list():
-        values = []
-        for e in row:
-            if not symbols:
-                values.append(ring.to_sympy(e) / ring.to_sympy(den))
-                continue
-            p, q = e.cancel(den)
-            values.append(ring.to_sympy(p) / ring.to_sympy(q))
-        out.append(values)
-    if any(v.has(sp.zoo, sp.nan, sp.oo) for row in out for v in row):
-        return None
-    return out
-
-
-def _triangular_blocks(A: sp.Matrix) -> list[tuple[list[int], list[int]]] | None:
-    """The blocks (rows, columns) of A in block triangular form, each block's columns
-    depending only on its own and earlier blocks'; None when no assignment of one
-    equation to each unknown exists (A is singular for every value of its symbols)."""
-    n = A.cols
-    pattern = [[c for c in range(n) if A[r, c] != 0] for r in range(A.rows)]
-    row_of: list[int | None] = [None] * n  # the equation assigned to each unknown
-
-    def augment(r: int) -> bool:  # Kuhn's augmenting path from equation r
-        seen: set[int] = set()
-        frames: list[list[Any]] = [[r, iter(pattern[r]), None]]  # equation, its unknowns left, the one taken
-        while frames:
-            frame = frames[-1]
-            for c in frame[1]:
-                if c in seen:
-                    continue
-                seen.add(c)
-                frame[2] = c
-                if row_of[c] is None:
-                    for row, _, col in frames:
-                        row_of[col] = row
-                    return True
-                frames.append([row_of[c], iter(pattern[row_of[c]]), None])
-                break
-            else:
-                frames.pop()
-        return False
-
-    for r in range(A.rows):
-        if not augment(r):
-            return None
-    # unknown c depends on the other unknowns of its equation; Tarjan's components come
-    # out dependencies first
-    depends = [[d for d in pattern[row_of[c]] if d != c] for c in range(n)]  # type: ignore[index]
-    index: dict[int, int] = {}
-    low: dict[int, int] = {}
-    on_stack: set[int] = set()
-    stack: list[int] = []
-    blocks: list[tuple[list[int], list[int]]] = []
-    counter = 0
-    for root in range(n):
-        if root in index:
-            continue
-        work = [(root, iter(depends[root]))]
-        index[root] = low[root] = counter
-        counter += 1
-        stack.append(root)
-        on_stack.add(root)
-        while work:
-            v, children = work[-1]
-            for w in children:
-                if w not in index:
-                    index[w] = low[w] = counter
-                    counter += 1
-                    stack.append(w)
-                    on_stack.add(w)
-                    work.append((w, iter(depends[w])))
-                    break
-                if w in on_stack:
-                    low[v] = min(low[v], index[w])
-            else:
-                work.pop()
-                if work:
-                    low[work[-1][0]] = min(low[work[-1][0]], low[v])
-                if low[v] == index[v]:
-                    cols = []
-                    while True:
-                        w = stack.pop()
-                        on_stack.discard(w)
-                        cols.append(w)
-                        if w == v:
-                            break
-                    cols.sort()
-                    blocks.append(([row_of[c] for c in cols], cols))  # type: ignore[misc]
-    return blocks
-
-
-_CANONICAL_TERMS = 32  # entries whose expanded numerator and denominator stay below this many terms
-
-
-def _expanded_terms(e: sp.Expr, memo: dict) -> tuple[int, int]:
-    """Upper bounds of the numbers of terms of ``e``'s numerator and denominator once
-    brought to one fraction and expanded (without expanding anything)."""
-    if e in memo:
-        return memo[e]
-    if e.is_Atom:
-        size = (1, 1)
-    elif e.is_Add:
-        parts = [_expanded_terms(a, memo) for a in e.args]
-        den = math.prod(d for _, d in parts)
-        size = (sum(n * den // d for n, d in parts), den)
-    elif e.is_Mul:
-        parts = [_expanded_terms(a, memo) for a in e.args]
-        size = (math.prod(n for n, _ in parts), math.prod(d for _, d in parts))
-    elif e.is_Pow and e.exp.is_Integer:
-        n, d = _expanded_terms(e.base, memo)
-        k = int(e.exp)
-        size = (n ** k, d ** k) if k >= 0 else (d ** -k, n ** -k)
-    else:
-        size = (1, 1)
-    cap = 1 << 40
-    memo[e] = size = (min(size[0], cap), min(size[1], cap))
-    return size
-
-
-def _canonical(X: sp.Matrix, A: sp.Matrix, B: sp.Matrix) -> sp.Matrix:
-    """Each entry of X whose expanded form is small, as the cancelled element of the
-    fraction field of A's and B's entries (what one solve of the whole system gives)."""
-    from sympy.polys.constructor import construct_domain
-
-    memo: dict = {}
-    small = [
-        (i, j) for i in range(X.rows) for j in range(X.cols)
-        if not X[i, j].is_Number and max(_expanded_terms(X[i, j], memo)) <= _CANONICAL_TERMS
-    ]
-    if not small:
-        return X
-    # the domain one solve of the whole system works in (its generators' order sets the signs)
-    domain = construct_domain([e for e in A.values() if e != 0] or [0])[0].unify(
-        construct_domain([e for e in B.values() if e != 0] or [0])[0]
-    )
-    if domain.has_assoc_Field:
-        domain = domain.get_field()
-    gens = getattr(domain, "symbols", ())
-    fields: dict[tuple, Any] = {}
-    out = X.copy()
-    for i, j in small:
-        e = X[i, j]
-        # the field of the entry's own symbols, in the whole field's order: the same
-        # cancelled form (sign and content are set by the leading term in that order)
-        own = tuple(g for g in gens if g in e.free_symbols)
-        if own not in fields:
-            fields[own] = domain.dom.frac_field(*own) if own and gens else domain
-        field = fields[own]
-        out[i, j] = field.to_sympy(field.from_sympy(e))
-    return out
-
-
-def _solve_whole(A: sp.Matrix, B: sp.Matrix) -> sp.Matrix | None:
-    """X with A X = B by one LU solve in the fraction field of A's and B's entries."""
-    from sympy.polys.matrices import DomainMatrix
-    from sympy.polys.matrices.exceptions import DMNonInvertibleMatrixError
-
-    entries = list(A) + list(B)
-    atoms = {a for e in entries for a in sp.preorder_traversal(e) if _is_generator(a)}
-    to_dummy = {a: sp.Dummy() for a in atoms}
-    back = {d: a for a, d in to_dummy.items()}
-    dA = DomainMatrix.from_Matrix(A.xreplace(to_dummy))
-    dB = DomainMatrix.from_Matrix(B.xreplace(to_dummy))
-    domain = dA.domain.unify(dB.domain)
-    if domain.has_assoc_Field:
-        domain = domain.get_field()
-    try:
-        X = dA.convert_to(domain).lu_solve(dB.convert_to(domain)).to_Matrix()
-    except DMNonInvertibleMatrixError:
-        return None
-    if any(e.has(sp.zoo, sp.nan, sp.oo) for e in X):
-        return None
-    return X.xreplace(back) if back else X
-
-
-def _is_generator(expr: sp.Basic) -> bool:
-    """A sub-expression that is neither a number, a symbol, nor built by + * and integer powers."""
-    if expr.is_Symbol or expr.is_Rational or expr.is_Add or expr.is_Mul:
-        return False
-    if expr.is_Pow:
-        return not expr.exp.is_Integer
-    return isinstance(expr, sp.Expr) and not expr.is_Integer
-
-
-def _is_zero(e: sp.Expr) -> bool:
-    """Whether a coefficient is identically zero: decided on its cancelled form when one
-    generic value of its symbols does not already show that it is not."""
-    if e.is_Number or not e.free_symbols:
-        return bool(e == 0)
-    if e.is_Mul:
-        return any(_is_zero(f) for f in e.args)
-    if e.is_Pow:
-        return _is_zero(e.base) and bool(e.exp.is_positive)
-    generic = e.xreplace(_generic_values(e.free_symbols, 3))
-    if generic.is_Number and generic != 0:
-        return False
-    return bool(sp.cancel(sp.together(e)) == 0)
 
 
 def ratio(mech: Mechanism, driver: str, driven: str, fixed: str | Sequence[str] | None = None) -> Law:
@@ -1032,7 +656,7 @@ def _ratio(mech: Mechanism, a: str, b: str, cs: tuple[str, ...]) -> Law:
 
     if drives(a):  # the usual case: omega_b = c omega_a
         c = coefficient(b, a)
-        if _is_zero(c):
+        if is_zero(c):
             raise SingularConfigurationError(
                 f"link {b} stays still when {a} drives with {_fmt_links(cs)} fixed, so the ratio is infinite",
                 dof=system.dof,

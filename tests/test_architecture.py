@@ -32,7 +32,7 @@ PACKAGE = ROOT / "symkin"
 LAYERS: list[tuple[str, ...]] = [
     ("symkin._version", "symkin.errors", "symkin.symbols", "symkin.laws"),
     ("symkin._util", "symkin._deprecated", "symkin.values", "symkin.units", "symkin.parsing", "symkin._io"),
-    ("symkin.numeric", "symkin.printing", "symkin.superposition"),
+    ("symkin.numeric", "symkin.printing", "symkin.superposition", "symkin.linsolve"),
     ("symkin.model",),
     ("symkin.kinematics", "symkin.particles", "symkin.drives", "symkin.vectorloop"),
     ("symkin.schemes", "symkin.trains"),
@@ -47,7 +47,7 @@ LAYERS: list[tuple[str, ...]] = [
 
 #: The deliberate convenience layer: Mechanism.speeds/ratio/motion call the kinematics
 #: and the particle laws (like sympy's Point.v2pt_theory), imported inside those methods.
-CONVENIENCE = {("symkin.model", "symkin.kinematics"), ("symkin.model", "symkin.particles")}
+CONVENIENCE = {("symkin.model.mechanism", "symkin.kinematics"), ("symkin.model.mechanism", "symkin.particles")}
 
 
 def _module(path: Path) -> str:

@@ -117,7 +117,8 @@ def test_long_train_is_solved_stage_by_stage():
 def test_block_solve_equals_one_solve_of_the_whole_system():
     # the speeds of a 4-stage train with the sun and the ring driven, by the block solve
     # (cancelled where small, composed where large) and by one LU solve of the system
-    from symkin.kinematics import _solve_factored, _solve_whole, _triangular_blocks, kinematic_system
+    from symkin.kinematics import kinematic_system
+    from symkin.linsolve import solve_factored, solve_whole, triangular_blocks
 
     train = schemes.common_ring_train(4)
     system = kinematic_system(train)
@@ -126,9 +127,9 @@ def test_block_solve_equals_one_solve_of_the_whole_system():
     col = {n: i for i, n in enumerate(system.links)}
     A = system.matrix.extract(list(range(system.matrix.rows)), [col[u] for u in unknown])
     B = -system.matrix.extract(list(range(system.matrix.rows)), [col[k] for k in known])
-    assert len(_triangular_blocks(A)) == 4  # one block (planet, carrier) per stage
-    cancelled, composed = _solve_factored(A, B)
-    whole = _solve_whole(A, B)
+    assert len(triangular_blocks(A)) == 4  # one block (planet, carrier) per stage
+    cancelled, composed = solve_factored(A, B)
+    whole = solve_whole(A, B)
     same_form = 0
     for got, kept, want in zip(cancelled, composed, whole):
         if got == want:  # small entries: the cancelled form one solve gives
@@ -136,7 +137,7 @@ def test_block_solve_equals_one_solve_of_the_whole_system():
         else:  # large ones keep their composed form, equal in value
             assert got == kept and sp.cancel(got - want) == 0
     assert same_form >= len(whole) // 2
-    assert _triangular_blocks(sp.Matrix([[1, 0], [1, 0]])) is None  # no equation for the second unknown
+    assert triangular_blocks(sp.Matrix([[1, 0], [1, 0]])) is None  # no equation for the second unknown
 
 
 def test_underdetermined_gives_dof_and_a_choice():

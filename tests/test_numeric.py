@@ -419,7 +419,7 @@ def test_a_ratio_only_scene_derives_no_particle_or_speed_laws(monkeypatch):
     def refuse(*a, **k):
         raise AssertionError("a ratio-only scene derived particle laws")
 
-    from symkin import model
+    from symkin.model import mechanism as model
 
     monkeypatch.setattr(particles.Motion, "build", classmethod(refuse))
     monkeypatch.setattr(model, "_CACHES", type(model._CACHES)())  # derivations are shared by equal mechanisms: start afresh
