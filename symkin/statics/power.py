@@ -361,10 +361,35 @@ def statics(
     >>> st.self_locking                         # gear 1 cannot drive the carrier: it locks
     True
     """
-    names = {"input": mech.link(input).name, "output": mech.link(output).name}
+    inp, out = mech.link(input).name, mech.link(output).name
     held = tuple(dict.fromkeys(mech.link(f).name for f in fixed if mech.link(f).name != FRAME))
     pairs = tuple((mech.link(a).name, mech.link(b).name) for a, b in joined)
-    inp, out = names["input"], names["output"]
+    speeds = _unit_speeds(mech, inp, out, held, pairs)
+    sides = _sides(mech)
+    etas = _efficiencies(mech, sides, efficiency)
+    forces, torques = _solve(mech, sides, [sp.Integer(1)] * len(sides), [0] * len(sides), inp, out, held, pairs)
+    # which gear drives each mesh (relative power out of gear a for a positive input power)
+    powers_a = [sp.cancel(-F * s.c_a * (speeds[s.a] - (0 if s.relative_a else speeds[s.holder])))
+                for s, F in zip(sides, forces)]
+    signs = [_decide(p) for p in powers_a]
+    eta_law, lossy_torques = _with_losses(mech, sides, etas, powers_a, signs, speeds, inp, out, held, pairs)
+    held_text = ", ".join(held) or "nothing"
+    law = Law(sp.Symbol(f"eta_{inp}{out}" + (f"^({','.join(held)})" if held else ""), positive=True), eta_law,
+              f"efficiency, {inp} driving {out}, {held_text} held")
+    tan_alpha = sp.tan(as_real(pressure_angle, what="the pressure angle"))
+    meshes = []
+    for s, F, pa, sign in zip(sides, forces, powers_a, signs):
+        count = _count(mech, s)
+        meshes.append(MeshPower(
+            s.mesh, F, sp.cancel(F / count), sp.Abs(F) * tan_alpha / count if not F.is_number else abs(F) * tan_alpha / count,
+            pa, sp.cancel(F * s.c_a * speeds[s.a]), None if sign is None else (s.mesh.a if sign > 0 else s.mesh.b)))
+    circulating = max((sp.Abs(m.power) for m in meshes), key=lambda v: float(v) if v.is_number else math.inf, default=sp.Integer(0))
+    return Statics(mech, inp, out, held, pairs, speeds, torques, tuple(meshes), law, lossy_torques, etas, circulating)
+
+
+def _unit_speeds(mech: Mechanism, inp: str, out: str, held: tuple[str, ...],
+                 pairs: tuple[tuple[str, str], ...]) -> dict[str, sp.Expr]:
+    """Every link's speed for a unit speed of the input, the ``held`` links still, ``pairs`` joined."""
     if inp == out:
         raise InputError(f"the input and the output are the same link {inp}")
     if inp in held or out in held:
@@ -385,44 +410,29 @@ def statics(
     speeds[FRAME] = sp.Integer(0)
     if speeds[out] == 0:
         raise ModelError(f"the output {out} stands still when {inp} turns; nothing to drive")
-    sides = _sides(mech)
-    etas = _efficiencies(mech, sides, efficiency)
-    ideal = _solve(mech, sides, [sp.Integer(1)] * len(sides), [0] * len(sides), inp, out, held, pairs)
-    forces, torques = ideal
-    # which gear drives each mesh (relative power out of gear a for a positive input power)
-    powers_a, signs = [], []
-    for s, F in zip(sides, forces):
-        u_a = s.c_a * (speeds[s.a] - (0 if s.relative_a else speeds[s.holder]))
-        powers_a.append(sp.cancel(-F * u_a))
-        signs.append(_decide(-F * u_a))
+    return speeds
+
+
+def _with_losses(mech: Mechanism, sides: list[_Side], etas: dict[str, Any], powers_a: list[sp.Expr],
+                 signs: list[int | None], speeds: dict[str, sp.Expr], inp: str, out: str, held: tuple[str, ...],
+                 pairs: tuple[tuple[str, str], ...]) -> tuple[sp.Expr, dict[str, sp.Expr]]:
+    """The efficiency law and the torques with losses: one branch for each direction of power
+    through the meshes whose direction the dimensions decide (a Piecewise when there are several)."""
     undecided = [k for k, v in enumerate(signs) if v is None]
+    ratios = [etas[f"{s.mesh.a}-{s.mesh.b}"] for s in sides]
     branches = []
     for pattern in itertools.product((1, -1), repeat=len(undecided)):
         chosen = [0 if v is None else v for v in signs]
         for k, v in zip(undecided, pattern):
             chosen[k] = v
-        ratios = [etas[f"{s.mesh.a}-{s.mesh.b}"] for s in sides]
         _, lossy = _solve(mech, sides, ratios, chosen, inp, out, held, pairs)
         eta = sp.factor(sp.cancel(-lossy[out] * speeds[out]))
         cond = sp.And(*[sp.Gt(powers_a[k], 0) if v == 1 else sp.Lt(powers_a[k], 0) for k, v in zip(undecided, pattern)])
         branches.append((eta, cond, lossy))
     if len(branches) == 1:
-        eta_law, lossy_torques = branches[0][0], branches[0][2]
-    else:
-        eta_law = sp.Piecewise(*[(e, c) for e, c, _ in branches])
-        lossy_torques = {k: sp.Piecewise(*[(b[2][k], b[1]) for b in branches]) for k in branches[0][2]}
-    held_text = ", ".join(held) or "nothing"
-    law = Law(sp.Symbol(f"eta_{inp}{out}" + (f"^({','.join(held)})" if held else ""), positive=True), eta_law,
-              f"efficiency, {inp} driving {out}, {held_text} held")
-    tan_alpha = sp.tan(as_real(pressure_angle, what="the pressure angle"))
-    meshes = []
-    for s, F, pa, sign in zip(sides, forces, powers_a, signs):
-        count = _count(mech, s)
-        meshes.append(MeshPower(
-            s.mesh, F, sp.cancel(F / count), sp.Abs(F) * tan_alpha / count if not F.is_number else abs(F) * tan_alpha / count,
-            pa, sp.cancel(F * s.c_a * speeds[s.a]), None if sign is None else (s.mesh.a if sign > 0 else s.mesh.b)))
-    circulating = max((sp.Abs(m.power) for m in meshes), key=lambda v: float(v) if v.is_number else math.inf, default=sp.Integer(0))
-    return Statics(mech, inp, out, held, pairs, speeds, torques, tuple(meshes), law, lossy_torques, etas, circulating)
+        return branches[0][0], branches[0][2]
+    eta_law = sp.Piecewise(*[(e, c) for e, c, _ in branches])
+    return eta_law, {k: sp.Piecewise(*[(b[2][k], b[1]) for b in branches]) for k in branches[0][2]}
 
 
 def _count(mech: Mechanism, s: _Side) -> int:
