@@ -24,7 +24,7 @@ PACKAGE = ROOT / "symkin"
 #: Layers as the issue of the edge names them: the machinery is the process, operating-system and
 #: input-defence code; the engine is the kinematics proper.  A path is a module or a folder.
 LAYERS = {
-    "engine": ["model.py", "kinematics.py", "particles.py", "superposition.py", "vectorloop.py", "drives.py",
+    "engine": ["model.py", "model", "linsolve.py", "kinematics.py", "particles.py", "superposition.py", "vectorloop.py", "drives.py",
                "laws.py", "symbols.py"],
     # the parser (symkin/parsing, once symkin/_util/parsing.py) and the file and process helpers
     # (symkin/_io, once in symkin/_util; papers/_pool.py until it went)

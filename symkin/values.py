@@ -50,6 +50,7 @@ __all__ = [
     "substitute",
     "sign_of",
     "refuse_text",
+    "nearest_float",
     "is_quantity",
     "unit_factor",
 ]
@@ -309,21 +310,44 @@ def as_float(value: Any, *, what: str, positive: bool = False, error: type[Excep
         if not expr.is_number:
             raise error(f"{what} must be a number, got {_show(value)}")
         try:
-            evaluated = expr.evalf(17, strict=True, maxn=_DIGITS)
-        except PrecisionExhausted:  # 0 to 1300 digits (a zero not written as 0): below every float
-            evaluated = sp.Float(0)
-        if not evaluated.is_extended_real:
-            raise error(f"{what} must be a real number, got {_show(value)}")
-        value = evaluated
-    try:
-        number = float(value)
-    except OverflowError:
-        number = math.inf
+            number = nearest_float(expr)
+        except TypeError:
+            raise error(f"{what} must be a real number, got {_show(value)}") from None
+    else:
+        try:
+            number = float(value)
+        except OverflowError:
+            number = math.inf
     if not math.isfinite(number):
         raise error(f"{what} must be a finite number, got {_show(value)}")
     if positive and not number > 0:
         raise error(f"{what} must be positive, got {_show(value)}")
     return number
+
+
+def nearest_float(expr: sp.Expr) -> float:
+    """The float of a constant SymPy expression: exact rationals rounded once, other constants
+    by SymPy's ``evalf`` with ``strict`` (17 correct digits, or 0.0 for a number that is 0 to
+    1300 digits: below every float); inf beyond the float range.  TypeError when it is not real.
+
+    >>> nearest_float(sp.Rational(1, 3)), nearest_float(sp.sin(1)**2 + sp.cos(1)**2 - 1)
+    (0.3333333333333333, 0.0)
+    """
+    if expr.is_Rational:
+        try:
+            return int(expr.p) / int(expr.q)
+        except OverflowError:
+            return math.copysign(math.inf, expr.p)
+    try:
+        evaluated = expr.evalf(17, strict=True, maxn=_DIGITS)
+    except PrecisionExhausted:  # 0 to 1300 digits (a zero not written as 0)
+        return 0.0
+    if not evaluated.is_extended_real:
+        raise TypeError(f"{expr} is not real")
+    try:
+        return float(evaluated)
+    except OverflowError:
+        return math.copysign(math.inf, float(sp.sign(evaluated)))
 
 
 def as_values(values: Any, *, what: str = "values") -> dict[str, sp.Expr]:

@@ -52,13 +52,10 @@ from mpmath.libmp import (
     mpf_lt,
     mpf_neg,
     mpf_shift,
-    mpf_sign,
     mpf_tanh,
     round_ceiling,
     round_floor,
-    round_nearest,
 )
-from mpmath.libmp import to_float as mpf_to_float
 
 from symkin.errors import InputError
 
@@ -72,10 +69,8 @@ __all__ = [
     "Encloser",
     "check",
     "sign",
-    "to_float",
     "OutOfRange",
     "magnitude",
-    "positive_on",
     "show",
 ]
 
@@ -490,110 +485,4 @@ def sign(expr: Any, *, memo: dict[int, Encloser] | None = None) -> int | None:
             return -1
         if a == b == fzero:
             return 0
-    return None
-
-
-def to_float(expr: Any) -> float:
-    """The float nearest a constant expression, from an interval narrow enough to decide it
-    (0.0 for a number that is 0 to 1233 digits).
-
-    Raises NotReal, OutOfRange, Unbounded, Undecided or NotConstant.
-
-    >>> to_float(sp.pi / 2)
-    1.5707963267948966
-    """
-    memo: dict[int, Encloser] = {}
-    last: Exception | None = None
-    for prec in PRECISIONS:
-        try:
-            a, b = _encloser(memo, prec).enclose(expr)
-        except (Undecided, Unbounded) as err:
-            last = err
-            continue
-        lo, hi = _mpf_float(a), _mpf_float(b)
-        final = prec == PRECISIONS[-1]
-        if mpf_sign(a) * mpf_sign(b) < 0:  # straddles 0: its size is not known yet
-            if final:
-                return 0.0
-            continue
-        if lo == hi or final or hi - lo <= 2 * math.ulp(max(abs(lo), abs(hi))):
-            return lo + (hi - lo) / 2
-    assert last is not None
-    raise last
-
-
-def _mpf_float(x: Any) -> float:
-    return float(mpf_to_float(x, rnd=round_nearest))
-
-
-def positive_on(
-    expr: Any, symbol: Any, lower: Any, upper: Any, *, boxes: int = 4000, prec: int = 64
-) -> tuple[float, str] | None:
-    """None if ``expr`` > 0 for every ``symbol`` in [lower, upper], else (a point, what is wrong there).
-
-    The two ends are tried first, then branch and bound on intervals: a sub-interval whose
-    enclosure is positive is done; one whose enclosure is nowhere positive, or whose
-    midpoint value is not positive, gives the point; the others are halved, up to ``boxes``
-    sub-intervals.  A function that touches 0 (``Abs(u - 5.123456789)``) is never shown
-    positive, whatever samples would say: the point nearest the touch is returned.
-
-    >>> u = sp.Symbol("u", positive=True)
-    >>> positive_on(1 + u / 10, u, 2, 12) is None
-    True
-    >>> positive_on(u - 3, u, 2, 10)
-    (2.0, 'it is not positive')
-    >>> positive_on(sp.Abs(u - sp.Rational(5123456789, 10**9)), u, 2, 12)
-    (5.123456789..., 'it is not shown to be positive (it comes within ... of 0)')
-    """
-    lo, hi = sp.Rational(lower), sp.Rational(upper)
-
-    def at(point: Any) -> tuple[str | None, Any]:
-        try:
-            x = Encloser(prec, {symbol: (point, point)}).enclose(expr)
-        except NotReal:
-            return "it is not a real number", None
-        except Unbounded:
-            return "it is infinite (a pole)", None
-        except OutOfRange as err:
-            if err.large:
-                return f"it is larger than 1e{MAX_DIGITS}", None
-            x = err.interval
-        except Undecided:
-            return None, None
-        return ("it is not positive" if mpf_le(x[1], fzero) else None), x[1]
-
-    for end in (lo, hi):
-        problem, _ = at(end)
-        if problem:
-            return (float(end), problem)
-    stack = [(lo, hi)]
-    tried = 0
-    while stack:
-        a, b = stack.pop()
-        tried += 1
-        box = None
-        try:
-            x = Encloser(prec, {symbol: (a, b)}).enclose(expr)
-            if mpf_gt(x[0], fzero):
-                continue
-            if mpf_le(x[1], fzero):
-                return (float((a + b) / 2), "it is not positive")
-        except Unbounded:
-            box = "it is infinite (a pole)"
-        except NotReal:
-            box = "it is not a real number"
-        except Undecided as err:
-            box = "a divisor in it vanishes (a pole)" if err.question == "is zero" else None
-        except OutOfRange:
-            pass
-        mid = (a + b) / 2
-        problem, top = at(mid)
-        if problem:
-            return (float(mid), problem)
-        if tried >= boxes or b - a <= (hi - lo) / 2**60:
-            if box is not None:  # a pole or a domain edge the midpoints straddle without meeting
-                return (float(mid), box)
-            near = f" (it comes within {_mpf_float(top):.3g} of 0)" if top is not None else ""
-            return (float(mid), f"it is not shown to be positive{near}")
-        stack += [(mid, b), (a, mid)]
     return None

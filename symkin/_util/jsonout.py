@@ -24,7 +24,7 @@ from typing import Any
 
 import sympy as sp
 
-from symkin._util import bounds
+from symkin.values import nearest_float as _float_of
 
 __all__ = ["exact_json", "exact_json_list", "float_text"]
 
@@ -94,18 +94,3 @@ def float_text(value: Any) -> str:
         return f"{_float_of(expr):.10g}"
     except (TypeError, ValueError, OverflowError):
         return str(sp.N(expr, 10))
-
-
-_NOT_ENCLOSED = (bounds.NotReal, bounds.Unbounded, bounds.Undecided, bounds.OutOfRange, bounds.NotConstant)
-
-
-def _float_of(expr: sp.Expr) -> float:
-    """The float nearest a constant, decided on intervals (:func:`bounds.to_float`): SymPy's
-    evalf gave 8.4e-140 for sin(1)**2 + cos(1)**2 - 1, which is 0; evalf where the
-    intervals cannot say (a number beyond 1e300, a constant they do not know)."""
-    if expr.is_Rational:
-        return float(Fraction(int(expr.p), int(expr.q)))
-    try:
-        return bounds.to_float(expr)
-    except _NOT_ENCLOSED:
-        return float(sp.N(expr, 17))

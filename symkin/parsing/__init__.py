@@ -28,7 +28,7 @@ from collections.abc import Iterable, Mapping
 import sympy as sp
 
 from symkin.errors import InputError
-from symkin.parsing.expressions import CONSTANTS, FUNCTIONS, MAX_DEPTH, MAX_EXPONENT, check_numbers, parse_expression
+from symkin.parsing.expressions import CONSTANTS, FUNCTIONS, MAX_DEPTH, MAX_EXPONENT, parse_expression
 from symkin.parsing.numbers import MAX_DIGITS, MAX_LENGTH, SECONDS, parse_integer, parse_number
 from symkin.parsing.quantities import parse_quantity
 from symkin.values import sign_of
@@ -40,7 +40,6 @@ __all__ = [
     "parse_integer",
     "parse_expression",
     "parse_quantity",
-    "check_numbers",
     "FUNCTIONS",
     "CONSTANTS",
     "MAX_LENGTH",

@@ -17,7 +17,6 @@ from __future__ import annotations
 
 import ast
 from collections.abc import Callable, Iterable, Mapping
-from typing import Any
 
 import sympy as sp
 
@@ -35,7 +34,7 @@ from symkin.parsing.numbers import (
     parse_number,
 )
 
-__all__ = ["parse_expression", "check_numbers", "FUNCTIONS", "CONSTANTS", "MAX_DEPTH", "MAX_EXPONENT"]
+__all__ = ["parse_expression", "FUNCTIONS", "CONSTANTS", "MAX_DEPTH", "MAX_EXPONENT"]
 
 #: Functions a user expression may call.
 FUNCTIONS: Mapping[str, Callable[..., sp.Expr]] = {
@@ -227,54 +226,3 @@ class _Builder:
 def _show(node: ast.AST) -> str:
     text = ast.unparse(node)
     return repr(text if len(text) <= 40 else text[:37] + "...")
-
-
-def check_numbers(expr: sp.Expr, what: str, error: type[Exception] = InputError, *, rationals: bool = True) -> None:
-    """Refuse a number in ``expr`` (every constant part of it) that is not real or is beyond
-    1e300 or below 1e-300 in size (and not 0), as :func:`parse_expression` does for text.
-
-    With ``rationals=False`` an exact rational on its own is taken at any size (it is finite
-    and exact; whether a float can hold it is the caller's question, as in ``compile``).
-
-    >>> t = sp.Symbol("t")
-    >>> check_numbers(t * sp.exp(2), "the law")
-    >>> check_numbers(t + sp.tan(sp.pi / 2, evaluate=False), "the law")
-    Traceback (most recent call last):
-    ...
-    symkin.errors.InputError: the law: tan(pi/2) is infinite or cannot be bounded (a pole or an overflow); numbers from 1e-300 to 1e300 in size are accepted
-    """
-    if expr.is_Atom:
-        if expr.is_Rational:
-            if rationals:
-                _bounded(expr, what, error)
-        elif expr.is_Float:
-            bounds.check(expr, what, error=error)
-        elif expr.is_number and expr.is_extended_real is False:
-            raise error(f"{what} must be a finite real number, got {expr}")
-        return
-    memo: dict[int, bounds.Encloser] = {}
-    try:
-        with time_limit(SECONDS, f"{what} took longer than {SECONDS:g} s to bound; give a simpler value", error):
-            _constant_parts(expr, what, error, memo, rationals)
-    except RecursionError:
-        raise error(f"{what} is nested too deeply to check") from None
-
-
-def _constant_parts(
-    e: Any, what: str, error: type[Exception], memo: dict[int, bounds.Encloser], rationals: bool = True
-) -> bool:
-    """Whether ``e`` is a constant; every constant part of it is bounded on the way."""
-    if e.is_Atom:
-        if e.is_Rational:
-            if rationals:
-                _bounded(e, what, error)
-        elif e.is_Float:
-            bounds.check(e, what, memo=memo, error=error)
-        return isinstance(e, sp.Expr) and bool(e.is_number)
-    parts = [_constant_parts(a, what, error, memo, rationals) for a in e.args]
-    if isinstance(e, sp.Expr) and all(parts) and e.is_number:
-        bounds.check(e, what, memo=memo, error=error)
-        return True
-    return False
-
-

@@ -30,9 +30,11 @@ from functools import lru_cache
 from typing import Any
 
 import sympy as sp
+from mpmath.libmp import fzero, mpf_gt, mpf_le, round_nearest
+from mpmath.libmp import to_float as mpf_to_float
 
 from symkin import symbols as S
-from symkin._util.bounds import positive_on
+from symkin._util.bounds import MAX_DIGITS, Encloser, NotReal, OutOfRange, Unbounded, Undecided
 from symkin._util.budget import time_limit
 from symkin.errors import InputError
 from symkin.mechanisms.multistage.stages import stage_laws
@@ -310,7 +312,7 @@ class StageErrorModel:
     def check_positive(self, lower: Any, upper: Any) -> None:
         """Raise unless Phi/d > 0 over [lower, upper] (a lost motion is positive).
 
-        Decided on intervals (:func:`symkin._util.bounds.positive_on`), not on samples: a
+        Decided on intervals (:func:`_positive_on`), not on samples: a
         model that touches 0 between samples, such as ``Abs(u - 5.123456789)``, is refused.
 
         >>> StageErrorModel.linear(-3, 1).check_positive(2, 10)
@@ -322,7 +324,7 @@ class StageErrorModel:
         hi = as_rational(upper, what="the upper ratio bound")
         with time_limit(POSITIVE_SECONDS, f"deciding whether the stage error model {self.expr} is positive took "
                         f"longer than {POSITIVE_SECONDS:g} s; write a simpler model"):
-            found = positive_on(self.expr, U, lo, hi)
+            found = _positive_on(self.expr, U, lo, hi)
         if found is not None:
             at, problem = found
             raise InputError(
@@ -387,3 +389,77 @@ def _tolerance(value: Any, signed: bool = False) -> sp.Expr:
     if not signed and sign_of(v, what="a tolerance") == -1:
         raise InputError(f"a tolerance must not be negative, got {v}")
     return v
+
+
+# --------------------------------------------------------------------------- positivity on intervals
+def _positive_on(
+    expr: Any, symbol: Any, lower: Any, upper: Any, *, boxes: int = 4000, prec: int = 64
+) -> tuple[float, str] | None:
+    """None if ``expr`` > 0 for every ``symbol`` in [lower, upper], else (a point, what is wrong there).
+
+    The two ends are tried first, then branch and bound on intervals: a sub-interval whose
+    enclosure is positive is done; one whose enclosure is nowhere positive, or whose
+    midpoint value is not positive, gives the point; the others are halved, up to ``boxes``
+    sub-intervals.  A function that touches 0 (``Abs(u - 5.123456789)``) is never shown
+    positive, whatever samples would say: the point nearest the touch is returned.
+
+    >>> u = sp.Symbol("u", positive=True)
+    >>> _positive_on(1 + u / 10, u, 2, 12) is None
+    True
+    >>> _positive_on(u - 3, u, 2, 10)
+    (2.0, 'it is not positive')
+    >>> _positive_on(sp.Abs(u - sp.Rational(5123456789, 10**9)), u, 2, 12)
+    (5.123456789..., 'it is not shown to be positive (it comes within ... of 0)')
+    """
+    lo, hi = sp.Rational(lower), sp.Rational(upper)
+
+    def at(point: Any) -> tuple[str | None, Any]:
+        try:
+            x = Encloser(prec, {symbol: (point, point)}).enclose(expr)
+        except NotReal:
+            return "it is not a real number", None
+        except Unbounded:
+            return "it is infinite (a pole)", None
+        except OutOfRange as err:
+            if err.large:
+                return f"it is larger than 1e{MAX_DIGITS}", None
+            x = err.interval
+        except Undecided:
+            return None, None
+        return ("it is not positive" if mpf_le(x[1], fzero) else None), x[1]
+
+    for end in (lo, hi):
+        problem, _ = at(end)
+        if problem:
+            return (float(end), problem)
+    stack = [(lo, hi)]
+    tried = 0
+    while stack:
+        a, b = stack.pop()
+        tried += 1
+        box = None
+        try:
+            x = Encloser(prec, {symbol: (a, b)}).enclose(expr)
+            if mpf_gt(x[0], fzero):
+                continue
+            if mpf_le(x[1], fzero):
+                return (float((a + b) / 2), "it is not positive")
+        except Unbounded:
+            box = "it is infinite (a pole)"
+        except NotReal:
+            box = "it is not a real number"
+        except Undecided as err:
+            box = "a divisor in it vanishes (a pole)" if err.question == "is zero" else None
+        except OutOfRange:
+            pass
+        mid = (a + b) / 2
+        problem, top = at(mid)
+        if problem:
+            return (float(mid), problem)
+        if tried >= boxes or b - a <= (hi - lo) / 2**60:
+            if box is not None:  # a pole or a domain edge the midpoints straddle without meeting
+                return (float(mid), box)
+            near = f" (it comes within {float(mpf_to_float(top, rnd=round_nearest)):.3g} of 0)" if top is not None else ""
+            return (float(mid), f"it is not shown to be positive{near}")
+        stack += [(mid, b), (a, mid)]
+    return None
