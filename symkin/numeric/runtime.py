@@ -316,7 +316,7 @@ def numba_namespace(precision: str) -> dict[str, Any]:
     @numba.njit(inline="always")
     def ratio(num, den, bound_num, bound_den):  # pragma: no cover - compiled
         """``num/den`` of integer polynomials in int64 (a float64 kernel computes them in float64
-        where a bound of every partial sum is below 2^53, codegen.kernel_source)."""
+        where a bound of every partial sum is below 2^53, symkin.numeric.kernel)."""
         if bound_num > 4.6e18 or bound_den > 4.6e18:  # int64 could overflow: nan, redone with Python integers
             return dtype(np.nan)
         return dtype(num / den)
