@@ -61,50 +61,56 @@ def product_ratios(exprs: Sequence[sp.Expr]) -> list[sp.Expr]:
     >>> product_ratios([w * r1 * r3 / ProductDifference(r1, r3, r2, r4)])
     [w*ProductRatio(r1, r3, r2, r4)]
     """
-
-    def take(factors: list[sp.Expr] | None, x: sp.Expr) -> list[sp.Expr] | None:
-        if factors is None or x.is_Number:
-            return None
-        for k, f in enumerate(factors):
-            if f == x:
-                return factors[:k] + factors[k + 1:]
-            base, exp = f.as_base_exp()
-            if base == x and exp.is_Integer and exp > 1:
-                return factors[:k] + [base ** (exp - 1)] + factors[k + 1:]
-        return None
-
-    def rewrite(e: sp.Expr, skip: set[tuple[sp.Expr, ...]]) -> sp.Expr:
-        if e.is_Atom or isinstance(e, LongPhase):
-            return e
-        args = [rewrite(a, skip) for a in e.args]
-        e = e.func(*args) if any(x is not y for x, y in zip(args, e.args)) else e
-        if not e.is_Mul:
-            return e
-        factors = list(e.args)
-        for k, f in enumerate(factors):
-            if not (f.is_Pow and f.exp == -1 and isinstance(f.base, ProductDifference)) or f.base.args in skip:
-                continue
-            a, b, c, d = f.base.args
-            rest = take(take(factors[:k] + factors[k + 1:], a), b)
-            if rest is not None:
-                return sp.Mul(*rest) * ProductRatio(a, b, c, d)
-        return e
-
-    def bare(e: sp.Expr) -> set[tuple[sp.Expr, ...]]:
-        if isinstance(e, ProductDifference):
-            return {e.args}
-        if e.is_Atom or isinstance(e, (LongPhase, ProductRatio)):
-            return set()
-        return set().union(*(bare(a) for a in e.args))
-
     skip: set[tuple[sp.Expr, ...]] = set()
     while True:
-        out = [rewrite(e, skip) for e in exprs]
+        out = [_with_ratios(e, skip) for e in exprs]
         taken = {n.args for e in out for n in sp.preorder_traversal(e) if isinstance(n, ProductRatio)}
-        shared = (taken & set().union(*(bare(e) for e in out))) - skip
+        shared = (taken & set().union(*(_bare_differences(e) for e in out))) - skip
         if not shared:
             return out
         skip |= shared
+
+
+def _without(factors: list[sp.Expr] | None, x: sp.Expr) -> list[sp.Expr] | None:
+    """``factors`` with one factor ``x`` taken out (``x**k`` becomes ``x**(k-1)``), or None."""
+    if factors is None or x.is_Number:
+        return None
+    for k, f in enumerate(factors):
+        if f == x:
+            return factors[:k] + factors[k + 1:]
+        base, exp = f.as_base_exp()
+        if base == x and exp.is_Integer and exp > 1:
+            return factors[:k] + [base ** (exp - 1)] + factors[k + 1:]
+    return None
+
+
+def _with_ratios(e: sp.Expr, skip: set[tuple[sp.Expr, ...]]) -> sp.Expr:
+    """``e`` with every product ``a*b*X / ProductDifference(a, b, c, d)`` (not in ``skip``)
+    written ``X * ProductRatio(a, b, c, d)``, innermost first."""
+    if e.is_Atom or isinstance(e, LongPhase):
+        return e
+    args = [_with_ratios(a, skip) for a in e.args]
+    e = e.func(*args) if any(x is not y for x, y in zip(args, e.args)) else e
+    if not e.is_Mul:
+        return e
+    factors = list(e.args)
+    for k, f in enumerate(factors):
+        if not (f.is_Pow and f.exp == -1 and isinstance(f.base, ProductDifference)) or f.base.args in skip:
+            continue
+        a, b, c, d = f.base.args
+        rest = _without(_without(factors[:k] + factors[k + 1:], a), b)
+        if rest is not None:
+            return sp.Mul(*rest) * ProductRatio(a, b, c, d)
+    return e
+
+
+def _bare_differences(e: sp.Expr) -> set[tuple[sp.Expr, ...]]:
+    """The arguments of every :class:`ProductDifference` of ``e`` outside a ratio or a long phase."""
+    if isinstance(e, ProductDifference):
+        return {e.args}
+    if e.is_Atom or isinstance(e, (LongPhase, ProductRatio)):
+        return set()
+    return set().union(*(_bare_differences(a) for a in e.args))
 
 
 def phase_sources(exprs: Sequence[sp.Expr]) -> dict[str, str]:
