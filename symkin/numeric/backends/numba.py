@@ -13,7 +13,7 @@ import math
 import os
 import threading
 import warnings
-from collections.abc import Iterator, Sequence
+from collections.abc import Sequence
 from pathlib import Path
 from typing import Any, NamedTuple
 
@@ -131,25 +131,6 @@ def _kernel_in_process(source: str, precision: str, parallel: bool, namespace: d
     exec(compile(source, "<symkin kernel>", "exec"), ns)  # generated from SymPy, no user text
     jit = numba.njit(parallel=parallel, error_model="numpy", fastmath=False, nogil=True)
     return jit(ns["_kernel"]), (jit(ns["_kernel_redo"]) if "_kernel_redo" in ns else None)
-
-
-@contextlib.contextmanager
-def _parallel(threads: int | None) -> Iterator[None]:
-    """A parallel kernel's run: on ``threads`` threads when given (Numba's setting restored
-    after), one such run at a time (:data:`_PARALLEL_LOCK`)."""
-    import numba
-
-    before = numba.get_num_threads() if threads else 0
-    if threads and threads != before:
-        # numba.core.config defines its settings at run time (globals().update), which
-        # numba's inline types (py.typed) do not show
-        numba.set_num_threads(min(threads, numba.config.NUMBA_NUM_THREADS))  # type: ignore[attr-defined]
-    try:
-        with _PARALLEL_LOCK:
-            yield
-    finally:
-        if threads and threads != before:
-            numba.set_num_threads(before)
 
 
 class _Call(NamedTuple):
@@ -301,9 +282,15 @@ class NumbaBackend(NumpyBackend):
         import numba
 
         parallel = call.n >= _PARALLEL_FROM and (self.plan.threads or numba.get_num_threads()) > 1
+        threads = self.plan.threads
+        restore = 0  # Numba's number of threads, to restore after a parallel call on plan.threads threads
+        if parallel and threads and threads != numba.get_num_threads():
+            restore = numba.get_num_threads()
         try:
             kernel, redo = self.kernels.get((parallel, call.float_integers)) or self._kernel(parallel, call.float_integers)
-            with _parallel(self.plan.threads) if parallel else contextlib.nullcontext():
+            if restore and threads:  # (numba's config defines its settings at run time: its inline types miss them)
+                numba.set_num_threads(min(threads, numba.config.NUMBA_NUM_THREADS))  # type: ignore[attr-defined]
+            with _PARALLEL_LOCK if parallel else contextlib.nullcontext():
                 bad, nonwhole, uncertain = kernel(*call.inputs, *call.results, call.n, *call.steps)
                 if uncertain:  # points near a pole: their differences of products again, in double-double
                     bad += redo(*call.inputs, *call.results, call.n, *call.steps)
@@ -315,6 +302,9 @@ class NumbaBackend(NumpyBackend):
                 stacklevel=5,
             )
             return None
+        finally:
+            if restore:
+                numba.set_num_threads(restore)
         if nonwhole:  # the message names the first value that is not a whole number
             for f, s, as_float in zip(call.flat, self.plan.args, call.float_integers):
                 if as_float:

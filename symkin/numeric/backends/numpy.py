@@ -322,7 +322,8 @@ class NumpyBackend(Backend):
         and cheaper in the generated code than a 0-d array's ufunc call per operation)."""
         dtype, dt = self.dtype, self._np_dtype
         floats: list[Any] = []
-        arrays: list[np.ndarray] = []
+        shape = None
+        same = True  # every array of one shape (the common call): no broadcasting to decide
         wide = dtype is np.float64
         for v, nm in zip(values, self.names):
             kind = type(v)
@@ -332,12 +333,15 @@ class NumpyBackend(Backend):
             if kind is not np.ndarray or v.dtype is not dt:
                 v = as_floats(as_array(v, nm), nm, dtype)
             floats.append(v)
-            arrays.append(v)
-        if not arrays:
+            if shape is None:
+                shape = v.shape
+            elif v.shape != shape:
+                same = False
+        if shape is None:
             return (), floats
-        shape = arrays[0].shape
-        if any(a.shape != shape for a in arrays):
-            shape = common_shape(arrays, [nm for f, nm in zip(floats, self.names) if type(f) is np.ndarray])
+        if not same:
+            arrays = [(f, nm) for f, nm in zip(floats, self.names) if type(f) is np.ndarray]
+            shape = common_shape([f for f, _ in arrays], [nm for _, nm in arrays])
         return shape, floats
 
     def integer_chunk(self, ints: Sequence[np.ndarray]) -> list[np.ndarray]:
@@ -361,9 +365,11 @@ class NumpyBackend(Backend):
         if n > _PRIME_FROM:
             _prime_allocator()
         if outs is None and n <= self.plan.chunk:  # one call on the arrays as given: no copies, no chunks
-            if not self.twins:
-                return shape, *self._whole(floats, shape)
-            return shape, *self._whole(floats + self.integer_chunk(ints), (n,) if shape else ())
+            if self.twins:
+                results, flagged = self._whole(floats + self.integer_chunk(ints), (n,) if shape else ())
+            else:
+                results, flagged = self._whole(floats, shape)
+            return shape, results, flagged
         if not self.twins:
             shape, floats = broadcast_flat([np.asarray(f, self.dtype) for f in floats], self.names)
         results = allocate(outs, len(self.plan.stable), n, self.plan.dtype)
