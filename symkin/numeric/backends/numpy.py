@@ -82,7 +82,7 @@ class Int64Bound:
 
     def __init__(self, polys: Sequence[sp.Expr], integer_syms: Sequence[sp.Symbol]):
         index = {sym: k for k, sym in enumerate(integer_syms)}
-        #: per polynomial: (|coefficient|, ((integer argument, power), ...)) per term
+        #: per polynomial: (the absolute value of a coefficient, ((integer argument, power), ...)) per term
         self.terms: list[list[tuple[int, tuple[tuple[int, int], ...]]]] = []
         for poly in polys:
             terms = []
