@@ -1,6 +1,6 @@
 """Does the NumPy backend's allocator priming (``backends/numpy.py``, ``_prime_allocator``) matter?
 
-    python benchmarks/allocator_priming.py [--rounds 3] [--sizes 100000,1000000] [--laws "II radii"]
+    python benchmarks/allocator_priming.py [--rounds 3] [--sizes 100000,1000000] [--laws "II differential, radii"]
 
 Each law and size in a fresh process, ``backend="numpy"``, with the priming and without it (the
 function replaced by one that does nothing), in alternation; a process calls the law 15 times.
@@ -20,35 +20,19 @@ import time
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
-LAWS = ("ratio teeth", "II radii", "planet", "slider")
+LAWS = ("AA ratio, teeth", "II differential, radii", "planet acceleration w_x", "slider acceleration a_s")
 
 
 def child(primed: bool, n: int, law: str) -> None:
     sys.path.insert(0, str(HERE))
     import laws as L
-    import numpy as np
 
     import symkin
-    from symkin import schemes
-    from symkin import symbols as S
     from symkin.numeric.backends import numpy as numpy_backend
 
     if not primed:
-        numpy_backend._prime_allocator = lambda: None  # type: ignore[assignment]
-    w1, w4 = S.omega("1"), S.omega("4")
-    rng = np.random.default_rng(7)
-    cases = {
-        "ratio teeth": lambda: (schemes.two_row("AA", teeth=True).ratio("H", "1", fixed="4").rhs, [S.teeth(i) for i in "1234"],
-                                [rng.integers(20, 200, n) for _ in range(4)]),
-        "II radii": lambda: (schemes.two_row("II").speeds({"1": w1, "4": w4}).law("H").rhs, [w1, w4, *(S.radius(i) for i in "1234")],
-                             [rng.uniform(-1, 1, n), rng.uniform(-1, 1, n), rng.uniform(5, 10, n), rng.uniform(1, 2, n),
-                              rng.uniform(2.5, 4, n), rng.uniform(1, 2, n)]),
-        "planet": lambda: (L.planet_acceleration()[0], [w1, *(S.radius(i) for i in "1234"), S.t],
-                           [2.0, 2.0, 1.5, 1.0, 4.5, rng.uniform(0, 10, n)]),
-        "slider": lambda: (L.slider_acceleration(), [L.E, L.L, L.M, L.W, L.THETA2, L.THETA0, S.t],
-                           [rng.uniform(0.05, 0.95, n), 0.02, 1.0, 0.8 * np.pi, 0.3, 0.1, rng.uniform(0, 10, n)]),
-    }
-    expr, args, values = cases[law]()
+        numpy_backend._prime_allocator = lambda: None
+    expr, args, values = L.timed_cases(n)[law]
     f = symkin.compile(expr, args, backend="numpy", ranges=L.RANGES)
     times = []
     for _ in range(15):
@@ -62,7 +46,7 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--rounds", type=int, default=3)
     ap.add_argument("--sizes", default="100000,1000000")
-    ap.add_argument("--laws", default=",".join(LAWS))
+    ap.add_argument("--laws", default=";".join(LAWS), help="law names separated by ;")
     ap.add_argument("--child", nargs=3, help=argparse.SUPPRESS)
     opts = ap.parse_args()
     if opts.child:
@@ -70,7 +54,7 @@ def main() -> None:
     cells: dict[tuple[str, int, str], list[dict]] = {}
     load0 = os.getloadavg()[0]
     for _ in range(opts.rounds):
-        for law in opts.laws.split(","):
+        for law in opts.laws.split(";"):
             for n in map(int, opts.sizes.split(",")):
                 for primed in ("1", "0"):
                     out = subprocess.run([sys.executable, __file__, "--child", primed, str(n), law], capture_output=True,
