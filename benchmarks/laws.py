@@ -73,3 +73,26 @@ def slider_laws_continuous() -> tuple[sp.Expr, sp.Expr, sp.Expr]:
     u = M * W * S.t / 2
     fix = lambda x: x.replace(sp.atan, lambda arg: sp.atan(arg) + sp.pi * sp.floor(u / sp.pi + sp.Rational(1, 2)))  # noqa: E731
     return tuple(fix(x) for x in slider_laws())  # type: ignore[return-value]
+
+
+def timed_cases(n: int, seed: int = 7) -> dict:
+    """The four laws as the speed comparisons of two trees time them, each ``(expr, args, values)``
+    with ``n`` points (arrays; the planet's and the slider's parameters as numbers, t an array):
+    the AA ratio in teeth, the II differential in radii as the README compiles it (denominator
+    r1 r3 - r2 r4), the AI planet acceleration w_x and the engine's slider acceleration a_s."""
+    import numpy as np
+
+    rng = np.random.default_rng(seed)
+    w1, w4 = S.omega("1"), S.omega("4")
+    radii = [S.radius(i) for i in "1234"]
+    return {
+        "AA ratio, teeth": (ratio_law(), [S.teeth(i) for i in "1234"], [rng.integers(20, 200, n) for _ in range(4)]),
+        "II differential, radii": (
+            schemes.two_row("II").speeds({"1": w1, "4": w4}).law("H").rhs, [w1, w4, *radii],
+            [rng.uniform(-1, 1, n), rng.uniform(-1, 1, n), rng.uniform(5, 10, n), rng.uniform(1, 2, n),
+             rng.uniform(2.5, 4, n), rng.uniform(1, 2, n)]),
+        "planet acceleration w_x": (planet_acceleration()[0], [w1, *radii, S.t], [2.0, 2.0, 1.5, 1.0, 4.5, rng.uniform(0, 10, n)]),
+        "slider acceleration a_s": (
+            slider_acceleration(), [E, L, M, W, THETA2, THETA0, S.t],
+            [rng.uniform(0.05, 0.95, n), 0.02, 1.0, 0.8 * np.pi, 0.3, 0.1, rng.uniform(0, 10, n)]),
+    }

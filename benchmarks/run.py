@@ -377,7 +377,7 @@ def fixed_costs(all_cases: dict) -> list[dict]:
 
                     row["errstate"] = best(enter_exit)
                     row["finite"] = best(lambda: [np.add.reduce(r, axis=None) for r in out])
-                    row["bound"] = best(lambda: ev.needs_python_integers(ints)) if ints else 0.0
+                    row["bound"] = best(lambda: ev.bound.overflows(ints)) if ints else 0.0
                     row["reduction"] = best(lambda: np.minimum.reduce(out[0], axis=None))
             rows.append(row)
     return rows
@@ -567,8 +567,9 @@ else numpy (`SYMKIN_BACKEND=numpy` or `numba` chooses). Float backends evaluate 
 - Memory: before its first call of more than 8192 points, the NumPy path allocates and frees one 16 MiB
   block (never written), once per process. glibc's malloc then keeps freed temporaries instead of
   unmapping them after each operation, as it does in any process that has freed a 16 MiB array; without
-  it a process that never had (one that only made 80 MB arrays) ran the II differential at 10^7 points
-  3.3x slower. Up to 32 MiB of freed memory may stay with the process; other allocators ignore it.
+  it, in a fresh process, repeated calls of 10^5 points took 1.5-2.5x as long and the II differential at
+  10^7 points 1.6x (benchmarks/notes/numeric-backends.md, `python benchmarks/allocator_priming.py`).
+  Up to 32 MiB of freed memory may stay with the process; other allocators ignore it.
 - float32: inputs that are float32 keep the guarantees above in float32; inputs given in float64 are rounded
   to float32, and where that moves a result by more than 2^-16 of the call's largest value (near a pole) a
   `PrecisionWarning` says so (checked by one float64 evaluation, paid only for such inputs).

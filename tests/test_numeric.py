@@ -542,7 +542,7 @@ def test_parallel_kernels_run_one_at_a_time_and_threads_calling_at_once_agree(mo
     (a Dask scheduler's) take turns, as Numba's workqueue layer requires; small calls do not wait."""
     import threading
 
-    from symkin.numeric import backends
+    from symkin.numeric.backends import numba as numba_backend
 
     entered = []
 
@@ -558,7 +558,7 @@ def test_parallel_kernels_run_one_at_a_time_and_threads_calling_at_once_agree(mo
     f = symkin.compile(law, args, backend="numba")
     values = [rng.uniform(1, 2, 1 << 16) for _ in range(5)]
     want = f(*values)
-    monkeypatch.setattr(backends, "_PARALLEL_LOCK", Recording())
+    monkeypatch.setattr(numba_backend, "_PARALLEL_LOCK", Recording())
     f(*[v[:1000] for v in values])
     assert not entered
     f(*values)

@@ -193,7 +193,7 @@ def test_the_numba_kernel_redoes_only_the_uncertified_points_of_a_plain_first_pa
     # a few near-pole points and one exact pole among far ones, over several blocks of the
     # kernel's loop, with a scalar among the arguments: the plain pass counts the uncertified
     # points, the second redoes them in double-double (mpmath at 50 digits is the reference)
-    from symkin.numeric.codegen import KERNEL_BLOCK
+    from symkin.numeric.kernel import KERNEL_BLOCK
 
     monkeypatch.setenv("SYMKIN_CACHE_DIR", str(tmp_path))  # kernels of this test only
     law = 2 * AA_H1.rhs  # a kernel no other test loads (kernels are shared by their source); x2 is exact

@@ -4,8 +4,8 @@
 backend: ``"numpy"`` (vectorised, float64 or float32), ``"numba"`` (one fused compiled
 loop, an optional extra), ``"mpmath"`` (``digits`` significant digits) or ``"exact"``
 (rationals).  Without one it takes :func:`default_backend`: numba where it is installed
-(faster than ``sympy.lambdify`` from 10^3 points, docs/numerics.md; its first call of a law
-compiles it, 1-5 s, kept on disk for later processes), else numpy.  Float backends evaluate a *stable form* of each law
+(its first call of a law compiles it, kept on disk for later processes; its speed against
+``sympy.lambdify``: docs/numerics.md), else numpy.  Float backends evaluate a *stable form* of each law
 (:mod:`symkin.numeric.stable`): integer parts exactly, removable singularities
 cancelled, angles unwrapped, cosine sums well conditioned.
 
@@ -37,7 +37,7 @@ import sympy as sp
 from symkin._util.bounds import show
 from symkin.errors import InputError
 from symkin.laws import Law
-from symkin.numeric.backends import BACKENDS, Plan, numba_available, warn_no_numba
+from symkin.numeric.backends import BACKENDS, Backend, Plan, numba_available, warn_no_numba
 from symkin.numeric.function import NonFiniteInputWarning, NumericFunction
 from symkin.numeric.stable import RULE_NOTES, stable_form
 
@@ -45,9 +45,8 @@ __all__ = ["compile", "default_backend", "NumericFunction", "NonFiniteInputWarni
 
 #: Points per chunk of the NumPy backend: a call of up to this many points is one call of the
 #: generated code on the arrays as given (no copy of the outputs), larger calls go in chunks of it.
-#: 2^17 (temporaries of 1 MiB): in benchmarks/run.py's process, on 2 shared cores, 2^14 took
-#: 1.3-2x the time at 10^5 points (the II differential 1.76x lambdify's time against 1.11x; the AA
-#: ratio 2.3x against 1.6x) and was no faster at 10^6 (all four laws, round robin in one run).
+#: 2^17 (temporaries of 1 MiB): smaller chunks were slower at 10^5 points and no faster at 10^6
+#: on the benchmark laws (benchmarks/notes/numeric-backends.md).
 DEFAULT_CHUNK = 1 << 17
 
 
@@ -58,8 +57,8 @@ BACKEND_VARIABLE = "SYMKIN_BACKEND"
 def default_backend() -> str:
     """The backend :func:`compile` uses when none is named: ``$SYMKIN_BACKEND`` when set
     (``numpy`` or ``numba``), else ``numba`` where Numba is installed (one fused loop per
-    law, faster than ``sympy.lambdify`` on arrays of 10^3 points and more; a law's first call
-    compiles it, 1-5 s, and the kernel is kept on disk for later processes), else ``numpy``.
+    law; a law's first call compiles it, and the kernel is kept on disk for later processes;
+    its speed: docs/numerics.md), else ``numpy``.
 
     Numba runs calls of 2^15 points and more on every thread, with OpenMP where it is found
     (symkin sets ``OMP_WAIT_POLICY=PASSIVE`` unless it is set: waiting threads sleep); GNU
@@ -232,6 +231,35 @@ def compile(
     if backend not in BACKENDS:
         raise InputError(f"unknown backend {backend!r}; choose one of {', '.join(BACKENDS)}")
     exprs, names = _exprs(laws)
+    args = _arguments(exprs, args)
+    if reduce_phase is None:  # time, by its name: phases of t are reduced unless asked not to
+        reduce_phase = tuple(a for a in args if a.name == "t")
+    options = dict(
+        backend=backend, precision=precision, digits=digits, cse=cse, stable=stable, ranges=dict(ranges or {}),
+        reduce_phase=tuple(reduce_phase), chunk=chunk, threads=threads, on_pole=on_pole,
+    )
+    spec = _Spec(tuple(exprs), tuple(names), args, tuple(sorted((k, _hashable(v)) for k, v in options.items())))
+    cls = BACKENDS[backend]
+    if backend == "numba" and not numba_available():
+        warn_no_numba()
+        cls = BACKENDS["numpy"]
+    _check_options(cls, backend, precision, digits, chunk)
+    applied: list[str] = []
+    rewritten = exprs
+    if cls.floats:
+        exprs, rewritten = _float_forms(exprs, names, precision, stable, ranges, reduce_phase, applied)
+    plan = Plan(
+        tuple(exprs), tuple(rewritten), args, tuple(names),
+        precision if cls.floats else cls.precisions[0],
+        digits if backend == "mpmath" else None, cse, chunk, threads,
+    )
+    notes = [note for name, note in RULE_NOTES.items() if name in applied]
+    return NumericFunction(cls(plan), plan, cls.key, notes, spec, on_pole=on_pole)
+
+
+def _arguments(exprs: Sequence[sp.Expr], args: Any) -> tuple[sp.Symbol, ...]:
+    """The argument order: ``args`` checked (symbols, every free symbol of the laws among
+    them), or every free symbol sorted by name."""
     free = set().union(*(e.free_symbols for e in exprs))
     if args is None:
         args = sorted(free, key=lambda s: s.name)
@@ -244,42 +272,34 @@ def compile(
     missing = free - set(args)
     if missing:
         raise InputError(f"the law depends on {', '.join(sorted(map(str, missing)))}, which are not among the arguments")
-    if reduce_phase is None:  # time, by its name: phases of t are reduced unless asked not to
-        reduce_phase = tuple(a for a in args if a.name == "t")
-    options = dict(
-        backend=backend, precision=precision, digits=digits, cse=cse, stable=stable, ranges=dict(ranges or {}),
-        reduce_phase=tuple(reduce_phase), chunk=chunk, threads=threads, on_pole=on_pole,
-    )
-    spec = _Spec(tuple(exprs), tuple(names), args, tuple(sorted((k, _hashable(v)) for k, v in options.items())))
-    cls = BACKENDS[backend]
-    if backend == "numba" and not numba_available():
-        warn_no_numba()
-        cls = BACKENDS["numpy"]
-    float_backend = cls.floats
-    if float_backend and precision not in cls.precisions:
+    return args
+
+
+def _check_options(cls: type[Backend], backend: str, precision: str, digits: Any, chunk: Any) -> None:
+    """An InputError for an option the backend does not take."""
+    if cls.floats and precision not in cls.precisions:
         raise InputError(f"precision {precision!r} is not offered by the {backend} backend; choose "
                          f"{' or '.join(cls.precisions)}")
     if backend == "mpmath" and (not isinstance(digits, int) or isinstance(digits, bool) or digits < 1):
         raise InputError(f"digits must be a positive integer, got {digits!r}")
     if not isinstance(chunk, int) or chunk < 1:
         raise InputError(f"chunk must be a positive number of points, got {chunk!r}")
-    applied: list[str] = []
-    if float_backend:  # a function of numbers alone (sin(10**100)) is a number: evaluate it here, to 30 digits
-        exprs = [_constants(e) for e in exprs]
-    if float_backend and stable:
+
+
+def _float_forms(
+    exprs: list[sp.Expr], names: Sequence[str], precision: str, stable: bool,
+    ranges: Mapping[sp.Symbol, tuple[Any, Any]] | None, reduce_phase: Sequence[sp.Symbol], applied: list[str],
+) -> tuple[list[sp.Expr], list[sp.Expr]]:
+    """The laws for a float backend: with every function of numbers alone evaluated (to 30
+    digits), and rewritten into their stable forms (the rules that changed something are
+    appended to ``applied``); an InputError for a number no float can hold."""
+    exprs = [_constants(e) for e in exprs]
+    if stable:
         rewritten = [stable_form(e, ranges=ranges, reduce_phase=reduce_phase, applied=applied) for e in exprs]
     else:
         rewritten = list(exprs)
-    if float_backend:
-        _refuse_constants_beyond_floats(rewritten, names, precision)
-    plan = Plan(
-        tuple(exprs), tuple(rewritten), args, tuple(names),
-        precision if float_backend else cls.precisions[0],
-        digits if backend == "mpmath" else None, cse, chunk, threads,
-    )
-    evaluator = cls(plan)
-    notes = [note for name, note in RULE_NOTES.items() if name in applied]
-    return NumericFunction(evaluator, plan, cls.key, notes, spec, on_pole=on_pole)
+    _refuse_constants_beyond_floats(rewritten, names, precision)
+    return exprs, rewritten
 
 
 def _refuse_constants_beyond_floats(exprs: Sequence[sp.Expr], names: Sequence[str], precision: str) -> None:

@@ -151,19 +151,12 @@ class NumericFunction:
             self._check_poles(values, shape, results)
         if self._narrow:
             self._check_float32(values, shape, results)
-        if out is not None:
-            shaped = [o for o in out]
-        elif len(results) == 1:  # (the common call: one output)
+        if out is None and len(results) == 1:  # (the common call: one output)
             r = results[0]
             if r.shape != shape:
                 r = r.reshape(shape)
             return r[()] if shape == () else r
-        else:
-            results = _distinct(results)
-            shaped = [r if r.shape == shape else r.reshape(shape) for r in results]
-            if shape == ():
-                shaped = [r[()] for r in shaped]
-        return shaped[0] if len(shaped) == 1 else tuple(shaped)
+        return _shaped(results, shape, out)
 
     def _check_poles(self, values: Sequence[Any], shape: tuple[int, ...], results: Sequence[np.ndarray]) -> None:
         """Say where outputs are not finite: at non-finite inputs, or at a pole."""
@@ -310,6 +303,18 @@ def _rebuild(token: str, payload: bytes) -> NumericFunction:
         function._token = token
         _REBUILT[token] = function
     return _REBUILT[token]
+
+
+def _shaped(results: Sequence[np.ndarray], shape: tuple[int, ...], out: Sequence[np.ndarray] | None) -> Any:
+    """What a call returns: the ``out=`` arrays, or the results in the shape of the call (a
+    scalar each for scalar inputs), one array, or a tuple when there are several."""
+    if out is not None:
+        shaped = list(out)
+    else:
+        shaped = [r if r.shape == shape else r.reshape(shape) for r in _distinct(results)]
+        if shape == ():
+            shaped = [r[()] for r in shaped]
+    return shaped[0] if len(shaped) == 1 else tuple(shaped)
 
 
 def _distinct(results: Sequence[np.ndarray]) -> list[np.ndarray]:

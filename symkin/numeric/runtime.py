@@ -295,6 +295,17 @@ def numba_namespace(precision: str) -> dict[str, Any]:
 
     two_prod = numba.njit(inline="always")(_two_prod)
     dtype = np.float32 if precision == "float32" else np.float64
+    if precision == "float32":
+        difference, plain_difference = _jit_differences_f32(numba, dtype)
+    else:
+        difference, plain_difference = _jit_differences(numba, two_prod)
+    return {"_symkin_exact_ratio": _jit_ratio(numba, dtype), "_symkin_reduced_phase": _jit_phase(numba, two_prod, dtype),
+            "_symkin_product_difference": difference, "_symkin_plain_difference": plain_difference,
+            **_numba_dd_helpers(numba)}
+
+
+def _jit_phase(numba: Any, two_prod: Any, dtype: Any) -> Any:
+    """:func:`_reduced_phase_core` for Numba's scalar loops, rounded to ``dtype``."""
 
     @numba.njit(inline="always")
     def phase(p, q, x1, x2, x3):  # pragma: no cover - compiled
@@ -313,48 +324,62 @@ def numba_namespace(precision: str) -> dict[str, Any]:
         k = np.floor(h * _INV_2PI + 0.5)
         return dtype((((h - k * _C1) - k * _C2) - k * _C3) + lo)
 
+    return phase
+
+
+def _jit_ratio(numba: Any, dtype: Any) -> Any:
+    """An exact ratio's division for Numba's scalar loops."""
+
     @numba.njit(inline="always")
     def ratio(num, den, bound_num, bound_den):  # pragma: no cover - compiled
         """``num/den`` of integer polynomials in int64 (a float64 kernel computes them in float64
-        where a bound of every partial sum is below 2^53, codegen.kernel_source)."""
+        where a bound of every partial sum is below 2^53, symkin.numeric.kernel)."""
         if bound_num > 4.6e18 or bound_den > 4.6e18:  # int64 could overflow: nan, redone with Python integers
             return dtype(np.nan)
         return dtype(num / den)
 
+    return ratio
+
+
+def _jit_differences_f32(numba: Any, dtype: Any) -> tuple[Any, Any]:
+    """``a b - c d`` of float32 values for Numba's scalar loops (the products exact in float64),
+    and the same as ``(difference, True)``: always certified."""
+
+    @numba.njit(inline="always")
+    def difference(a, b, c, d):  # pragma: no cover - compiled
+        return dtype(np.float64(a) * np.float64(b) - np.float64(c) * np.float64(d))
+
+    @numba.njit(inline="always")
+    def plain_difference(a, b, c, d):  # pragma: no cover - compiled
+        return difference(a, b, c, d), True
+
+    return difference, plain_difference
+
+
+def _jit_differences(numba: Any, two_prod: Any) -> tuple[Any, Any]:
+    """:func:`product_difference_scalar` for Numba's scalar loops, and its plain difference
+    with the certification test (no branch, for the loops that vectorise)."""
     core = _jit_product_difference(numba, two_prod)
 
-    if precision == "float32":
+    @numba.njit(inline="always")
+    def plain_difference(a, b, c, d):  # pragma: no cover - compiled
+        """``(a b - c d, certified)``: the plain difference, and whether it is within 3 units
+        (see product_difference); no branch, so that a loop of it vectorises."""
+        a, b, c, d = np.float64(a), np.float64(b), np.float64(c), np.float64(d)
+        p = a * b
+        r = p - c * d
+        return r, r != 0 and _LO <= p / r <= _HI
 
-        @numba.njit(inline="always")
-        def difference(a, b, c, d):  # pragma: no cover - compiled
-            return dtype(np.float64(a) * np.float64(b) - np.float64(c) * np.float64(d))
+    @numba.njit(inline="always")
+    def difference(a, b, c, d):  # pragma: no cover - compiled
+        r, certified = plain_difference(a, b, c, d)
+        if not certified:  # the products may cancel: double-double (see product_difference)
+            e = core(np.float64(a), np.float64(b), np.float64(c), np.float64(d))
+            if e == e:  # else the splitting overflowed: the plain form
+                r = e
+        return r
 
-        @numba.njit(inline="always")
-        def plain_difference(a, b, c, d):  # pragma: no cover - compiled
-            return difference(a, b, c, d), True
-
-    else:
-
-        @numba.njit(inline="always")
-        def plain_difference(a, b, c, d):  # pragma: no cover - compiled
-            """``(a b - c d, certified)``: the plain difference, and whether it is within 3 units
-            (see product_difference); no branch, so that a loop of it vectorises."""
-            a, b, c, d = np.float64(a), np.float64(b), np.float64(c), np.float64(d)
-            p = a * b
-            r = p - c * d
-            return r, r != 0 and _LO <= p / r <= _HI
-
-        @numba.njit(inline="always")
-        def difference(a, b, c, d):  # pragma: no cover - compiled
-            r, certified = plain_difference(a, b, c, d)
-            if not certified:  # the products may cancel: double-double (see product_difference)
-                e = core(np.float64(a), np.float64(b), np.float64(c), np.float64(d))
-                if e == e:  # else the splitting overflowed: the plain form
-                    r = e
-            return r
-
-    return {"_symkin_exact_ratio": ratio, "_symkin_reduced_phase": phase, "_symkin_product_difference": difference,
-            "_symkin_plain_difference": plain_difference, **_numba_dd_helpers(numba)}
+    return difference, plain_difference
 
 
 def _numba_dd_helpers(numba: Any) -> dict[str, Any]:
@@ -561,53 +586,46 @@ def dd_source(name: str, coeff: Any, params: Any) -> str:
     calls of :data:`DD_HELPERS`: one source serves NumPy arrays, Python floats and Numba."""
     import sympy as sp
 
-    lines: list[str] = []
-    names = {p: f"p{k}" for k, p in enumerate(params)}
-    count = [0]
+    writer = _DoubleDouble({p: f"p{k}" for k, p in enumerate(params)})
+    ch, cl = writer.emit(sp.sympify(coeff))
+    head = [f"def {name}({', '.join(writer.names.values())}):"]
+    head += [f"    {v} = _f64({v})" for v in writer.names.values()]
+    return "\n".join(head + writer.lines + [f"    return {ch}, {cl}"]) + "\n"
 
-    def fresh() -> tuple[str, str]:
-        count[0] += 1
-        return f"h{count[0]}", f"l{count[0]}"
 
-    def const(r: Any) -> tuple[str, str]:
-        with mpmath.workdps(60):
-            v = mpmath.mpf(int(r.p)) / int(r.q)
-            hi = float(v)
-            lo = float(v - hi)
-        return repr(hi), repr(lo)
+class _DoubleDouble:
+    """The statements of :func:`dd_source`: each operation into a fresh pair ``(hK, lK)``."""
 
-    def emit(e: Any) -> tuple[str, str]:
-        if e in names:
-            return names[e], "0.0"
+    def __init__(self, names: dict[Any, str]):
+        self.names = names
+        self.lines: list[str] = []
+
+    def call(self, op: str, a: tuple[str, str], b: tuple[str, str]) -> tuple[str, str]:
+        """``op(a, b)`` into a fresh pair."""
+        k = len(self.lines) + 1
+        self.lines.append(f"    h{k}, l{k} = {op}({a[0]}, {a[1]}, {b[0]}, {b[1]})")
+        return f"h{k}", f"l{k}"
+
+    def emit(self, e: Any) -> tuple[str, str]:
+        """The pair holding ``e`` (a parameter, a rational, a sum, a product or an integer power)."""
+        if e in self.names:
+            return self.names[e], "0.0"
         if e.is_Rational:
-            return const(e)
+            with mpmath.workdps(60):
+                v = mpmath.mpf(int(e.p)) / int(e.q)
+                return repr(float(v)), repr(float(v - float(v)))
         if e.is_Add or e.is_Mul:
             op = "_dd_add" if e.is_Add else "_dd_mul"
-            acc = emit(e.args[0])
+            acc = self.emit(e.args[0])
             for a in e.args[1:]:
-                b = emit(a)
-                hi, lo = fresh()
-                lines.append(f"    {hi}, {lo} = {op}({acc[0]}, {acc[1]}, {b[0]}, {b[1]})")
-                acc = (hi, lo)
+                acc = self.call(op, acc, self.emit(a))
             return acc
         if e.is_Pow and e.exp.is_Integer and e.exp != 0:
-            base = emit(e.base)
-            acc = base
+            base = acc = self.emit(e.base)
             for _ in range(abs(int(e.exp)) - 1):
-                hi, lo = fresh()
-                lines.append(f"    {hi}, {lo} = _dd_mul({acc[0]}, {acc[1]}, {base[0]}, {base[1]})")
-                acc = (hi, lo)
-            if e.exp < 0:
-                hi, lo = fresh()
-                lines.append(f"    {hi}, {lo} = _dd_div(1.0, 0.0, {acc[0]}, {acc[1]})")
-                acc = (hi, lo)
-            return acc
+                acc = self.call("_dd_mul", acc, base)
+            return self.call("_dd_div", ("1.0", "0.0"), acc) if e.exp < 0 else acc
         raise ValueError(f"not a rational function of the inputs: {e}")
-
-    ch, cl = emit(sp.sympify(coeff))
-    head = [f"def {name}({', '.join(names.values())}):"]
-    head += [f"    {v} = _f64({v})" for v in names.values()]
-    return "\n".join(head + lines + [f"    return {ch}, {cl}"]) + "\n"
 
 
 def _same(v: Any) -> Any:

@@ -292,16 +292,7 @@ def relative_form(expr: sp.Expr) -> sp.Expr:
     if not _rational_function(expr):  # sin, sqrt, ... : not a law this rule is for (and degree() may expand them)
         return expr
     num, den = sp.fraction(sp.together(expr))
-    syms = sorted(expr.free_symbols, key=lambda s: s.name)
-    linear = []
-    for s in syms:
-        if s.is_integer or s in den.free_symbols:
-            continue
-        try:
-            if sp.degree(num, s) == 1:
-                linear.append(s)
-        except (sp.PolynomialError, sp.GeneratorsNeeded):
-            continue
+    linear = _linear_symbols(expr, num, den)
     if len(linear) < 2:
         return expr
     try:
@@ -320,6 +311,21 @@ def relative_form(expr: sp.Expr) -> sp.Expr:
     ref = max(reversed(linear), key=lambda s: sp.count_ops(coeffs[s]))
     rest = [sp.factor(coeffs[s]) * (s - ref) for s in linear if s != ref and coeffs[s] != 0]
     return total * ref + sp.Add(*rest)
+
+
+def _linear_symbols(expr: sp.Expr, num: sp.Expr, den: sp.Expr) -> list[sp.Symbol]:
+    """The real symbols of ``expr`` (sorted by name) of degree 1 in the numerator ``num`` and
+    absent from the denominator ``den``."""
+    linear = []
+    for s in sorted(expr.free_symbols, key=lambda s: s.name):
+        if s.is_integer or s in den.free_symbols:
+            continue
+        try:
+            if sp.degree(num, s) == 1:
+                linear.append(s)
+        except (sp.PolynomialError, sp.GeneratorsNeeded):
+            continue
+    return linear
 
 
 def _rational_function(expr: sp.Expr) -> bool:
@@ -359,38 +365,54 @@ def exact_integer_parts(expr: sp.Expr) -> sp.Expr:
     if expr.is_Atom or isinstance(expr, (ExactRatio, ReducedPhase)):
         return expr
     if _integer_rational(expr):
-        if not expr.has(sp.Add):
-            return expr
-        num, den = sp.fraction(sp.cancel(sp.together(expr)))
-        gens = sorted(expr.free_symbols, key=lambda s: s.name)
-        _, pnum = sp.Poly(num, *gens).clear_denoms()
-        cden, pden = sp.Poly(den, *gens).clear_denoms()
-        cnum = sp.Poly(num, *gens).clear_denoms()[0]
-        num_e, den_e = pnum.as_expr() * cden, pden.as_expr() * cnum
-        if (den_e.is_Number and den_e < 0) or den_e.could_extract_minus_sign():
-            num_e, den_e = -num_e, -den_e
-        return ExactRatio(sp.expand(num_e), sp.expand(den_e))
-    if expr.is_Add:
-        groups: dict[sp.Expr, list[sp.Expr]] = {}
-        for term in expr.args:
-            ints: list[sp.Expr] = []
-            rest: list[sp.Expr] = []
-            for f in sp.Mul.make_args(term):
-                (ints if (f.is_Rational or _integer_rational(f)) else rest).append(f)
-            groups.setdefault(sp.Mul(*rest), []).append(sp.Mul(*ints))
-        if len(groups) < len(expr.args) and any(len(v) > 1 and any(i.free_symbols for i in v) for v in groups.values()):
-            return sp.Add(
-                *(exact_integer_parts(sp.Add(*ints)) * exact_integer_parts(rest) for rest, ints in groups.items())
-            )
-    if expr.is_Mul:
-        ints = [f for f in expr.args if f.is_Rational or _integer_rational(f)]
-        if len(ints) > 1 and any(f.has(sp.Add) for f in ints):
-            rest = [exact_integer_parts(f) for f in expr.args if f not in ints]
-            return exact_integer_parts(sp.Mul(*ints)) * sp.Mul(*rest)
+        return _one_ratio(expr) if expr.has(sp.Add) else expr
+    regrouped = _grouped_sum(expr) if expr.is_Add else _integer_product(expr) if expr.is_Mul else None
+    if regrouped is not None:
+        return regrouped
     args = [exact_integer_parts(a) for a in expr.args]
     if all(new is old for new, old in zip(args, expr.args)):
         return expr  # unchanged: do not rebuild (rebuilding re-evaluates, e.g. inside Group)
     return expr.func(*args)
+
+
+def _one_ratio(expr: sp.Expr) -> sp.Expr:
+    """A rational function of integer symbols as ``ExactRatio(N, D)``, ``N`` and ``D`` integer
+    polynomials (D without a leading minus sign)."""
+    num, den = sp.fraction(sp.cancel(sp.together(expr)))
+    gens = sorted(expr.free_symbols, key=lambda s: s.name)
+    _, pnum = sp.Poly(num, *gens).clear_denoms()
+    cden, pden = sp.Poly(den, *gens).clear_denoms()
+    cnum = sp.Poly(num, *gens).clear_denoms()[0]
+    num_e, den_e = pnum.as_expr() * cden, pden.as_expr() * cnum
+    if (den_e.is_Number and den_e < 0) or den_e.could_extract_minus_sign():
+        num_e, den_e = -num_e, -den_e
+    return ExactRatio(sp.expand(num_e), sp.expand(den_e))
+
+
+def _grouped_sum(expr: sp.Add) -> sp.Expr | None:
+    """A sum whose terms share non-integer factors, as a sum over those factors of exact
+    integer parts (``w - w z2/z1`` as ``w ExactRatio(z1 - z2, z1)``); None where no two terms
+    share one with integer parts of symbols."""
+    groups: dict[sp.Expr, list[sp.Expr]] = {}
+    for term in expr.args:
+        ints: list[sp.Expr] = []
+        rest: list[sp.Expr] = []
+        for f in sp.Mul.make_args(term):
+            (ints if (f.is_Rational or _integer_rational(f)) else rest).append(f)
+        groups.setdefault(sp.Mul(*rest), []).append(sp.Mul(*ints))
+    if len(groups) < len(expr.args) and any(len(v) > 1 and any(i.free_symbols for i in v) for v in groups.values()):
+        return sp.Add(*(exact_integer_parts(sp.Add(*ints)) * exact_integer_parts(rest) for rest, ints in groups.items()))
+    return None
+
+
+def _integer_product(expr: sp.Mul) -> sp.Expr | None:
+    """A product with several integer factors, one of them a sum, as one exact integer part
+    times the rest; None otherwise."""
+    ints = [f for f in expr.args if f.is_Rational or _integer_rational(f)]
+    if len(ints) > 1 and any(f.has(sp.Add) for f in ints):
+        rest = [exact_integer_parts(f) for f in expr.args if f not in ints]
+        return exact_integer_parts(sp.Mul(*ints)) * sp.Mul(*rest)
+    return None
 
 
 # --------------------------------------------------------------------------- rule 3
@@ -448,16 +470,9 @@ def cosine_sums(expr: sp.Expr, ranges: Mapping[sp.Symbol, tuple[Any, Any]] | Non
             if k == 0 or rest.has(c) or k.has(c) or rest == 0:
                 continue
             x = c.args[0]
-            # c0 (1 + e^2 -+ 2 e cos x) for a symbol e
-            for e in sorted(k.free_symbols, key=lambda s: s.name):
-                for sgn in (-1, 1):
-                    c0 = sp.cancel(sgn * k / (2 * e))
-                    if c0.has(e) or sp.expand(rest - c0 * (1 + e**2)) != 0:
-                        continue
-                    if _sign(e, ranges) != 1:
-                        continue
-                    tail = 4 * e * (sin(x / 2) ** 2 if sgn == -1 else cos(x / 2) ** 2)
-                    return c0 * ((1 - e) ** 2 + tail)
+            squares = _squares_form(k, rest, x, ranges)
+            if squares is not None:
+                return squares
             sr, sk = _sign(rest, ranges), _sign(k, ranges)
             if sr is None or sk is None:
                 continue
@@ -467,6 +482,19 @@ def cosine_sums(expr: sp.Expr, ranges: Mapping[sp.Symbol, tuple[Any, Any]] | Non
         return node
 
     return expr.replace(lambda n: n.is_Add and n.has(cos), rewrite)
+
+
+def _squares_form(k: sp.Expr, rest: sp.Expr, x: sp.Expr, ranges: Mapping[sp.Symbol, tuple[Any, Any]] | None) -> sp.Expr | None:
+    """``rest + k cos x`` as ``c0 ((1 - e)^2 + 4 e sin^2(x/2))`` (or ``cos^2``) where it is
+    ``c0 (1 + e^2 -+ 2 e cos x)`` for a positive symbol e; else None."""
+    for e in sorted(k.free_symbols, key=lambda s: s.name):
+        for sgn in (-1, 1):
+            c0 = sp.cancel(sgn * k / (2 * e))
+            if c0.has(e) or sp.expand(rest - c0 * (1 + e**2)) != 0 or _sign(e, ranges) != 1:
+                continue
+            tail = 4 * e * (sin(x / 2) ** 2 if sgn == -1 else cos(x / 2) ** 2)
+            return c0 * ((1 - e) ** 2 + tail)
+    return None
 
 
 # --------------------------------------------------------------------------- rule 5
@@ -554,45 +582,54 @@ def difference_of_products(expr: sp.Expr, ranges: Mapping[sp.Symbol, tuple[Any, 
     r1*r3 + r2*r4
     """
 
-    def same_sign(t1: sp.Expr, t2: sp.Expr) -> bool:
-        s1 = _sign(t1, ranges)
-        return s1 is not None and s1 == _sign(t2, ranges)
+    return expr.replace(lambda n: n.is_Add and len(n.args) == 2, lambda n: _difference_form(n, ranges))
 
-    def exact_sum(t1: sp.Expr, t2: sp.Expr) -> bool:
-        """One float operation gives the sum correctly rounded (``a - b``, ``2 a - 1``)."""
-        parts = [_product_parts(t) for t in (t1, t2)]
-        return all((p is not None and p[1] == 1) or (p is not None and p[0].is_Number and _power_of_two(p[0])) for p in parts)
 
-    def direct(t1: sp.Expr, t2: sp.Expr) -> sp.Expr | None:
-        if t1.could_extract_minus_sign() and not t2.could_extract_minus_sign():
-            t1, t2 = t2, t1  # the positive term first: ProductDifference(a, b, c, d) reads a b - c d
-        p1, p2 = _product_parts(t1), _product_parts(t2)
-        if p1 is None or p2 is None or exact_sum(t1, t2) or same_sign(t1, t2):
-            return None
-        (a, b), (c, d) = p1, p2
-        return ProductDifference(a, b, -c, d)  # t1 + t2 = a b - (-c) d
+def _same_sign(t1: sp.Expr, t2: sp.Expr, ranges: Mapping[sp.Symbol, tuple[Any, Any]] | None) -> bool:
+    s1 = _sign(t1, ranges)
+    return s1 is not None and s1 == _sign(t2, ranges)
 
-    def rewrite(node: sp.Expr) -> sp.Expr:
-        if not node.is_Add or len(node.args) != 2 or not node.free_symbols:
-            return node
-        if all(s.is_integer for s in node.free_symbols):
-            return node
-        t1, t2 = node.args
-        new = direct(t1, t2)
-        if new is not None or exact_sum(t1, t2):
-            return node if new is None else new
-        if not (_monomial(t1) and _monomial(t2)) or same_sign(t1, t2):
-            return node
-        num, den = sp.fraction(sp.together(node))
-        num = sp.expand(num)
-        if not num.is_Add or len(num.args) != 2 or not _monomial(den):
-            return node
-        if exact_sum(*num.args):  # 1 - x/y as (y - x)/y: one correctly rounded difference
-            return num / den
-        new = direct(*num.args)
-        return node if new is None else new / den
 
-    return expr.replace(lambda n: n.is_Add and len(n.args) == 2, rewrite)
+def _exact_sum(t1: sp.Expr, t2: sp.Expr) -> bool:
+    """One float operation gives the sum correctly rounded (``a - b``, ``2 a - 1``)."""
+    parts = [_product_parts(t) for t in (t1, t2)]
+    return all((p is not None and p[1] == 1) or (p is not None and p[0].is_Number and _power_of_two(p[0])) for p in parts)
+
+
+def _direct_difference(t1: sp.Expr, t2: sp.Expr, ranges: Mapping[sp.Symbol, tuple[Any, Any]] | None) -> sp.Expr | None:
+    """``t1 + t2`` as a :class:`ProductDifference` where both are products of one error-free
+    product each and they can cancel; else None."""
+    if t1.could_extract_minus_sign() and not t2.could_extract_minus_sign():
+        t1, t2 = t2, t1  # the positive term first: ProductDifference(a, b, c, d) reads a b - c d
+    p1, p2 = _product_parts(t1), _product_parts(t2)
+    if p1 is None or p2 is None or _exact_sum(t1, t2) or _same_sign(t1, t2, ranges):
+        return None
+    (a, b), (c, d) = p1, p2
+    return ProductDifference(a, b, -c, d)  # t1 + t2 = a b - (-c) d
+
+
+def _difference_form(node: sp.Expr, ranges: Mapping[sp.Symbol, tuple[Any, Any]] | None) -> sp.Expr:
+    """A two-term sum that can cancel as a :class:`ProductDifference`, directly or once brought
+    to one fraction; other nodes as they are."""
+    if not node.is_Add or len(node.args) != 2 or not node.free_symbols:
+        return node
+    if all(s.is_integer for s in node.free_symbols):
+        return node
+    t1, t2 = node.args
+    new = _direct_difference(t1, t2, ranges)
+    if new is not None or _exact_sum(t1, t2):
+        return node if new is None else new
+    if not (_monomial(t1) and _monomial(t2)) or _same_sign(t1, t2, ranges):
+        return node
+    num, den = sp.fraction(sp.together(node))
+    num = sp.expand(num)
+    if not num.is_Add or len(num.args) != 2 or not _monomial(den):
+        return node
+    if _exact_sum(*num.args):  # 1 - x/y as (y - x)/y: one correctly rounded difference
+        return num / den
+    t1, t2 = num.args
+    new = _direct_difference(t1, t2, ranges)
+    return node if new is None else new / den
 
 
 # --------------------------------------------------------------------------- rule 7
