@@ -4,8 +4,8 @@
   working pitch radii, leads, involute), and helical gears for the model;
 - :mod:`.train`: :class:`HelicalTrain`, a two-row train whose planet rims mesh helically,
   and its ratio law from the engine;
-- :mod:`.synthesis`: tooth numbers and helix angles for a target ratio with the planet's
-  axial forces cancelled (derived conditions, existence regions, the search).
+- :mod:`.balanced`: tooth numbers and helix angles for a target ratio with the planet's
+  axial forces balanced (derived conditions, existence regions, the search).
 
 The forces themselves (torque balance, axial forces, balancing hands) are statics:
 :mod:`symkin.statics`.
@@ -58,6 +58,6 @@ __all__ = [
 
 
 def __getattr__(name: str) -> Any:  # the synthesis loads on first use
-    if name == "synthesis":
-        return importlib.import_module(f"{__name__}.synthesis")
+    if name == "balanced":
+        return importlib.import_module(f"{__name__}.balanced")
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

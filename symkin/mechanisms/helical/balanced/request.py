@@ -1,6 +1,6 @@
 """What a designer asks of the synthesis, and what it answers: request, design and result types.
 
-    >>> SynthesisRequest(scheme="AI", ratio=25, tolerance=0.02).ratio_window
+    >>> HelicalRequest(scheme="AI", ratio=25, tolerance=0.02).ratio_window
     (Fraction(49, 2), Fraction(51, 2))
 """
 
@@ -14,14 +14,14 @@ from typing import Any
 from symkin._util.jsonout import exact_json, exact_json_list
 from symkin.errors import InputError
 from symkin.mechanisms.helical import HelicalTrain, hand_name
-from symkin.mechanisms.helical.synthesis.conditions import _scheme
+from symkin.mechanisms.helical.balanced.conditions import _scheme
 from symkin.values import as_fraction, as_integer
 
-__all__ = ["SynthesisRequest", "HelicalDesign", "SynthesisResult"]
+__all__ = ["HelicalRequest", "HelicalDesign", "HelicalResult"]
 
 
 @dataclass(frozen=True)
-class SynthesisRequest:
+class HelicalRequest:
     """What a designer asks for; every field is checked on construction.
 
     Parameters
@@ -217,13 +217,13 @@ class HelicalDesign:
 
 
 @dataclass(frozen=True)
-class SynthesisResult:
+class HelicalResult:
     """The designs found, best first, and how many tooth sets passed each condition.
 
     ``reason`` says why nothing was found (empty when designs were found).
     """
 
-    request: SynthesisRequest
+    request: HelicalRequest
     designs: tuple[HelicalDesign, ...]
     found: int
     stages: tuple[tuple[str, int], ...]

@@ -19,7 +19,7 @@ import sympy as sp
 
 from symkin import symbols as S
 from symkin.errors import InputError, UnsupportedError
-from symkin.mechanisms.helical.synthesis.conditions import (
+from symkin.mechanisms.helical.balanced.conditions import (
     _S,
     DELTA,
     SIN_PI_K,

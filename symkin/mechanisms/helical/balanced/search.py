@@ -19,7 +19,7 @@ import sympy as sp
 
 from symkin.errors import InputError
 from symkin.mechanisms.helical import SCHEME_MESHES, HelicalTrain
-from symkin.mechanisms.helical.synthesis.conditions import (
+from symkin.mechanisms.helical.balanced.conditions import (
     M12,
     M34,
     MU,
@@ -34,15 +34,15 @@ from symkin.mechanisms.helical.synthesis.conditions import (
     ratio_function,
     ratio_law,
 )
-from symkin.mechanisms.helical.synthesis.regions import _as_float, existence_range
-from symkin.mechanisms.helical.synthesis.request import (
+from symkin.mechanisms.helical.balanced.regions import _as_float, existence_range
+from symkin.mechanisms.helical.balanced.request import (
     HelicalDesign,
-    SynthesisRequest,
-    SynthesisResult,
+    HelicalRequest,
+    HelicalResult,
 )
 from symkin.numeric import compile
 
-__all__ = ["synthesise"]
+__all__ = ["synthesize_helical"]
 
 
 @dataclass(frozen=True)
@@ -109,8 +109,8 @@ def _nearest_region(scheme: str, ratio: Fraction) -> str:
     )
 
 
-def synthesise(request: SynthesisRequest | None = None, *, progress: Callable[[int, int], None] | None = None,
-               **kwargs: Any) -> SynthesisResult:
+def synthesize_helical(request: HelicalRequest | None = None, *, progress: Callable[[int, int], None] | None = None,
+               **kwargs: Any) -> HelicalResult:
     """Integer tooth sets and balancing helix angles for a target ratio.
 
     For every tooth set with Z in [teeth_min, teeth_max]: the ratio must lie within the
@@ -128,7 +128,7 @@ def synthesise(request: SynthesisRequest | None = None, *, progress: Callable[[i
 
     Parameters
     ----------
-    request : SynthesisRequest, optional
+    request : HelicalRequest, optional
         Or give its fields as keyword arguments.
     progress : callable(done, total), optional
         Called after each value of Z2.
@@ -140,15 +140,15 @@ def synthesise(request: SynthesisRequest | None = None, *, progress: Callable[[i
 
     Examples
     --------
-    >>> res = synthesise(scheme="AI", ratio=12, tolerance=0.01, satellites=3, normal_modules=(2, 2.5),
+    >>> res = synthesize_helical(scheme="AI", ratio=12, tolerance=0.01, satellites=3, normal_modules=(2, 2.5),
     ...                  teeth_min=17, teeth_max=80, top=3)
     >>> res.found, res.designs[0].teeth, [round(b, 3) for b in res.designs[0].betas_deg]
     (14, (17, 51, 21, 77), [15.905, 8.109])
     """
     if request is None:
-        request = SynthesisRequest(**kwargs)
+        request = HelicalRequest(**kwargs)
     elif kwargs:
-        raise InputError("give either a SynthesisRequest or its fields, not both")
+        raise InputError("give either a HelicalRequest or its fields, not both")
     start = time.perf_counter()
     req = request
     scheme = req.scheme
@@ -213,10 +213,10 @@ def synthesise(request: SynthesisRequest | None = None, *, progress: Callable[[i
         ("and neighbouring planets clear", counts["neighbour"]),
     )
     reason = "" if records else _empty_reason(req, counts)
-    return SynthesisResult(req, designs, len(records), stages, reason, time.perf_counter() - start)
+    return HelicalResult(req, designs, len(records), stages, reason, time.perf_counter() - start)
 
 
-def _check_candidate(req: SynthesisRequest, c: _Compiled, teeth: tuple[int, int, int, int], counts: dict[str, int],
+def _check_candidate(req: HelicalRequest, c: _Compiled, teeth: tuple[int, int, int, int], counts: dict[str, int],
                      u_min: float, u_max: float, alpha_n: float) -> tuple | None:
     z1, z2, z3, z4 = teeth
     ratio = c.ratio(z1, z2, z3, z4)
@@ -255,14 +255,14 @@ def _check_candidate(req: SynthesisRequest, c: _Compiled, teeth: tuple[int, int,
     return (error, train.envelope_diameter, teeth, b12, b34, pq, ratio, free)
 
 
-def _design(req: SynthesisRequest, rec: tuple, alpha_n: float) -> HelicalDesign:
+def _design(req: HelicalRequest, rec: tuple, alpha_n: float) -> HelicalDesign:
     error, _, teeth, b12, b34, pq, ratio, free = rec
     train = HelicalTrain(req.scheme, teeth, req.normal_modules, (b12, b34), satellites=req.satellites,
                          alpha_n=alpha_n, addendum=float(req.addendum))
     return HelicalDesign(train, ratio, error, pq, free)
 
 
-def _empty_reason(req: SynthesisRequest, counts: Mapping[str, int]) -> str:
+def _empty_reason(req: HelicalRequest, counts: Mapping[str, int]) -> str:
     lo, hi = req.ratio_window
     if counts["ratio window"] == 0:
         return (
