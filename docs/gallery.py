@@ -90,12 +90,12 @@ def _animation(path: Path) -> Path:
 
 def _split(path: Path) -> Path:
     from symkin.mechanisms.multistage.lostmotion import StageErrorModel
-    from symkin.mechanisms.multistage.split import best_designs, optimise_split
+    from symkin.mechanisms.multistage.split import best_designs, optimize_split
     from symkin.mechanisms.multistage.stages import enumerate_stages
     from symkin.viz.split import split_figure
 
     model = StageErrorModel.linear(0.854, 0.858)
-    best = optimise_split(6000, 4, lower=2.25, upper=11, model=model)
+    best = optimize_split(6000, 4, lower=2.25, upper=11, model=model)
     designs = best_designs(6000, enumerate_stages(180, 3, zmin=18, zmax=180), 4, model=model, tolerance=0.05, top=10)
     return _save(split_figure(best, designs), path)
 

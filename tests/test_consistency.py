@@ -84,16 +84,16 @@ def test_floats_given_to_every_gate_are_their_decimals():
 # ---- the "why" of the active bounds is said only when it is true
 def test_why_sentence_matches_the_active_set():
     from symkin.mechanisms.multistage.lostmotion import StageErrorModel
-    from symkin.mechanisms.multistage.split import optimise_split
+    from symkin.mechanisms.multistage.split import optimize_split
 
-    both_free = optimise_split(100, 2, lower=2, upper=20, model=StageErrorModel(parse("sin(u) + 2", symbols={"u": U})))
+    both_free = optimize_split(100, 2, lower=2, upper=20, model=StageErrorModel(parse("sin(u) + 2", symbols={"u": U})))
     assert both_free.active == ("free", "free")
     g = both_free.log_gradient
     assert abs(g[0] - g[1]) <= 1e-6 * max(map(abs, g))  # equal gradients: no direction is preferred
     text = "\n".join(both_free.explain())
     assert "g_j - g_(j+1) > 0" not in text and "free stages share one gradient value" in text
 
-    khai = optimise_split(6000, 4, lower=Fraction("2.25"), upper=11, model=StageErrorModel.linear(Fraction("0.854"), Fraction("0.858")))
+    khai = optimize_split(6000, 4, lower=Fraction("2.25"), upper=11, model=StageErrorModel.linear(Fraction("0.854"), Fraction("0.858")))
     assert khai.active == ("free", "upper", "upper", "upper")
     assert all(a - b > 0 for a, b in zip(khai.log_gradient, khai.log_gradient[1:]))
     assert any(line.startswith("why: g_j - g_(j+1) > 0") for line in khai.explain())

@@ -28,11 +28,11 @@ from symkin.mechanisms.multistage.split.problem import (
 )
 from symkin.values import as_rational
 
-__all__ = ["Design", "DiscreteSplit", "best_designs"]
+__all__ = ["SplitDesign", "DiscreteSplit", "best_designs"]
 
 
 @dataclass(frozen=True)
-class Design:
+class SplitDesign:
     """One discrete design: a feasible stage per position, input stage first.
 
     Attributes
@@ -77,7 +77,7 @@ class DiscreteSplit:
     problem : SplitProblem
     tolerance : sympy.Rational
         The relative tolerance on the total ratio.
-    designs : tuple of Design
+    designs : tuple of SplitDesign
         Ranked by objective (within tolerance) or by ``|deviation|`` then objective (nearest).
     meets_tolerance : bool
     nodes : int
@@ -88,7 +88,7 @@ class DiscreteSplit:
 
     problem: SplitProblem
     tolerance: sp.Rational
-    designs: tuple[Design, ...]
+    designs: tuple[SplitDesign, ...]
     meets_tolerance: bool
     nodes: int
     distinct: bool
@@ -462,7 +462,7 @@ def best_designs(total: Any, stage_set: Any, stages: int, *, model: Any, toleran
     for _, idx in found:
         chosen = tuple(search.stages[k] for k in idx)
         total_exact = sp.Mul(*[s.ratio for s in chosen])
-        designs.append(Design(chosen, total_exact, (total_exact - problem.total) / problem.total,
+        designs.append(SplitDesign(chosen, total_exact, (total_exact - problem.total) / problem.total,
                               problem.exact_value([s.ratio for s in chosen])))
     if meets:
         designs.sort(key=lambda d: float(d.objective))
