@@ -15,7 +15,7 @@ from symkin.synthesis.efficiency import DEFAULT_RANK, rank_order
 from symkin.synthesis.problem import Options, derive
 from symkin.synthesis.result import Design, SynthesisResult, empty_reason, funnel_of
 from symkin.synthesis.runner import Execution, run
-from symkin.synthesis.search import Plan, Target
+from symkin.synthesis.search import SearchPlan, Target
 from symkin.values import as_integer, as_rational
 
 __all__ = ["synthesize", "MAX_TOP"]
@@ -173,18 +173,18 @@ def synthesize(
                            plan.efficiency.meshes if plan.efficiency is not None else ())
 
 
-_PLANS: dict[Any, Plan] = {}
+_PLANS: dict[Any, SearchPlan] = {}
 
 
 def _plan(problem: Any, target: Target, top: int | None, chunk: int, rank: tuple[str, ...] = DEFAULT_RANK,
-          mesh_efficiency: Any = "default") -> Plan:
+          mesh_efficiency: Any = "default") -> SearchPlan:
     """Plans are compiled once per problem, target, chunking and ranking (a command run again reuses them)."""
     key = (problem, target, top, chunk, rank, repr(mesh_efficiency))
     try:
         return _PLANS[key]
     except (KeyError, TypeError):
         pass
-    plan = Plan.build(problem, target, top=top, chunk=chunk, rank=rank, mesh_efficiency=mesh_efficiency)
+    plan = SearchPlan.build(problem, target, top=top, chunk=chunk, rank=rank, mesh_efficiency=mesh_efficiency)
     try:
         if len(_PLANS) > 8:
             _PLANS.pop(next(iter(_PLANS)))

@@ -25,7 +25,7 @@ from symkin.errors import CoaxialityWarning, ModelError, SymkinError
 from symkin.model import Gear, LinkKind, Mechanism
 from symkin.synthesis.efficiency import DEFAULT_RANK
 from symkin.synthesis.problem import Condition, Problem
-from symkin.synthesis.search import STAGES, ChunkResult, Plan, Record, Target
+from symkin.synthesis.search import STAGES, ChunkResult, Record, SearchPlan, Target
 
 __all__ = ["Design", "DesignCheck", "SynthesisResult"]
 
@@ -124,7 +124,7 @@ class Design:
     mesh_efficiency: tuple[tuple[str, sp.Expr], ...] = ()
 
     @classmethod
-    def from_record(cls, plan: Plan, record: Record) -> Design:
+    def from_record(cls, plan: SearchPlan, record: Record) -> Design:
         """A design from a search record: every gear's tooth number, the exact ratio and its error, the size, the planets' arms and the profile shifts."""
         problem = plan.problem
         values = dict(zip(problem.unknowns, record.teeth))
@@ -494,7 +494,7 @@ class SynthesisResult:
         }
 
 
-def funnel_of(plan: Plan, merged: ChunkResult) -> tuple[tuple[str, int], ...]:
+def funnel_of(plan: SearchPlan, merged: ChunkResult) -> tuple[tuple[str, int], ...]:
     """The stages that apply to this plan, with the tuples passing each."""
     o = plan.problem.options
     k = sorted(set(plan.k.values())) or [1]
@@ -518,7 +518,7 @@ def funnel_of(plan: Plan, merged: ChunkResult) -> tuple[tuple[str, int], ...]:
     return tuple((names[s], n) for s, n in zip(STAGES, merged.counts) if applies[s])
 
 
-def empty_reason(plan: Plan, merged: ChunkResult) -> str:
+def empty_reason(plan: SearchPlan, merged: ChunkResult) -> str:
     """Which condition removed the last candidates, and how to relax it."""
     o = plan.problem.options
     t = plan.target

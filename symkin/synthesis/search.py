@@ -1,6 +1,6 @@
 """The search: the derived conditions turned into a pruned, chunked enumeration of tooth numbers.
 
-A :class:`Plan` is built once from a :class:`~symkin.synthesis.problem.Problem` and a
+A :class:`SearchPlan` is built once from a :class:`~symkin.synthesis.problem.Problem` and a
 :class:`Target`:
 
 1. the coaxiality equations are solved for some tooth numbers (the *dependents*: an
@@ -25,7 +25,7 @@ chunks, run anywhere, merges to the same result.
 
     >>> from symkin.trains import load_train
     >>> from symkin.synthesis.problem import derive
-    >>> plan = Plan.build(derive(load_train("simple"), driver="S", driven="C", fixed="R", planets=3, zmax=80),
+    >>> plan = SearchPlan.build(derive(load_train("simple"), driver="S", driven="C", fixed="R", planets=3, zmax=80),
     ...                   Target.of(4, 0.01), top=3)
     >>> plan.last, plan.outer, plan.dependents
     ('z_p', ('z_s',), ('z_r',))
@@ -54,7 +54,7 @@ from symkin.synthesis.integers import solvable
 from symkin.synthesis.problem import Problem
 from symkin.values import as_fraction
 
-__all__ = ["Target", "Plan", "Record", "ChunkResult", "evaluate_chunk", "merge", "STAGES"]
+__all__ = ["Target", "SearchPlan", "Record", "ChunkResult", "evaluate_chunk", "merge", "STAGES"]
 
 #: Integers below this are exact in binary64 (with a bit to spare).
 _EXACT = 2.0**52
@@ -181,7 +181,7 @@ class _Geometry:
 
 
 @dataclass
-class Plan:
+class SearchPlan:
     """A search, compiled (see the module docstring); picklable, so Dask workers rebuild it once."""
 
     problem: Problem
@@ -220,7 +220,7 @@ class Plan:
     # ------------------------------------------------------------------ build
     @classmethod
     def build(cls, problem: Problem, target: Target, *, top: int | None = 10, chunk: int = 1 << 15,
-              rank: str | Sequence[str] | None = None, mesh_efficiency: Any = "default") -> Plan:
+              rank: str | Sequence[str] | None = None, mesh_efficiency: Any = "default") -> SearchPlan:
         """Solve the coaxiality for the dependents, choose ``x``, compile (see the module docstring).
 
         ``rank`` orders the designs (:func:`symkin.synthesis.efficiency.rank_order`); ranking by
@@ -462,7 +462,7 @@ def _check_exact(expr: sp.Expr, bounds: dict[str, int], zmax: int) -> None:
 
 
 # --------------------------------------------------------------------------- a chunk
-def evaluate_chunk(plan: Plan, start: int, stop: int) -> ChunkResult:
+def evaluate_chunk(plan: SearchPlan, start: int, stop: int) -> ChunkResult:
     """Every tuple of outer numbers ``start`` to ``stop - 1``: the counts of the funnel and the best designs.
 
     A pure function of its arguments: Dask runs it on any worker.
@@ -496,12 +496,12 @@ def evaluate_chunk(plan: Plan, start: int, stop: int) -> ChunkResult:
     return ChunkResult(start, stop, counts, found, top, reach, made, exact_calls[0], time.perf_counter() - began)
 
 
-def _best(plan: Plan, records: list[Record]) -> list[Record]:
+def _best(plan: SearchPlan, records: list[Record]) -> list[Record]:
     records.sort(key=lambda r: r.key)
     return records if plan.top is None else records[: plan.top]
 
 
-def merge(plan: Plan, results: Sequence[ChunkResult]) -> ChunkResult:
+def merge(plan: SearchPlan, results: Sequence[ChunkResult]) -> ChunkResult:
     """The chunks' results as one (the same for any split of the outer tuples)."""
     counts = [sum(r.counts[i] for r in results) for i in range(len(STAGES))]
     top = _best(plan, [rec for r in results for rec in r.top])
@@ -512,7 +512,7 @@ def merge(plan: Plan, results: Sequence[ChunkResult]) -> ChunkResult:
                        sum(r.exact_calls for r in results), sum(r.seconds for r in results))
 
 
-def _make_tuples(plan: Plan, outer: list[np.ndarray], n: int) -> tuple[list[tuple], float, float]:
+def _make_tuples(plan: SearchPlan, outer: list[np.ndarray], n: int) -> tuple[list[tuple], float, float]:
     """The tuples (unknowns, slacks) with the ratio in the window, in batches; and the reachable ratios."""
     n_out = len(plan.outer)
     zcols = {name: outer[i] for i, name in enumerate(plan.outer)}
@@ -627,7 +627,7 @@ def _window(a1: np.ndarray, b1: np.ndarray, a2: np.ndarray, b2: np.ndarray) -> l
     return [(lo1, hi1), (lo2, hi2)]
 
 
-def _columns(plan: Plan, zcols: dict, scols: dict, owner: np.ndarray, x: np.ndarray | None,
+def _columns(plan: SearchPlan, zcols: dict, scols: dict, owner: np.ndarray, x: np.ndarray | None,
              dep_parts: list[np.ndarray]) -> dict[str, np.ndarray]:
     cols: dict[str, np.ndarray] = {}
     for name in plan.outer:
@@ -656,7 +656,7 @@ def _batches(cols: dict[str, np.ndarray]) -> list[tuple]:
 
 
 # --------------------------------------------------------------------------- checks of made tuples
-def _check(plan: Plan, batch: tuple, exact_calls: list[int]) -> tuple[int, list[Record], list[int], tuple[float, float]]:
+def _check(plan: SearchPlan, batch: tuple, exact_calls: list[int]) -> tuple[int, list[Record], list[int], tuple[float, float]]:
     (cols,) = batch
     Z = np.stack([cols[u] for u in plan.unknowns], axis=1)
     sig = np.stack([cols[s] for s in plan.slack_names], axis=1) if plan.slack_names else np.zeros((len(Z), 0), np.int64)
@@ -798,7 +798,7 @@ def _system_ok(rows: list, ints: Callable[[int], np.ndarray], i: int) -> bool:
     return solvable(G, h)
 
 
-def _arms(plan: Plan, ints: Callable[[int], np.ndarray], m: int) -> list[np.ndarray]:
+def _arms(plan: SearchPlan, ints: Callable[[int], np.ndarray], m: int) -> list[np.ndarray]:
     """Each planet's working arm times the length scale (integers)."""
     out = []
     for _planet, refs, halfwidths, fixed in plan.geometry.planet_meshes:
@@ -815,7 +815,7 @@ def _arms(plan: Plan, ints: Callable[[int], np.ndarray], m: int) -> list[np.ndar
     return out
 
 
-def _sign_sin(plan: Plan, const: np.ndarray, slope: np.ndarray, k: int, ok: np.ndarray, exact_calls: list[int]) -> np.ndarray:
+def _sign_sin(plan: SearchPlan, const: np.ndarray, slope: np.ndarray, k: int, ok: np.ndarray, exact_calls: list[int]) -> np.ndarray:
     """Sign of const + slope sin(pi/k) (integers), exactly: floats with a margin, else 60 digits."""
     exact_sin = {1: Fraction(0), 2: Fraction(1), 6: Fraction(1, 2)}
     if k in exact_sin:
@@ -833,7 +833,7 @@ def _sign_sin(plan: Plan, const: np.ndarray, slope: np.ndarray, k: int, ok: np.n
     return out
 
 
-def _cross_clear(plan: Plan, a: np.ndarray, b: np.ndarray, d: np.ndarray, reach: np.ndarray, t: int, k: int,
+def _cross_clear(plan: SearchPlan, a: np.ndarray, b: np.ndarray, d: np.ndarray, reach: np.ndarray, t: int, k: int,
                  ok: np.ndarray, exact_calls: list[int]) -> np.ndarray:
     """Copies of two meshing planets, ``t`` spacings apart, clear each other: their axes (arms ``a``, ``b``,
     the angle between them 2 pi t/k more than the meshing pair's) are farther apart than ``reach``.
