@@ -18,15 +18,9 @@ import sympy as sp
 
 from symkin import schemes
 from symkin import symbols as S
-from symkin.mechanisms.multistage.lostmotion import (
-    StageErrorModel,
-    backlash_symbol,
-    diameter_symbol,
-    lost_motion,
-    stage_ratio_symbol,
-)
-from symkin.mechanisms.multistage.split import best_designs, optimize_split
-from symkin.mechanisms.multistage.stages import enumerate_stages, stage_laws
+from symkin.mechanisms.multistage import StageErrorModel, best_designs, enumerate_stages, lost_motion, optimize_split
+from symkin.mechanisms.multistage.lostmotion import backlash_symbol, diameter_symbol, stage_ratio_symbol
+from symkin.mechanisms.multistage.stages import stage_laws
 from symkin.papers.checks import (
     Check,
     Kind,

@@ -89,9 +89,7 @@ def _animation(path: Path) -> Path:
 
 
 def _split(path: Path) -> Path:
-    from symkin.mechanisms.multistage.lostmotion import StageErrorModel
-    from symkin.mechanisms.multistage.split import best_designs, optimize_split
-    from symkin.mechanisms.multistage.stages import enumerate_stages
+    from symkin.mechanisms.multistage import StageErrorModel, best_designs, enumerate_stages, optimize_split
     from symkin.viz.split import split_figure
 
     model = StageErrorModel.linear(0.854, 0.858)
@@ -101,8 +99,7 @@ def _split(path: Path) -> Path:
 
 
 def _stage_model(path: Path) -> Path:
-    from symkin.mechanisms.multistage.lostmotion import StageErrorModel
-    from symkin.mechanisms.multistage.stages import enumerate_stages
+    from symkin.mechanisms.multistage import StageErrorModel, enumerate_stages
     from symkin.viz.split import stage_model_figure
 
     models = {"0.854 + 0.858 u": StageErrorModel.linear(0.854, 0.858)}

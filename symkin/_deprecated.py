@@ -70,16 +70,16 @@ NAMES: dict[str, str | tuple[str, str]] = {
     "symkin.plotting.turn_time": ("symkin._deprecated:_plotting_turn_time", "the method Motion.turn_time"),
     "symkin.ratiosplit._solve": "symkin.mechanisms.multistage.split:solve_continuous",
     # spelt -ize, as SymPy; named apart from symkin.synthesis's synthesize, SynthesisResult and Design
-    "symkin.helical_synthesis.synthesise": "symkin.mechanisms.helical.balanced:synthesize_helical",
-    "symkin.helical_synthesis.search.synthesise": "symkin.mechanisms.helical.balanced:synthesize_helical",
-    "symkin.helical_synthesis.SynthesisRequest": "symkin.mechanisms.helical.balanced:HelicalRequest",
-    "symkin.helical_synthesis.request.SynthesisRequest": "symkin.mechanisms.helical.balanced:HelicalRequest",
-    "symkin.helical_synthesis.SynthesisResult": "symkin.mechanisms.helical.balanced:HelicalResult",
-    "symkin.helical_synthesis.request.SynthesisResult": "symkin.mechanisms.helical.balanced:HelicalResult",
-    "symkin.ratiosplit.optimise_split": "symkin.mechanisms.multistage.split:optimize_split",
-    "symkin.ratiosplit.continuous.optimise_split": "symkin.mechanisms.multistage.split:optimize_split",
-    "symkin.ratiosplit.Design": "symkin.mechanisms.multistage.split:SplitDesign",
-    "symkin.ratiosplit.discrete.Design": "symkin.mechanisms.multistage.split:SplitDesign",
+    "symkin.helical_synthesis.synthesise": "symkin.mechanisms.helical:synthesize_helical",
+    "symkin.helical_synthesis.search.synthesise": "symkin.mechanisms.helical:synthesize_helical",
+    "symkin.helical_synthesis.SynthesisRequest": "symkin.mechanisms.helical:HelicalRequest",
+    "symkin.helical_synthesis.request.SynthesisRequest": "symkin.mechanisms.helical:HelicalRequest",
+    "symkin.helical_synthesis.SynthesisResult": "symkin.mechanisms.helical:HelicalResult",
+    "symkin.helical_synthesis.request.SynthesisResult": "symkin.mechanisms.helical:HelicalResult",
+    "symkin.ratiosplit.optimise_split": "symkin.mechanisms.multistage:optimize_split",
+    "symkin.ratiosplit.continuous.optimise_split": "symkin.mechanisms.multistage:optimize_split",
+    "symkin.ratiosplit.Design": "symkin.mechanisms.multistage:SplitDesign",
+    "symkin.ratiosplit.discrete.Design": "symkin.mechanisms.multistage:SplitDesign",
 }
 
 

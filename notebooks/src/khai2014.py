@@ -22,9 +22,7 @@ from IPython.display import Math, display
 import symkin
 from symkin import schemes
 from symkin.derivations import khai2014 as paper
-from symkin.mechanisms.multistage.lostmotion import StageErrorModel, lost_motion
-from symkin.mechanisms.multistage.split import best_designs, optimize_split
-from symkin.mechanisms.multistage.stages import enumerate_stages
+from symkin.mechanisms.multistage import StageErrorModel, best_designs, enumerate_stages, lost_motion, optimize_split
 
 print(paper.CITATION)
 

@@ -7,5 +7,51 @@
 - :mod:`.split`: the split of a total ratio over the stages for the least lost motion
   (continuous with its KKT analysis, and discrete over feasible stages).
 
-The train itself is :func:`symkin.schemes.common_ring_train`.
+The train itself is :func:`symkin.schemes.common_ring_train`.  The names a user needs are
+importable from here:
+
+    >>> from symkin.mechanisms.multistage import StageErrorModel, best_designs, enumerate_stages
+    >>> stages = enumerate_stages(72, 3, zmin=12, zmax=72)
+    >>> best_designs(20, stages, 2, model=StageErrorModel.linear(1, 1), tolerance=0.05, top=1).designs[0].ratios
+    (3, 7)
 """
+
+from __future__ import annotations
+
+from symkin.mechanisms.multistage.lostmotion import (
+    LostMotion,
+    StageErrorModel,
+    lost_motion,
+    max_lost_motion,
+    probable_max_backlash,
+)
+from symkin.mechanisms.multistage.split import (
+    MAX_STAGES,
+    ContinuousSplit,
+    DiscreteSplit,
+    SplitDesign,
+    SplitProblem,
+    best_designs,
+    optimize_split,
+)
+from symkin.mechanisms.multistage.stages import Stage, StageSet, check_stage, enumerate_stages, max_satellites
+
+__all__ = [
+    "Stage",
+    "StageSet",
+    "enumerate_stages",
+    "check_stage",
+    "max_satellites",
+    "LostMotion",
+    "StageErrorModel",
+    "lost_motion",
+    "probable_max_backlash",
+    "max_lost_motion",
+    "SplitProblem",
+    "ContinuousSplit",
+    "DiscreteSplit",
+    "SplitDesign",
+    "optimize_split",
+    "best_designs",
+    "MAX_STAGES",
+]
