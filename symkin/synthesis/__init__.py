@@ -22,7 +22,9 @@
 from __future__ import annotations
 
 from symkin.synthesis.api import synthesize
-from symkin.synthesis.problem import Condition, Options, Problem, derive, undercut_minimum
+from symkin.synthesis.conditions import Condition
+from symkin.synthesis.problem import Problem, derive
+from symkin.synthesis.request import Options, undercut_minimum
 from symkin.synthesis.result import Design, DesignCheck, SynthesisResult
 from symkin.synthesis.search import Target
 

@@ -12,7 +12,8 @@ from typing import Any
 from symkin.errors import InputError
 from symkin.model import Mechanism
 from symkin.synthesis.efficiency import DEFAULT_RANK, rank_order
-from symkin.synthesis.problem import Options, derive
+from symkin.synthesis.problem import derive
+from symkin.synthesis.request import Options
 from symkin.synthesis.result import Design, SynthesisResult, empty_reason, funnel_of
 from symkin.synthesis.runner import Execution, run
 from symkin.synthesis.search import SearchPlan, Target
@@ -77,7 +78,7 @@ def synthesize(
     planets : int or None
         Equally spaced copies of every planet kind (None: each planet's count in the file).
     zmin, zmax, pressure_angle, addendum, clearance, shift, ring_difference
-        See :class:`~symkin.synthesis.problem.Options`.
+        See :class:`~symkin.synthesis.request.Options`.
     top : int or None
         How many designs to list (None: all).
     scheduler : str, optional

@@ -23,8 +23,9 @@ import sympy as sp
 from symkin._util.jsonout import exact_json, float_text
 from symkin.errors import CoaxialityWarning, ModelError, SymkinError
 from symkin.model import Gear, LinkKind, Mechanism
+from symkin.synthesis.conditions import Condition
 from symkin.synthesis.efficiency import DEFAULT_RANK
-from symkin.synthesis.problem import Condition, Problem
+from symkin.synthesis.problem import Problem
 from symkin.synthesis.search import STAGES, ChunkResult, Record, SearchPlan, Target
 
 __all__ = ["Design", "DesignCheck", "SynthesisResult"]
