@@ -5,7 +5,7 @@ Run: python benchmarks/synthesis.py [repeats]
 
 1. Pruning, side by side in one run: ``synthesize`` (coaxiality solved for the ring, the ratio
    window solved for one pinion) and the same checks on every tuple of the five tooth numbers
-   in the limits (``_check`` of the plan on the whole box).  Both must find the same designs;
+   in the limits (``check_batch`` of the plan on the whole box).  Both must find the same designs;
    prints medians and the ratio.
 2. Ravigneaux up to 150 teeth (the issue's large space), two requests: the search here, and on
    local Dask clusters of one and two worker processes (started once, before timing; the
@@ -28,8 +28,9 @@ import numpy as np
 
 from symkin.synthesis import synthesize
 from symkin.synthesis.api import _plan
+from symkin.synthesis.funnel import check_batch
 from symkin.synthesis.problem import derive
-from symkin.synthesis.search import Target, _check
+from symkin.synthesis.request import Target
 
 FIRST = dict(driver="S1", driven="R", fixed="C", ratio="12/5", tolerance="0.005", planets=3)
 SECOND = dict(state="second", ratio="22/15", tolerance="0.02", planets=3)
@@ -37,7 +38,7 @@ SECOND = dict(state="second", ratio="22/15", tolerance="0.02", planets=3)
 
 def every_tuple(zmax: int, request: dict) -> tuple[set, int]:
     """The plan's own checks on every tuple of the five tooth numbers (no pruning): the
-    coaxiality rows evaluated on each, then ``_check`` (ratio, internal gears, assembly,
+    coaxiality rows evaluated on each, then ``check_batch`` (ratio, internal gears, assembly,
     neighbours, placement)."""
     import symkin
 
@@ -59,7 +60,7 @@ def every_tuple(zmax: int, request: dict) -> tuple[set, int]:
         values = values if isinstance(values, tuple) else (values,)
         coaxial = np.logical_and.reduce([np.asarray(v) == 0 for v in values])
         cols = {n: c[coaxial] for n, c in cols.items()}
-        _, records, _, _ = _check(plan, (cols,), [0])
+        _, records, _, _ = check_batch(plan, (cols,), [0])
         found |= {r.teeth for r in records}
     return found, made
 

@@ -24,9 +24,8 @@ from __future__ import annotations
 from symkin.synthesis.api import synthesize
 from symkin.synthesis.conditions import Condition
 from symkin.synthesis.problem import Problem, derive
-from symkin.synthesis.request import Options, undercut_minimum
+from symkin.synthesis.request import Options, Target, undercut_minimum
 from symkin.synthesis.result import Design, DesignCheck, SynthesisResult
-from symkin.synthesis.search import Target
 
 __all__ = ["synthesize", "derive", "Problem", "Condition", "Options", "Target", "Design", "DesignCheck",
            "SynthesisResult", "undercut_minimum"]

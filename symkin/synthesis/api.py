@@ -12,11 +12,11 @@ from typing import Any
 from symkin.errors import InputError
 from symkin.model import Mechanism
 from symkin.synthesis.efficiency import DEFAULT_RANK, rank_order
+from symkin.synthesis.plan import SearchPlan
 from symkin.synthesis.problem import derive
-from symkin.synthesis.request import Options
+from symkin.synthesis.request import Options, Target
 from symkin.synthesis.result import Design, SynthesisResult, empty_reason, funnel_of
 from symkin.synthesis.runner import Execution, run
-from symkin.synthesis.search import SearchPlan, Target
 from symkin.values import as_integer, as_rational
 
 __all__ = ["synthesize", "MAX_TOP"]

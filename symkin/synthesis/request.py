@@ -1,25 +1,87 @@
-"""What a synthesis is asked: the options every design must meet beyond its ratio.
+"""What a synthesis is asked: the target ratio, and the options every design must meet beyond it.
 
-:class:`Options` holds the planets and the limits of the derived conditions (tooth limits,
-pressure angle and addendum, tip clearance, profile shift, ring difference), each checked on
-construction.
+:class:`Target` is the ratio within a tolerance or a range; :class:`Options` holds the planets
+and the limits of the derived conditions (tooth limits, pressure angle and addendum, tip
+clearance, profile shift, ring difference).  Each is checked on construction.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from fractions import Fraction
 from typing import Any
 
 import sympy as sp
 
 from symkin.errors import InputError
 from symkin.model import MAX_PLANETS
-from symkin.values import as_integer, as_rational
+from symkin.values import as_fraction, as_integer, as_rational
 
-__all__ = ["Options", "undercut_minimum", "MAX_TEETH", "PRESSURE_ANGLES"]
+__all__ = ["Target", "Options", "undercut_minimum", "MAX_TEETH", "PRESSURE_ANGLES"]
 
 #: The largest tooth number a search accepts.
 MAX_TEETH = 10_000
+
+
+@dataclass(frozen=True)
+class Target:
+    """The ratios a design may have: ``ratio`` within a relative ``tolerance``, or a range.
+
+    >>> from fractions import Fraction
+    >>> Target.of(Fraction(12, 5), 0.005).window
+    (Fraction(597, 250), Fraction(603, 250))
+    >>> Target.range(2, 3).error(Fraction(5, 2))
+    Fraction(0, 1)
+    """
+
+    lo: Fraction
+    hi: Fraction
+    ratio: Fraction | None = None
+    tolerance: Fraction | None = None
+
+    @classmethod
+    def of(cls, ratio: Any, tolerance: Any = Fraction(1, 100)) -> Target:
+        """A target ratio with a relative tolerance (``0.01`` is 1 %), exact.
+
+        >>> Target.of(4, 0.01).window
+        (Fraction(99, 25), Fraction(101, 25))
+        """
+        r = as_fraction(ratio, what="the target ratio")
+        t = as_fraction(tolerance, what="the ratio tolerance")
+        if r == 0:
+            raise InputError("the target ratio is 0: no train turns its output infinitely fast; give a non-zero ratio")
+        if not 0 <= t < 1:
+            raise InputError(f"the relative tolerance must be from 0 to less than 1, got {t}; 0.01 is 1 %")
+        span = abs(r) * t
+        return cls(r - span, r + span, r, t)
+
+    @classmethod
+    def range(cls, lo: Any, hi: Any) -> Target:
+        """A target range ``lo <= i <= hi`` of ratios, exact."""
+        a = as_fraction(lo, what="the least ratio")
+        b = as_fraction(hi, what="the largest ratio")
+        if a > b:
+            raise InputError(f"the ratio range {a} .. {b} is empty; give the smaller ratio first")
+        return cls(a, b)
+
+    @property
+    def window(self) -> tuple[Fraction, Fraction]:
+        """The admissible ratios, ``(lo, hi)``."""
+        return self.lo, self.hi
+
+    def error(self, value: Fraction) -> Fraction:
+        """Relative error from the target ratio (0 inside a range)."""
+        if self.ratio is None:
+            return Fraction(0)
+        return abs(value - self.ratio) / abs(self.ratio)
+
+    def text(self) -> str:
+        """The target in words: ``i = R +- T %`` or ``lo <= i <= hi``."""
+        if self.ratio is None:
+            return f"{self.lo} <= i <= {self.hi}"
+        return f"i = {self.ratio} +- {float(self.tolerance or 0) * 100:g} %"
+
+
 #: Pressure angles of involute gears, degrees: below 5 the undercut-free minimum runs to hundreds of
 #: teeth and beyond (1e-300 degrees: about 10^604), above 45 the teeth are pointed.
 PRESSURE_ANGLES = (5, 45)

@@ -25,8 +25,11 @@ from symkin.errors import CoaxialityWarning, ModelError, SymkinError
 from symkin.model import Gear, LinkKind, Mechanism
 from symkin.synthesis.conditions import Condition
 from symkin.synthesis.efficiency import DEFAULT_RANK
+from symkin.synthesis.funnel import Record
+from symkin.synthesis.plan import STAGES, SearchPlan
 from symkin.synthesis.problem import Problem
-from symkin.synthesis.search import STAGES, ChunkResult, Record, SearchPlan, Target
+from symkin.synthesis.request import Target
+from symkin.synthesis.search import ChunkResult
 
 __all__ = ["Design", "DesignCheck", "SynthesisResult"]
 

@@ -8,7 +8,8 @@ Progress is reported as chunks finish, and a time limit stops the search with a
 
     >>> from symkin.trains import load_train
     >>> from symkin.synthesis.problem import derive
-    >>> from symkin.synthesis.search import SearchPlan, Target
+    >>> from symkin.synthesis.plan import SearchPlan
+    >>> from symkin.synthesis.request import Target
     >>> plan = SearchPlan.build(derive(load_train("simple"), driver="S", driven="C", fixed="R", zmax=80), Target.of(4),
     ...                   chunk=10)
     >>> run(plan).found, len(plan.chunks)
@@ -26,7 +27,8 @@ from dataclasses import dataclass
 from typing import Any
 
 from symkin.errors import InputError, TimeLimitError, UnsupportedError
-from symkin.synthesis.search import ChunkResult, SearchPlan, evaluate_chunk, merge
+from symkin.synthesis.plan import SearchPlan
+from symkin.synthesis.search import ChunkResult, evaluate_chunk, merge
 
 __all__ = ["run", "Execution", "local_cluster"]
 
