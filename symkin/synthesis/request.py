@@ -1,13 +1,30 @@
-"""What a synthesis is asked: the target ratio, and the options every design must meet beyond it.
+"""What a synthesis is asked, in request objects: each checked on construction.
 
-:class:`Target` is the ratio within a tolerance or a range; :class:`Options` holds the planets
-and the limits of the derived conditions (tooth limits, pressure angle and addendum, tip
-clearance, profile shift, ring difference).  Each is checked on construction.
+- :class:`Target`: the ratio within a tolerance, or a range;
+- :class:`Options`: what every design meets beyond its ratio, the planets and the limits of the
+  derived conditions (tooth limits, pressure angle and addendum, tip clearance, profile shift,
+  ring difference);
+- :class:`SynthesisRequest`: all that decides the designs, the target, the ratio of which links
+  (driver, driven, held links, or a gear state), the options, how many designs to list and in
+  which order;
+- :class:`RunOptions`: how the search runs (here or on Dask, chunks, time limit, progress), which
+  never changes its designs.
+
+:func:`symkin.synthesize` takes a request, or builds one from its keywords
+(:meth:`SynthesisRequest.of`):
+
+    >>> from fractions import Fraction
+    >>> request = SynthesisRequest(Target.of(Fraction(12, 5), 0), driver="S1", driven="R", fixed="C",
+    ...                            options=Options(planets=3, zmax=72))
+    >>> request == SynthesisRequest.of(ratio=Fraction(12, 5), tolerance=0, driver="S1", driven="R", fixed="C",
+    ...                                planets=3, zmax=72)
+    True
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field, fields
 from fractions import Fraction
 from typing import Any
 
@@ -15,12 +32,16 @@ import sympy as sp
 
 from symkin.errors import InputError
 from symkin.model import MAX_PLANETS
+from symkin.synthesis.efficiency import rank_order
 from symkin.values import as_fraction, as_integer, as_rational
 
-__all__ = ["Target", "Options", "undercut_minimum", "MAX_TEETH", "PRESSURE_ANGLES"]
+__all__ = ["Target", "Options", "SynthesisRequest", "RunOptions", "undercut_minimum", "MAX_TEETH", "MAX_TOP",
+           "PRESSURE_ANGLES"]
 
 #: The largest tooth number a search accepts.
 MAX_TEETH = 10_000
+#: The most designs a result lists.
+MAX_TOP = 100_000
 
 
 @dataclass(frozen=True)
@@ -167,3 +188,130 @@ class Options:
         put("ring_difference", int(as_integer(self.ring_difference, what="the ring difference",
                                               minimum=0, maximum=MAX_TEETH)))
 
+
+@dataclass(frozen=True)
+class SynthesisRequest:
+    """What a synthesis asks for: everything that decides its designs and their order.
+
+    Parameters
+    ----------
+    target : Target
+        The ratio within a tolerance (:meth:`Target.of`) or a range (:meth:`Target.range`).
+    driver, driven, fixed : str
+        The ratio omega_driver / omega_driven with the ``fixed`` link(s) held; or
+    state : str
+        A gear state of the train (its brakes and clutches).
+    options : Options
+        The planets and the limits every design meets.
+    top : int or None
+        How many designs to list (None: all).
+    rank : str or sequence of str, optional
+        The order of the designs: keys among ``"error"``, ``"efficiency"`` (largest first),
+        ``"size"`` and ``"teeth"`` (tooth sum), the rest of error, size, teeth following
+        (:func:`symkin.synthesis.efficiency.rank_order`); ties go by the tooth numbers.
+        Ranking by efficiency evaluates the train's efficiency law, derived from its statics,
+        exactly at every design found.
+    mesh_efficiency : str, number or dict
+        The meshes' efficiencies when ranking by efficiency (:func:`symkin.statics.statics`'
+        ``efficiency``): ``"default"`` (the train file's value where a mesh has one, else 0.98
+        external and 0.99 internal), one number, or ``{"a-b": value}``; rational numbers (a
+        decimal, a fraction), since the order is exact. The values used are in
+        :attr:`~symkin.synthesis.result.SynthesisResult.mesh_efficiency`; a design whose
+        efficiency is zero or below is marked (:attr:`~symkin.synthesis.result.Design.locks`:
+        the driver cannot drive the driven) and, with efficiency the first key, ranks after
+        every design that drives.
+    """
+
+    target: Target
+    driver: str | None = None
+    driven: str | None = None
+    fixed: str | Sequence[str] | None = None
+    state: str | None = None
+    options: Options = field(default_factory=Options)
+    top: int | None = 10
+    rank: Any = None
+    mesh_efficiency: Any = "default"
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "rank", rank_order(self.rank))  # first: a bad key is refused before anything else
+        if not isinstance(self.target, Target):
+            raise InputError(f"the target is a Target (Target.of(ratio, tolerance) or Target.range(lo, hi)), got "
+                             f"{self.target!r}")
+        if not isinstance(self.options, Options):
+            raise InputError(f"the options are an Options (Options(planets=3, zmax=150, ...)), got {self.options!r}")
+        if self.fixed is not None and not isinstance(self.fixed, str):
+            object.__setattr__(self, "fixed", tuple(self.fixed))
+        if self.top is not None:
+            object.__setattr__(self, "top", int(as_integer(self.top, what="top", minimum=1, maximum=MAX_TOP)))
+
+    @classmethod
+    def of(cls, *, ratio: Any = None, tolerance: Any = Fraction(1, 100), ratio_range: Sequence[Any] | None = None,
+           driver: str | None = None, driven: str | None = None, fixed: str | Sequence[str] | None = None,
+           state: str | None = None, top: int | None = 10, rank: Any = None, mesh_efficiency: Any = "default",
+           **options: Any) -> SynthesisRequest:
+        """The request the keywords of :func:`symkin.synthesize` ask for: the target from ``ratio`` and
+        ``tolerance`` or from ``ratio_range``, the :class:`Options` from their fields."""
+        rank = rank_order(rank)
+        target = _target(ratio, tolerance, ratio_range)
+        return cls(target, driver, driven, fixed, state, Options(**options), top, rank, mesh_efficiency)
+
+
+def _target(ratio: Any, tolerance: Any, ratio_range: Sequence[Any] | None) -> Target:
+    if ratio_range is not None:
+        if ratio is not None:
+            raise InputError("give either a target ratio (with a tolerance) or a ratio range, not both")
+        try:
+            lo, hi = ratio_range
+        except (TypeError, ValueError):
+            raise InputError(f"a ratio range is two numbers (lo, hi), got {ratio_range!r}") from None
+        return Target.range(lo, hi)
+    if ratio is not None:
+        return Target.of(ratio, tolerance)
+    raise InputError("give the target ratio (and a tolerance), or a ratio range")
+
+
+@dataclass(frozen=True)
+class RunOptions:
+    """How a search runs; its designs are the same however it runs (any chunking, here or on Dask).
+
+    Parameters
+    ----------
+    scheduler : str, optional
+        Run the chunks on Dask: ``"local"`` (a local cluster of ``workers`` processes) or a
+        scheduler's address.
+    workers : int, optional
+        Processes of a local cluster (default: the machine's cores).
+    chunk : int, optional
+        Outer tuples per chunk (default: about 64 chunks, 256 to 32768 tuples each).
+    time_limit : float, optional
+        Seconds; a longer search raises :class:`~symkin.errors.TimeLimitError` with bounds to try.
+    progress : callable(done, total, found), optional
+        Called as chunks finish: chunks done, chunks in all, designs found so far.
+    allow_empty : bool
+        Return a result without designs (its ``reason`` says why) instead of raising when
+        nothing is found.
+    """
+
+    scheduler: str | None = None
+    workers: int | None = None
+    chunk: int | None = None
+    time_limit: float | None = None
+    progress: Callable[[int, int, int], None] | None = None
+    allow_empty: bool = False
+
+    def __post_init__(self) -> None:
+        if self.time_limit is not None:
+            limit = as_rational(self.time_limit, what="the time limit")
+            if limit <= 0:
+                raise InputError(f"the time limit must be a positive number of seconds, got {self.time_limit!r}")
+            object.__setattr__(self, "time_limit", float(limit))
+        if self.workers is not None:
+            object.__setattr__(self, "workers", int(as_integer(self.workers, what="the number of workers", minimum=1,
+                                                               maximum=1024)))
+        if self.chunk is not None:
+            object.__setattr__(self, "chunk", int(as_integer(self.chunk, what="the chunk size", minimum=1,
+                                                             maximum=1 << 24)))
+
+
+#: The keywords of :func:`symkin.synthesize` that are :class:`RunOptions` fields.
+RUN_FIELDS = frozenset(f.name for f in fields(RunOptions))
