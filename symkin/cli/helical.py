@@ -107,9 +107,7 @@ def _text(result: Any, checks: list[dict[str, Any]]) -> str:
     if not result.designs:
         lines.append(f"no designs: {result.reason}")
         return "\n".join(lines)
-    shown = len(result.designs)
-    lines.append(f"{result.found} designs; {'all' if shown == result.found else f'the best {shown}'} by ratio error, "
-                 "then envelope diameter (hands: R right, L left, gears 1-4):")
+    lines.append(f"{result.message()} (hands: R right, L left, gears 1-4):")
     header = ("#", "Z1", "Z2", "Z3", "Z4", "i_1H^(4)", "error %", "beta12", "beta34", "hands", "P", "Q",
               "a_w mm", "dw2/dw3", "env. mm", "axial check")
     rows: list[tuple[str, ...]] = [header]

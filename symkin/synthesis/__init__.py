@@ -11,6 +11,8 @@
 - :mod:`.efficiency`: the train's efficiency law, for ranking designs by it exactly;
 - :mod:`.runner`: chunks run here or on Dask, with progress and a time limit;
 - :mod:`.result`: the designs, each re-checked by building its train;
+- :mod:`.searches`: what this search shares with the helical synthesis and the multistage
+  split (:class:`SearchResult`);
 - :func:`synthesize`: all of it in one call.
 
     >>> from symkin.synthesis import synthesize
@@ -28,6 +30,7 @@ from symkin.synthesis.conditions import Condition
 from symkin.synthesis.problem import Problem, derive
 from symkin.synthesis.request import Options, RunOptions, SynthesisRequest, Target, undercut_minimum
 from symkin.synthesis.result import Design, DesignCheck, SynthesisResult
+from symkin.synthesis.searches import SearchResult
 
 __all__ = ["synthesize", "SynthesisRequest", "Target", "Options", "RunOptions", "derive", "Problem", "Condition", "Design",
-           "DesignCheck", "SynthesisResult", "undercut_minimum"]
+           "DesignCheck", "SynthesisResult", "SearchResult", "undercut_minimum"]

@@ -30,6 +30,7 @@ from typing import Any
 
 import sympy as sp
 
+from symkin._util.budget import seconds_limit
 from symkin.errors import InputError
 from symkin.model import MAX_PLANETS
 from symkin.synthesis.efficiency import rank_order
@@ -300,11 +301,7 @@ class RunOptions:
     allow_empty: bool = False
 
     def __post_init__(self) -> None:
-        if self.time_limit is not None:
-            limit = as_rational(self.time_limit, what="the time limit")
-            if limit <= 0:
-                raise InputError(f"the time limit must be a positive number of seconds, got {self.time_limit!r}")
-            object.__setattr__(self, "time_limit", float(limit))
+        object.__setattr__(self, "time_limit", seconds_limit(self.time_limit))
         if self.workers is not None:
             object.__setattr__(self, "workers", int(as_integer(self.workers, what="the number of workers", minimum=1,
                                                                maximum=1024)))

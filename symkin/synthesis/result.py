@@ -13,7 +13,7 @@ from __future__ import annotations
 import dataclasses
 import math
 import warnings
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any
@@ -413,6 +413,8 @@ def _least_gap(problem: Problem, train: Mechanism, angles: dict[str, sp.Expr]) -
 class SynthesisResult:
     """A synthesis: the designs (best first), the funnel of conditions, and how the search ran.
 
+    A :class:`~symkin.synthesis.searches.SearchResult`: iterating it gives the designs.
+
     Attributes
     ----------
     problem : Problem
@@ -456,6 +458,21 @@ class SynthesisResult:
     made: int = 0
     rank: tuple[str, ...] = DEFAULT_RANK
     mesh_efficiency: tuple[tuple[str, sp.Expr], ...] = ()
+
+    def __iter__(self) -> Iterator[Design]:
+        return iter(self.designs)
+
+    def message(self) -> str:
+        """How many designs were found and which are listed, in what order; or why there are none.
+
+        >>> from symkin.synthesis import synthesize
+        >>> synthesize("simple", driver="S", driven="C", fixed="R", ratio=4, zmax=100, top=2).message()
+        '6 designs; the best 2 by ratio error, then size (envelope diameter), then tooth sum'
+        """
+        if not self.found:
+            return self.reason
+        shown = len(self.designs)
+        return f"{self.found} designs; {'all' if shown == self.found else f'the best {shown}'} by {self.order}"
 
     @property
     def order(self) -> str:

@@ -7,6 +7,7 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Iterator
 from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any
@@ -220,7 +221,8 @@ class HelicalDesign:
 class HelicalResult:
     """The designs found, best first, and how many tooth sets passed each condition.
 
-    ``reason`` says why nothing was found (empty when designs were found).
+    ``reason`` says why nothing was found (empty when designs were found).  A
+    :class:`~symkin.synthesis.searches.SearchResult`: iterating it gives the designs.
     """
 
     request: HelicalRequest
@@ -229,6 +231,17 @@ class HelicalResult:
     stages: tuple[tuple[str, int], ...]
     reason: str
     seconds: float
+
+    def __iter__(self) -> Iterator[HelicalDesign]:
+        return iter(self.designs)
+
+    def message(self) -> str:
+        """How many designs were found and which are listed, in what order; or why there are none."""
+        if not self.found:
+            return self.reason
+        shown = len(self.designs)
+        return (f"{self.found} designs; {'all' if shown == self.found else f'the best {shown}'} by ratio error, "
+                "then envelope diameter")
 
     def to_json(self) -> dict[str, Any]:
         """The result as JSON: the request, the designs, and what removed the last candidates when none is left."""
