@@ -77,36 +77,12 @@ class HelicalRequest:
         put("tolerance", as_fraction(self.tolerance, what="the ratio tolerance"))
         if not 0 <= self.tolerance < 1:  # (as symkin.synthesis: from 1 on the window holds every ratio of the sign)
             raise InputError(f"the relative ratio tolerance must be from 0 to less than 1, got {self.tolerance}; 0.01 is 1 %")
-        k = int(as_integer(self.satellites, what="the number of satellites"))
-        if k < 1:
-            raise InputError(f"the number of satellites must be at least 1, got {k}")
-        put("satellites", k)
-        try:
-            m12, m34 = self.normal_modules
-        except (TypeError, ValueError):
-            raise InputError("give two normal modules, m_n12 and m_n34") from None
-        mods = (as_fraction(m12, what="the normal module m_n12"), as_fraction(m34, what="the normal module m_n34"))
-        for name, m in zip(("m_n12", "m_n34"), mods):
-            if m <= 0:
-                raise InputError(f"the normal module {name} must be positive, got {m}")
-        put("normal_modules", mods)
-        lo, hi = as_fraction(self.beta_min_deg, what="beta-min"), as_fraction(self.beta_max_deg, what="beta-max")
-        for name, b in (("beta-min", lo), ("beta-max", hi)):
-            if not 0 < b < 45:
-                raise InputError(f"{name} must lie strictly between 0 and 45 degrees, got {float(b):g}")
-        if lo >= hi:
-            raise InputError(f"beta-min ({float(lo):g} deg) must be less than beta-max ({float(hi):g} deg): these limits exclude every design")
-        put("beta_min_deg", lo)
-        put("beta_max_deg", hi)
-        zmin, zmax = int(as_integer(self.teeth_min, what="zmin")), int(as_integer(self.teeth_max, what="zmax"))
-        if zmin < 1:
-            raise InputError(f"zmin must be at least 1, got {zmin}")
-        if zmin > zmax:
-            raise InputError(f"zmin ({zmin}) is larger than zmax ({zmax}): these limits exclude every design")
-        if zmax - zmin + 1 > self.MAX_SPAN:
-            raise InputError(
-                f"zmin..zmax spans {zmax - zmin + 1} tooth numbers; at most {self.MAX_SPAN} are searched, narrow the range"
-            )
+        put("satellites", _whole(self.satellites, "the number of satellites"))
+        put("normal_modules", _normal_modules(self.normal_modules))
+        put("beta_min_deg", as_fraction(self.beta_min_deg, what="beta-min"))
+        put("beta_max_deg", as_fraction(self.beta_max_deg, what="beta-max"))
+        _check_helix_limits(self.beta_min_deg, self.beta_max_deg)
+        zmin, zmax = _teeth_limits(self.teeth_min, self.teeth_max, self.MAX_SPAN)
         put("teeth_min", zmin)
         put("teeth_max", zmax)
         a_n = as_fraction(self.alpha_n_deg, what="the normal pressure angle")
@@ -117,15 +93,9 @@ class HelicalRequest:
         if ha < 0:
             raise InputError(f"the addendum coefficient must be >= 0, got {ha}")
         put("addendum", ha)
-        dmin = int(as_integer(self.min_ring_difference, what="the least ring-planet tooth difference"))
-        if dmin < 1:
-            raise InputError(f"the least ring-planet tooth difference must be at least 1, got {dmin}")
-        put("min_ring_difference", dmin)
+        put("min_ring_difference", _whole(self.min_ring_difference, "the least ring-planet tooth difference"))
         if self.top is not None:
-            top = int(as_integer(self.top, what="top"))
-            if top < 1:
-                raise InputError(f"top must be at least 1, got {top}")
-            put("top", top)
+            put("top", _whole(self.top, "top"))
 
     @property
     def ratio_window(self) -> tuple[Fraction, Fraction]:
@@ -149,6 +119,45 @@ class HelicalRequest:
             "min_ring_difference": self.min_ring_difference,
             "top": self.top,
         }
+
+
+def _whole(value: Any, what: str) -> int:
+    """A whole number of at least 1."""
+    n = int(as_integer(value, what=what))
+    if n < 1:
+        raise InputError(f"{what} must be at least 1, got {n}")
+    return n
+
+
+def _normal_modules(modules: Any) -> tuple[Fraction, Fraction]:
+    try:
+        m12, m34 = modules
+    except (TypeError, ValueError):
+        raise InputError("give two normal modules, m_n12 and m_n34") from None
+    mods = (as_fraction(m12, what="the normal module m_n12"), as_fraction(m34, what="the normal module m_n34"))
+    for name, m in zip(("m_n12", "m_n34"), mods):
+        if m <= 0:
+            raise InputError(f"the normal module {name} must be positive, got {m}")
+    return mods
+
+
+def _check_helix_limits(lo: Fraction, hi: Fraction) -> None:
+    for name, b in (("beta-min", lo), ("beta-max", hi)):
+        if not 0 < b < 45:
+            raise InputError(f"{name} must lie strictly between 0 and 45 degrees, got {float(b):g}")
+    if lo >= hi:
+        raise InputError(f"beta-min ({float(lo):g} deg) must be less than beta-max ({float(hi):g} deg): these limits exclude every design")
+
+
+def _teeth_limits(teeth_min: Any, teeth_max: Any, span: int) -> tuple[int, int]:
+    zmin, zmax = int(as_integer(teeth_min, what="zmin")), int(as_integer(teeth_max, what="zmax"))
+    if zmin < 1:
+        raise InputError(f"zmin must be at least 1, got {zmin}")
+    if zmin > zmax:
+        raise InputError(f"zmin ({zmin}) is larger than zmax ({zmax}): these limits exclude every design")
+    if zmax - zmin + 1 > span:
+        raise InputError(f"zmin..zmax spans {zmax - zmin + 1} tooth numbers; at most {span} are searched, narrow the range")
+    return zmin, zmax
 
 
 @dataclass(frozen=True)
