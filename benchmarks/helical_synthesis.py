@@ -17,13 +17,15 @@ import math
 import statistics
 import sys
 import time
+from fractions import Fraction
 
-from symkin.mechanisms.helical.balanced import HelicalRequest, synthesize_helical
+from symkin.mechanisms.helical import HelicalRequest, synthesize_helical
 from symkin.mechanisms.helical.balanced.search import _check_candidate, _compiled
 
-SMALL = dict(scheme="AI", ratio=4, tolerance="0.03", satellites=3, normal_modules=(2, 3), teeth_min=17,
+SMALL = dict(scheme="AI", ratio=4, tolerance=Fraction(3, 100), satellites=3, normal_modules=(2, 3), teeth_min=17,
              teeth_max=50, top=None)
-EXAMPLE = dict(scheme="AI", ratio=25, tolerance="0.02", satellites=3, normal_modules=(2, "2.5"), teeth_max=150, top=20)
+EXAMPLE = dict(scheme="AI", ratio=25, tolerance=Fraction(1, 50), satellites=3, normal_modules=(2, Fraction(5, 2)), teeth_max=150,
+               top=20)
 
 
 def plain(req: HelicalRequest) -> set:
@@ -69,7 +71,8 @@ def main(repeats: int = 5) -> None:
     first = time.perf_counter()
     import subprocess  # the first search in a fresh process also derives and compiles the laws
 
-    subprocess.run([sys.executable, "-c", "from symkin.mechanisms.helical.balanced import synthesize_helical; "
+    subprocess.run([sys.executable, "-c", "from fractions import Fraction; "
+                    "from symkin.mechanisms.helical import synthesize_helical; "
                     f"synthesize_helical(**{EXAMPLE!r})"], check=True)
     first = time.perf_counter() - first
     times = [timed(synthesize_helical, example)[0] for _ in range(repeats)]

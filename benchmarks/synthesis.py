@@ -23,6 +23,7 @@ from __future__ import annotations
 import statistics
 import sys
 import time
+from fractions import Fraction
 
 import numpy as np
 
@@ -32,8 +33,8 @@ from symkin.synthesis.funnel import check_batch
 from symkin.synthesis.problem import derive
 from symkin.synthesis.request import Target
 
-FIRST = dict(driver="S1", driven="R", fixed="C", ratio="12/5", tolerance="0.005", planets=3)
-SECOND = dict(state="second", ratio="22/15", tolerance="0.02", planets=3)
+FIRST = dict(driver="S1", driven="R", fixed="C", ratio=Fraction(12, 5), tolerance=Fraction(1, 200), planets=3)
+SECOND = dict(state="second", ratio=Fraction(22, 15), tolerance=Fraction(1, 50), planets=3)
 
 
 def every_tuple(zmax: int, request: dict) -> tuple[set, int]:
@@ -73,7 +74,7 @@ def timed(f, *args, **kw):
 
 def pruning(repeats: int) -> None:
     zmax = 60
-    request = dict(FIRST, tolerance="0.02")
+    request = dict(FIRST, tolerance=Fraction(1, 50))
     synthesize("ravigneaux", zmax=zmax, top=None, **request)  # derive and compile once
     pruned, plain = [], []
     for _ in range(repeats):
