@@ -9,7 +9,8 @@
 
 The forces themselves (torque balance, axial forces, balancing hands) are statics:
 :mod:`symkin.statics`.  The synthesis's user-facing names are importable from here too
-(:data:`BALANCED` lists them; they load on first use):
+(the last names of ``__all__``; they load on first use, the synthesis costing about 0.1 s more
+to import than the geometry and the train):
 
     >>> from symkin.mechanisms.helical import synthesize_helical
     >>> synthesize_helical(scheme="AI", ratio=12, satellites=3, normal_modules=(2, 2.5), teeth_max=80).designs[0].teeth
@@ -55,22 +56,6 @@ if TYPE_CHECKING:  # what the names loaded on first use are, for type checkers
         tooth_equations,
     )
 
-#: The names of :mod:`.balanced` importable from here, loaded on first use (the synthesis
-#: costs about 0.1 s more to import than the geometry and the train).
-BALANCED = (
-    "synthesize_helical",
-    "HelicalRequest",
-    "HelicalDesign",
-    "HelicalResult",
-    "tooth_equations",
-    "ToothEquations",
-    "balance_condition",
-    "existence_bounds",
-    "existence_interval",
-    "existence_range",
-    "ExistenceBounds",
-)
-
 __all__ = [
     "RIGHT",
     "LEFT",
@@ -104,12 +89,12 @@ __all__ = [
 ]
 
 
-def __getattr__(name: str) -> Any:  # the synthesis loads on first use
-    if name == "balanced" or name in BALANCED:
+def __getattr__(name: str) -> Any:  # the synthesis loads on first use: its names are those of __all__ not yet here
+    if name == "balanced" or name in __all__:
         balanced = importlib.import_module(f"{__name__}.balanced")
         return balanced if name == "balanced" else getattr(balanced, name)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(BALANCED) | {"balanced"})
+    return sorted(set(globals()) | set(__all__) | {"balanced"})
