@@ -8,7 +8,7 @@
   (continuous with its KKT analysis, and discrete over feasible stages).
 
 The train itself is :func:`symkin.schemes.common_ring_train`.  The names a user needs are
-importable from here:
+importable from here (each loads its module on first use):
 
     >>> from symkin.mechanisms.multistage import StageErrorModel, best_designs, enumerate_stages
     >>> stages = enumerate_stages(72, 3, zmin=12, zmax=72)
@@ -18,23 +18,31 @@ importable from here:
 
 from __future__ import annotations
 
-from symkin.mechanisms.multistage.lostmotion import (
-    LostMotion,
-    StageErrorModel,
-    lost_motion,
-    max_lost_motion,
-    probable_max_backlash,
-)
-from symkin.mechanisms.multistage.split import (
-    MAX_STAGES,
-    ContinuousSplit,
-    DiscreteSplit,
-    SplitDesign,
-    SplitProblem,
-    best_designs,
-    optimize_split,
-)
-from symkin.mechanisms.multistage.stages import Stage, StageSet, check_stage, enumerate_stages, max_satellites
+import importlib
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:  # what the names loaded on first use are, for type checkers and IDEs
+    from symkin.mechanisms.multistage.lostmotion import (
+        LostMotion,
+        StageErrorModel,
+        lost_motion,
+        max_lost_motion,
+        probable_max_backlash,
+    )
+    from symkin.mechanisms.multistage.split import (
+        MAX_STAGES,
+        ContinuousSplit,
+        DiscreteSplit,
+        SplitDesign,
+        SplitProblem,
+        best_designs,
+        optimize_split,
+    )
+    from symkin.mechanisms.multistage.stages import Stage, StageSet, check_stage, enumerate_stages, max_satellites
+
+#: The modules that hold the names of ``__all__``, each imported when one of its names is first used
+#: (so that ``symkin stages`` imports no split, and the modules load in the order they always did).
+_MODULES = ("stages", "lostmotion", "split")
 
 __all__ = [
     "Stage",
@@ -55,3 +63,18 @@ __all__ = [
     "best_designs",
     "MAX_STAGES",
 ]
+
+
+def __getattr__(name: str) -> Any:
+    if name in __all__:
+        for home in _MODULES:
+            module = importlib.import_module(f"{__name__}.{home}")
+            if name in module.__all__:
+                value = getattr(module, name)
+                globals()[name] = value
+                return value
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__))
