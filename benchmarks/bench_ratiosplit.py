@@ -17,10 +17,11 @@ from __future__ import annotations
 import argparse
 import statistics
 import time
+from fractions import Fraction
 
-from symkin.mechanisms.multistage.lostmotion import StageErrorModel, lost_motion
-from symkin.mechanisms.multistage.split import best_designs
-from symkin.mechanisms.multistage.stages import enumerate_stages
+from symkin import parse
+from symkin.mechanisms.multistage import StageErrorModel, best_designs, enumerate_stages, lost_motion
+from symkin.mechanisms.multistage.lostmotion import U
 
 
 def main() -> None:
@@ -29,7 +30,7 @@ def main() -> None:
     parser.add_argument("--max-stages", type=int, default=8)
     args = parser.parse_args()
     stages = enumerate_stages(180, 3, zmin=18, zmax=180)
-    model = StageErrorModel.linear("0.854", "0.858")
+    model = StageErrorModel.linear(Fraction("0.854"), Fraction("0.858"))
     print(f"{'n':>2} {'derive s':>9} {'search s':>9} {'nodes':>8} {'22^n':>12} {'nodes/22^n':>11}  best design")
     for n in range(2, args.max_stages + 1):
         derive, search, nodes = [], [], 0
@@ -39,7 +40,7 @@ def main() -> None:
             lost_motion(n)
             derive.append(time.perf_counter() - t)
             t = time.perf_counter()
-            result = best_designs(5.5**n, stages, n, model=model, tolerance="0.01", top=10)
+            result = best_designs(Fraction(11, 2)**n, stages, n, model=model, tolerance=Fraction(1, 100), top=10)
             search.append(time.perf_counter() - t)
             nodes = result.nodes
         best = result.designs[0]
@@ -49,16 +50,16 @@ def main() -> None:
     print("harder cases: total 5.5^n + 0.37 (tolerance 0 has no design: the nearest ones are searched)")
     print(f"{'model':>16} {'n':>2} {'tol':>6} {'search s':>9} {'nodes':>8}  in tolerance")
     for text in ("0.854 + 0.858*u", "u**2", "1 + 5/u"):
-        m = StageErrorModel.from_expression(text)
+        m = StageErrorModel(parse(text, symbols={"u": U}))
         for n in range(4, args.max_stages + 1, 2):
             lost_motion(n)
-            for tol in ("0", "0.001", "0.1"):
+            for tol in (Fraction(0), Fraction("0.001"), Fraction("0.1")):
                 times = []
                 for _ in range(args.repeat):
                     t = time.perf_counter()
-                    result = best_designs(5.5**n + 0.37, stages, n, model=m, tolerance=tol, top=10)
+                    result = best_designs(Fraction(11, 2)**n + Fraction(37, 100), stages, n, model=m, tolerance=tol, top=10)
                     times.append(time.perf_counter() - t)
-                print(f"{text:>16} {n:>2} {tol:>6} {statistics.median(times):9.3f} {result.nodes:>8}  {result.meets_tolerance}")
+                print(f"{text:>16} {n:>2} {float(tol):>6g} {statistics.median(times):9.3f} {result.nodes:>8}  {result.meets_tolerance}")
 
 
 if __name__ == "__main__":

@@ -5,7 +5,7 @@ Run: python benchmarks/synthesis.py [repeats]
 
 1. Pruning, side by side in one run: ``synthesize`` (coaxiality solved for the ring, the ratio
    window solved for one pinion) and the same checks on every tuple of the five tooth numbers
-   in the limits (``_check`` of the plan on the whole box).  Both must find the same designs;
+   in the limits (``check_batch`` of the plan on the whole box).  Both must find the same designs;
    prints medians and the ratio.
 2. Ravigneaux up to 150 teeth (the issue's large space), two requests: the search here, and on
    local Dask clusters of one and two worker processes (started once, before timing; the
@@ -23,21 +23,23 @@ from __future__ import annotations
 import statistics
 import sys
 import time
+from fractions import Fraction
 
 import numpy as np
 
 from symkin.synthesis import synthesize
 from symkin.synthesis.api import _plan
+from symkin.synthesis.funnel import check_batch
 from symkin.synthesis.problem import derive
-from symkin.synthesis.search import Target, _check
+from symkin.synthesis.request import Target
 
-FIRST = dict(driver="S1", driven="R", fixed="C", ratio="12/5", tolerance="0.005", planets=3)
-SECOND = dict(state="second", ratio="22/15", tolerance="0.02", planets=3)
+FIRST = dict(driver="S1", driven="R", fixed="C", ratio=Fraction(12, 5), tolerance=Fraction(1, 200), planets=3)
+SECOND = dict(state="second", ratio=Fraction(22, 15), tolerance=Fraction(1, 50), planets=3)
 
 
 def every_tuple(zmax: int, request: dict) -> tuple[set, int]:
     """The plan's own checks on every tuple of the five tooth numbers (no pruning): the
-    coaxiality rows evaluated on each, then ``_check`` (ratio, internal gears, assembly,
+    coaxiality rows evaluated on each, then ``check_batch`` (ratio, internal gears, assembly,
     neighbours, placement)."""
     import symkin
 
@@ -59,7 +61,7 @@ def every_tuple(zmax: int, request: dict) -> tuple[set, int]:
         values = values if isinstance(values, tuple) else (values,)
         coaxial = np.logical_and.reduce([np.asarray(v) == 0 for v in values])
         cols = {n: c[coaxial] for n, c in cols.items()}
-        _, records, _, _ = _check(plan, (cols,), [0])
+        _, records, _, _ = check_batch(plan, (cols,), [0])
         found |= {r.teeth for r in records}
     return found, made
 
@@ -72,7 +74,7 @@ def timed(f, *args, **kw):
 
 def pruning(repeats: int) -> None:
     zmax = 60
-    request = dict(FIRST, tolerance="0.02")
+    request = dict(FIRST, tolerance=Fraction(1, 50))
     synthesize("ravigneaux", zmax=zmax, top=None, **request)  # derive and compile once
     pruned, plain = [], []
     for _ in range(repeats):

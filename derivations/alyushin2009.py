@@ -26,7 +26,7 @@ import symkin
 from symkin import schemes
 from symkin import symbols as S
 from symkin.drives import AngleLaw
-from symkin.mechanisms.helical.synthesis import assembly_integers
+from symkin.mechanisms.helical.balanced import assembly_integers
 from symkin.papers.checks import (
     Check,
     Kind,

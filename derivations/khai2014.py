@@ -18,15 +18,9 @@ import sympy as sp
 
 from symkin import schemes
 from symkin import symbols as S
-from symkin.mechanisms.multistage.lostmotion import (
-    StageErrorModel,
-    backlash_symbol,
-    diameter_symbol,
-    lost_motion,
-    stage_ratio_symbol,
-)
-from symkin.mechanisms.multistage.split import best_designs, optimise_split
-from symkin.mechanisms.multistage.stages import enumerate_stages, stage_laws
+from symkin.mechanisms.multistage import StageErrorModel, best_designs, enumerate_stages, lost_motion, optimize_split
+from symkin.mechanisms.multistage.lostmotion import backlash_symbol, diameter_symbol, stage_ratio_symbol
+from symkin.mechanisms.multistage.stages import stage_laws
 from symkin.papers.checks import (
     Check,
     Kind,
@@ -205,7 +199,7 @@ _CACHE: dict = {}
 def optimum():
     """The continuous optimum of the paper's fig. 4 case (cached)."""
     if "optimum" not in _CACHE:
-        _CACHE["optimum"] = optimise_split(TOTAL, STAGES, lower=U_LOWER, upper=U_UPPER, model=paper_model())
+        _CACHE["optimum"] = optimize_split(TOTAL, STAGES, lower=U_LOWER, upper=U_UPPER, model=paper_model())
     return _CACHE["optimum"]
 
 
@@ -354,7 +348,7 @@ def _optimum_checks() -> list[Check]:
         out.append(_check(f"fig. 4 u_{i}", f"optimal u_{i} (U = {TOTAL}, {U_LOWER} <= u <= {U_UPPER}), bound: {best.active[i - 1]}",
                           value, pub, compare_rounded(value, pub)))
     derived_value = best.exact_objective
-    frozen = optimise_split(TOTAL, STAGES, lower=U_LOWER, upper=U_UPPER, model=mathcad_model())
+    frozen = optimize_split(TOTAL, STAGES, lower=U_LOWER, upper=U_UPPER, model=mathcad_model())
     frozen_value = frozen.exact_objective
     out.append(_check(
         "fig. 4 FF value", "objective at the optimum with Fd_i = a + b u_i as (5) and fig. 4 step 4 define it",

@@ -3,7 +3,7 @@
 Everything on the "derived" side comes from symkin: the planet statics
 (:mod:`symkin.statics`), the ratio, coaxiality and assembly conditions of the engine,
 the tooth-number equations solved from them, the existence regions and the synthesis
-(:mod:`symkin.mechanisms.helical.synthesis`).  The published forms below are transcribed from the
+(:mod:`symkin.mechanisms.helical.balanced`).  The published forms below are transcribed from the
 paper (OCR in shared/papers), for comparison only.  Where a printed form disagrees, the
 verdict says whether an alternative reading reproduces it (a slip) or an independent
 route (a hand derivation typed here, never the engine) confirms the derived form (an
@@ -27,8 +27,8 @@ import sympy as sp
 
 from symkin import schemes
 from symkin import symbols as S
-from symkin.mechanisms.helical import synthesis as HS
-from symkin.mechanisms.helical.synthesis import DELTA, LAMBDA, RATIO, K, P, Q, X, Z
+from symkin.mechanisms.helical import balanced as HS
+from symkin.mechanisms.helical.balanced import DELTA, LAMBDA, RATIO, K, P, Q, X, Z
 from symkin.numeric import compile
 from symkin.papers.checks import (
     Check,
@@ -535,9 +535,9 @@ def _brute_force(kind: str, bounds) -> tuple[list, bool, str]:
 
 # --------------------------------------------------------------------------- synthesis example
 @cache
-def synthesis_example() -> HS.SynthesisResult:
+def synthesis_example() -> HS.HelicalResult:
     """The synthesis example, every design found (the report lists the best ``top``)."""
-    return HS.synthesise(**{**SYNTHESIS_EXAMPLE, "top": None})
+    return HS.synthesize_helical(**{**SYNTHESIS_EXAMPLE, "top": None})
 
 
 def _listed() -> tuple:

@@ -89,20 +89,17 @@ def _animation(path: Path) -> Path:
 
 
 def _split(path: Path) -> Path:
-    from symkin.mechanisms.multistage.lostmotion import StageErrorModel
-    from symkin.mechanisms.multistage.split import best_designs, optimise_split
-    from symkin.mechanisms.multistage.stages import enumerate_stages
+    from symkin.mechanisms.multistage import StageErrorModel, best_designs, enumerate_stages, optimize_split
     from symkin.viz.split import split_figure
 
     model = StageErrorModel.linear(0.854, 0.858)
-    best = optimise_split(6000, 4, lower=2.25, upper=11, model=model)
+    best = optimize_split(6000, 4, lower=2.25, upper=11, model=model)
     designs = best_designs(6000, enumerate_stages(180, 3, zmin=18, zmax=180), 4, model=model, tolerance=0.05, top=10)
     return _save(split_figure(best, designs), path)
 
 
 def _stage_model(path: Path) -> Path:
-    from symkin.mechanisms.multistage.lostmotion import StageErrorModel
-    from symkin.mechanisms.multistage.stages import enumerate_stages
+    from symkin.mechanisms.multistage import StageErrorModel, enumerate_stages
     from symkin.viz.split import stage_model_figure
 
     models = {"0.854 + 0.858 u": StageErrorModel.linear(0.854, 0.858)}

@@ -34,11 +34,11 @@ REMOVED_IN = "0.3"
 MODULES: dict[str, str] = {
     "symkin.cardan": "symkin.mechanisms.cardan",
     "symkin.helical": "symkin.mechanisms.helical",
-    "symkin.helical_synthesis": "symkin.mechanisms.helical.synthesis",
-    "symkin.helical_synthesis.laws": "symkin.mechanisms.helical.synthesis.conditions",
-    "symkin.helical_synthesis.regions": "symkin.mechanisms.helical.synthesis.regions",
-    "symkin.helical_synthesis.request": "symkin.mechanisms.helical.synthesis.request",
-    "symkin.helical_synthesis.search": "symkin.mechanisms.helical.synthesis.search",
+    "symkin.helical_synthesis": "symkin.mechanisms.helical.balanced",
+    "symkin.helical_synthesis.laws": "symkin.mechanisms.helical.balanced.conditions",
+    "symkin.helical_synthesis.regions": "symkin.mechanisms.helical.balanced.regions",
+    "symkin.helical_synthesis.request": "symkin.mechanisms.helical.balanced.request",
+    "symkin.helical_synthesis.search": "symkin.mechanisms.helical.balanced.search",
     "symkin.lostmotion": "symkin.mechanisms.multistage.lostmotion",
     "symkin.ratiosplit": "symkin.mechanisms.multistage.split",
     "symkin.ratiosplit.problem": "symkin.mechanisms.multistage.split.problem",
@@ -69,6 +69,17 @@ NAMES: dict[str, str | tuple[str, str]] = {
     "symkin.plotting.sample": ("symkin._deprecated:_plotting_sample", "the method Particle.sample"),
     "symkin.plotting.turn_time": ("symkin._deprecated:_plotting_turn_time", "the method Motion.turn_time"),
     "symkin.ratiosplit._solve": "symkin.mechanisms.multistage.split:solve_continuous",
+    # spelt -ize, as SymPy; named apart from symkin.synthesis's synthesize, SynthesisResult and Design
+    "symkin.helical_synthesis.synthesise": "symkin.mechanisms.helical:synthesize_helical",
+    "symkin.helical_synthesis.search.synthesise": "symkin.mechanisms.helical:synthesize_helical",
+    "symkin.helical_synthesis.SynthesisRequest": "symkin.mechanisms.helical:HelicalRequest",
+    "symkin.helical_synthesis.request.SynthesisRequest": "symkin.mechanisms.helical:HelicalRequest",
+    "symkin.helical_synthesis.SynthesisResult": "symkin.mechanisms.helical:HelicalResult",
+    "symkin.helical_synthesis.request.SynthesisResult": "symkin.mechanisms.helical:HelicalResult",
+    "symkin.ratiosplit.optimise_split": "symkin.mechanisms.multistage:optimize_split",
+    "symkin.ratiosplit.continuous.optimise_split": "symkin.mechanisms.multistage:optimize_split",
+    "symkin.ratiosplit.Design": "symkin.mechanisms.multistage:SplitDesign",
+    "symkin.ratiosplit.discrete.Design": "symkin.mechanisms.multistage:SplitDesign",
 }
 
 

@@ -120,28 +120,28 @@ def lost_motion() -> None:
 
 def tooth_equations() -> None:
     """Helical trains: the coaxiality in working radii with d_w2/d_w3 off by 10 %."""
-    import symkin.mechanisms.helical.synthesis.conditions as conditions
+    import symkin.mechanisms.helical.balanced.conditions as conditions
 
     _wrap(conditions, "working_coaxiality", lambda expr, *a, **k: expr.subs(conditions.DELTA, conditions.DELTA * PERTURB))
 
 
 def diameter_ratio() -> None:
     """Helical rims: the working diameter ratio d_w2/d_w3, 11/10 of the engine's."""
-    import symkin.mechanisms.helical.synthesis as HS
+    import symkin.mechanisms.helical.balanced as HS
 
     _wrap(HS, "working_diameter_ratio", lambda ratio, *a, **k: ratio * PERTURB)
 
 
 def helical_ratio() -> None:
     """Two-row trains: the ratio law i_1H^(4) in tooth numbers, 11/10 of the engine's."""
-    import symkin.mechanisms.helical.synthesis as HS
+    import symkin.mechanisms.helical.balanced as HS
 
     _wrap(HS, "ratio_law", lambda law, *a, **k: type(law)(law.lhs, law.rhs * PERTURB, law.description))
 
 
 def existence_bounds() -> None:
     """Table 1 of the 2010 paper: every derived lower bound raised by 1/10."""
-    import symkin.mechanisms.helical.synthesis as HS
+    import symkin.mechanisms.helical.balanced as HS
 
     _wrap(HS, "existence_bounds", lambda bounds, *a, **k: tuple(
         dataclasses.replace(b, lower=b.lower + sp.Rational(1, 10)) for b in bounds))
@@ -149,8 +149,8 @@ def existence_bounds() -> None:
 
 def helical_coaxiality() -> None:
     """Helical coaxiality with the mesh 3-4 distance off by a tooth-dependent amount."""
-    import symkin.mechanisms.helical.synthesis as HS
-    from symkin.mechanisms.helical.synthesis import Z
+    import symkin.mechanisms.helical.balanced as HS
+    from symkin.mechanisms.helical.balanced import Z
 
     _wrap(HS, "helical_coaxiality", lambda eq, *a, **k: sp.Eq(eq.lhs, eq.rhs * (1 + Z[3] / (10 * Z[4])), evaluate=False))
 

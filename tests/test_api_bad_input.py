@@ -20,7 +20,7 @@ from symkin.mechanisms.helical import (
     pitch_radius,
     working_pitch_radius,
 )
-from symkin.mechanisms.helical.synthesis import SynthesisRequest, existence_interval
+from symkin.mechanisms.helical.balanced import HelicalRequest, existence_interval
 from symkin.mechanisms.multistage.lostmotion import StageErrorModel, U
 from symkin.mechanisms.multistage.split import SplitProblem
 from symkin.mechanisms.multistage.stages import enumerate_stages
@@ -82,7 +82,7 @@ ENTRY_POINTS = {
     "SplitProblem.build": (lambda total, stages, lower, upper, model: SplitProblem.build(total, stages, lower=lower, upper=upper,
                                                                                          model=model),
                            dict(total=100, stages=2, lower=2, upper=12, model=MODEL)),
-    "SynthesisRequest": (lambda scheme, ratio, satellites, normal_modules: SynthesisRequest(
+    "HelicalRequest": (lambda scheme, ratio, satellites, normal_modules: HelicalRequest(
         scheme=scheme, ratio=ratio, satellites=satellites, normal_modules=normal_modules),
         dict(scheme="AI", ratio=25, satellites=3, normal_modules=(2, 2))),
     "existence_interval": (lambda scheme, satellites, delta: existence_interval(scheme, satellites, delta),

@@ -55,7 +55,7 @@ def test_as_integer_and_as_real():
 
 
 def test_existence_interval_of_a_float_is_that_of_its_decimal_not_of_sqrt2_over_2():
-    from symkin.mechanisms.helical.synthesis import existence_interval
+    from symkin.mechanisms.helical.balanced import existence_interval
 
     decimal = existence_interval("II", 3, 0.7071067811865476)
     assert decimal == existence_interval("II", 3, sp.Rational(7071067811865476, 10**16))
@@ -66,7 +66,7 @@ def test_existence_interval_of_a_float_is_that_of_its_decimal_not_of_sqrt2_over_
 
 def test_floats_given_to_every_gate_are_their_decimals():
     from symkin.mechanisms.helical import HelicalTrain
-    from symkin.mechanisms.helical.synthesis import SynthesisRequest
+    from symkin.mechanisms.helical.balanced import HelicalRequest
     from symkin.mechanisms.multistage.lostmotion import StageErrorModel
     from symkin.mechanisms.multistage.split import SplitProblem
     from symkin.mechanisms.multistage.stages import enumerate_stages
@@ -74,7 +74,7 @@ def test_floats_given_to_every_gate_are_their_decimals():
     assert StageErrorModel.linear(0.854, 0.858).expr == sp.Rational(854, 1000) + sp.Rational(858, 1000) * sp.Symbol("u", positive=True)
     p = SplitProblem.build(100.5, 2, lower=2.25, upper=11, model=StageErrorModel.linear(1, 1))
     assert p.total == sp.Rational(201, 2) and p.lower[0] == sp.Rational(9, 4)
-    assert SynthesisRequest(scheme="AI", ratio=25.1, tolerance=0.02).ratio == Fraction(251, 10)
+    assert HelicalRequest(scheme="AI", ratio=25.1, tolerance=0.02).ratio == Fraction(251, 10)
     assert HelicalTrain("AI", (20, 40, 20, 80), (2.5, 0.1), (0.1, 0.1)).normal_modules == (Fraction(5, 2), Fraction(1, 10))
     assert enumerate_stages(80, 3, zmin=17, ha=0.8).ha == sp.Rational(4, 5)
     with pytest.raises(InputError):
@@ -84,16 +84,16 @@ def test_floats_given_to_every_gate_are_their_decimals():
 # ---- the "why" of the active bounds is said only when it is true
 def test_why_sentence_matches_the_active_set():
     from symkin.mechanisms.multistage.lostmotion import StageErrorModel
-    from symkin.mechanisms.multistage.split import optimise_split
+    from symkin.mechanisms.multistage.split import optimize_split
 
-    both_free = optimise_split(100, 2, lower=2, upper=20, model=StageErrorModel(parse("sin(u) + 2", symbols={"u": U})))
+    both_free = optimize_split(100, 2, lower=2, upper=20, model=StageErrorModel(parse("sin(u) + 2", symbols={"u": U})))
     assert both_free.active == ("free", "free")
     g = both_free.log_gradient
     assert abs(g[0] - g[1]) <= 1e-6 * max(map(abs, g))  # equal gradients: no direction is preferred
     text = "\n".join(both_free.explain())
     assert "g_j - g_(j+1) > 0" not in text and "free stages share one gradient value" in text
 
-    khai = optimise_split(6000, 4, lower=Fraction("2.25"), upper=11, model=StageErrorModel.linear(Fraction("0.854"), Fraction("0.858")))
+    khai = optimize_split(6000, 4, lower=Fraction("2.25"), upper=11, model=StageErrorModel.linear(Fraction("0.854"), Fraction("0.858")))
     assert khai.active == ("free", "upper", "upper", "upper")
     assert all(a - b > 0 for a, b in zip(khai.log_gradient, khai.log_gradient[1:]))
     assert any(line.startswith("why: g_j - g_(j+1) > 0") for line in khai.explain())
@@ -105,7 +105,7 @@ def test_laws_are_laws_and_conditions_are_equations():
     from symkin import symbols as S
     from symkin.laws import Law
     from symkin.mechanisms.cardan import line_conditions
-    from symkin.mechanisms.helical.synthesis import RATIO, ratio_law
+    from symkin.mechanisms.helical.balanced import RATIO, ratio_law
     from symkin.mechanisms.multistage.stages import stage_laws
 
     mech = schemes.two_row("II", teeth=True)
@@ -150,7 +150,7 @@ def test_import_symkin_loads_no_sympy_and_every_name_resolves():
 
     code = ("import sys, symkin; assert 'sympy' not in sys.modules, 'sympy loaded'; "
             "assert all(getattr(symkin, n) is not None for n in symkin.__all__); "
-            "assert symkin.numeric.dask_map and symkin.mechanisms.helical.synthesis.synthesise and symkin.Gear.__module__ == 'symkin.model'; "
+            "assert symkin.numeric.dask_map and symkin.mechanisms.helical.balanced.synthesize_helical and symkin.Gear.__module__ == 'symkin.model'; "
             "print(symkin.schemes.two_row('AA', teeth=(100, 100, 101, 99)).ratio('H', '1', fixed='4').rhs)")
     proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
     assert proc.returncode == 0, proc.stderr

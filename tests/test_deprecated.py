@@ -102,7 +102,7 @@ def test_the_library_uses_no_old_path():
     proc = _fresh(
         "import warnings; warnings.simplefilter('error', DeprecationWarning)\n"
         "import symkin.cli, symkin.study, symkin.viz.figures, symkin.viz.animation, symkin.viz.split\n"
-        "import symkin.mechanisms.cardan, symkin.mechanisms.helical.synthesis, symkin.mechanisms.multistage.split\n"
+        "import symkin.mechanisms.cardan, symkin.mechanisms.helical.balanced, symkin.mechanisms.multistage.split\n"
         "import symkin.papers.reproduce\n"
         "from symkin.papers.registry import load, paper_names\n"
         "[load(n) for n in paper_names()]\n"

@@ -47,10 +47,10 @@ def library_figures():
     frames = Frames.build(aa.motion({"4": 0, "H": 1}), [("23", (45, 0)), ("23", (20, 0))], t_end=0.3, frames=3)
     yield "animation frame", frame_figure(frames, 2)
     from symkin.mechanisms.multistage.lostmotion import StageErrorModel
-    from symkin.mechanisms.multistage.split import optimise_split
+    from symkin.mechanisms.multistage.split import optimize_split
     from symkin.mechanisms.multistage.stages import enumerate_stages
 
-    best = optimise_split(100, 2, lower=2, upper=20, model=StageErrorModel.linear(1, 1))
+    best = optimize_split(100, 2, lower=2, upper=20, model=StageErrorModel.linear(1, 1))
     yield "split", split_figure(best, points=9)
     yield "stage models", stage_model_figure(enumerate_stages(100, 4, zmin=15), {"a + b u": StageErrorModel.linear(1, 1)}, module=1)
 

@@ -235,9 +235,9 @@ def test_hands_from_the_helix_tangency():
 
 def test_statics_ratio_is_the_engines_ratio_for_coaxial_trains():
     """Virtual work: carrier torque per input torque is i_1H^(4), exactly the engine's ratio."""
-    from symkin.mechanisms.helical.synthesis import synthesise
+    from symkin.mechanisms.helical.balanced import synthesize_helical
 
-    res = synthesise(scheme="II", ratio=Fraction("1/50"), tolerance=Fraction("0.05"), satellites=3, normal_modules=(2, Fraction("2.5")),
+    res = synthesize_helical(scheme="II", ratio=Fraction("1/50"), tolerance=Fraction("0.05"), satellites=3, normal_modules=(2, Fraction("2.5")),
                      teeth_max=100, top=None)
     assert res.designs
     for d in res.designs:

@@ -12,17 +12,17 @@ import sympy as sp
 
 from symkin import InputError
 from symkin.mechanisms.helical import HelicalTrain
-from symkin.mechanisms.helical import synthesis as HS
-from symkin.mechanisms.helical.synthesis import (
+from symkin.mechanisms.helical import balanced as HS
+from symkin.mechanisms.helical.balanced import (
     DELTA,
     RATIO,
+    HelicalRequest,
     K,
     P,
     Q,
-    SynthesisRequest,
     X,
     Z,
-    synthesise,
+    synthesize_helical,
 )
 from symkin.statics import planet_forces
 
@@ -233,7 +233,7 @@ def brute_force(scheme, ratio, tol, k, mods, beta_lim, zlim, dmin=8):
 ])
 def test_synthesis_finds_exactly_what_plain_enumeration_finds(scheme, ratio, mods, k, zlim):
     tol, beta = Fraction(3, 100), (8, 30)
-    res = synthesise(scheme=scheme, ratio=ratio, tolerance=tol, satellites=k,
+    res = synthesize_helical(scheme=scheme, ratio=ratio, tolerance=tol, satellites=k,
                      normal_modules=(Fraction(mods[0]).limit_denominator(), Fraction(str(mods[1]))),
                      beta_min_deg=beta[0], beta_max_deg=beta[1], teeth_min=zlim[0], teeth_max=zlim[1], top=None)
     brute = brute_force(scheme, ratio, tol, k, mods, beta, zlim)
@@ -250,7 +250,7 @@ def designs():
     out = []
     for scheme, ratio, mods, zmax in (("AI", 25, (2, Fraction("2.5")), 120), ("AA", Fraction(1, 50), (2, Fraction("2.5")), 100),
                                       ("II", Fraction(1, 50), (2, Fraction("2.5")), 100), ("AI", 9, (3, 2), 90)):
-        res = synthesise(scheme=scheme, ratio=ratio, tolerance=Fraction("0.05"), satellites=3, normal_modules=mods,
+        res = synthesize_helical(scheme=scheme, ratio=ratio, tolerance=Fraction("0.05"), satellites=3, normal_modules=mods,
                          teeth_max=zmax, top=None)
         assert res.designs, (scheme, ratio, res.reason)
         out += [(res.request, d) for d in res.designs]
@@ -294,15 +294,15 @@ def test_every_design_lies_in_its_existence_region(designs):
 
 
 def test_designs_are_ranked_by_error_then_size():
-    res = synthesise(scheme="AI", ratio=12, tolerance=Fraction("0.02"), satellites=3, normal_modules=(2, Fraction("2.5")), teeth_max=90, top=None)
+    res = synthesize_helical(scheme="AI", ratio=12, tolerance=Fraction("0.02"), satellites=3, normal_modules=(2, Fraction("2.5")), teeth_max=90, top=None)
     keys = [(d.relative_error, d.envelope_diameter) for d in res.designs]
     assert keys == sorted(keys)
-    top = synthesise(scheme="AI", ratio=12, tolerance=Fraction("0.02"), satellites=3, normal_modules=(2, Fraction("2.5")), teeth_max=90, top=5)
+    top = synthesize_helical(scheme="AI", ratio=12, tolerance=Fraction("0.02"), satellites=3, normal_modules=(2, Fraction("2.5")), teeth_max=90, top=5)
     assert [d.teeth for d in top.designs] == [d.teeth for d in res.designs[:5]] and top.found == res.found
 
 
 def test_equal_rims_leave_the_helix_angle_free():
-    res = synthesise(scheme="AI", ratio=5, tolerance=0, satellites=2, normal_modules=(2, 2), teeth_max=90, top=None)
+    res = synthesize_helical(scheme="AI", ratio=5, tolerance=0, satellites=2, normal_modules=(2, 2), teeth_max=90, top=None)
     free = [d for d in res.designs if d.helix_free]
     assert (20, 30, 30, 80) in [d.teeth for d in free]
     for d in free:
@@ -334,21 +334,21 @@ def test_bad_input_is_refused_with_one_sentence(change, message):
     args = dict(scheme="AI", ratio=25, tolerance=Fraction("0.02"), satellites=3, normal_modules=(2, 2.5))
     args.update(change)
     with pytest.raises(InputError, match=message) as err:
-        SynthesisRequest(**args)
+        HelicalRequest(**args)
     assert "\n" not in str(err.value)
 
 
 def test_a_ratio_in_no_region_names_the_nearest():
     with pytest.raises(InputError, match=r"no existence region of scheme AI.*nearest is its end i = 1; schemes AA and II"):
-        synthesise(scheme="AI", ratio=Fraction("0.5"), satellites=3, normal_modules=(2, 2))
+        synthesize_helical(scheme="AI", ratio=Fraction("0.5"), satellites=3, normal_modules=(2, 2))
     with pytest.raises(InputError, match=r"scheme AA.*nearest is its end i = 1"):
-        synthesise(scheme="AA", ratio=3, satellites=3, normal_modules=(2, 2))
+        synthesize_helical(scheme="AA", ratio=3, satellites=3, normal_modules=(2, 2))
 
 
 def test_an_empty_result_says_why():
-    res = synthesise(scheme="AI", ratio=200, tolerance=Fraction("0.01"), satellites=3, normal_modules=(2, 2), teeth_max=60)
+    res = synthesize_helical(scheme="AI", ratio=200, tolerance=Fraction("0.01"), satellites=3, normal_modules=(2, 2), teeth_max=60)
     assert res.found == 0 and not res.designs and "no tooth set" in res.reason
-    res = synthesise(scheme="II", ratio=Fraction("1/50"), tolerance=Fraction("0.05"), satellites=3, normal_modules=(2, 2), teeth_max=80)
+    res = synthesize_helical(scheme="II", ratio=Fraction("1/50"), tolerance=Fraction("0.05"), satellites=3, normal_modules=(2, 2), teeth_max=80)
     assert res.found == 0 and "helix angles" in res.reason
-    res = synthesise(scheme="AI", ratio=25, tolerance=Fraction("0.02"), satellites=12, normal_modules=(2, Fraction("2.5")), teeth_max=120)
+    res = synthesize_helical(scheme="AI", ratio=25, tolerance=Fraction("0.02"), satellites=12, normal_modules=(2, Fraction("2.5")), teeth_max=120)
     assert res.found == 0 and ("neighbour" in res.reason or "assembled" in res.reason)

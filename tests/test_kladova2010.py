@@ -34,8 +34,8 @@ def test_every_kladova2010_check_is_reproduced(checks):
 
 def test_published_forms_that_are_damaged_really_differ_from_the_derivation():
     """An error must not hide a match: each printed form differs from the derived one."""
-    from symkin.mechanisms.helical import synthesis as HS
-    from symkin.mechanisms.helical.synthesis import Z
+    from symkin.mechanisms.helical import balanced as HS
+    from symkin.mechanisms.helical.balanced import Z
 
     z1, z2 = Z[1], Z[2]
     ai = HS.tooth_equations("AI").chain

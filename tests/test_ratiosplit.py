@@ -14,7 +14,7 @@ from symkin.mechanisms.multistage.lostmotion import StageErrorModel, U
 from symkin.mechanisms.multistage.split import (
     SplitProblem,
     best_designs,
-    optimise_split,
+    optimize_split,
     profile,
 )
 from symkin.mechanisms.multistage.stages import enumerate_stages
@@ -42,7 +42,7 @@ MODELS = {
 @pytest.mark.parametrize("total, lower, upper", [(60, 2.25, 11), (40, 2, 10), (99, 3, 12)])
 def test_two_stages_against_a_grid(name, total, lower, upper):
     text, F = MODELS[name]
-    best = optimise_split(total, 2, lower=lower, upper=upper, model=StageErrorModel(parse(text, symbols={"u": U})))
+    best = optimize_split(total, 2, lower=lower, upper=upper, model=StageErrorModel(parse(text, symbols={"u": U})))
     lo, hi = max(lower, total / upper), min(upper, total / lower)
     u1 = np.geomspace(lo, hi, 200001)
     values = objective_by_hand([u1, total / u1], F)
@@ -57,7 +57,7 @@ def test_two_stages_against_a_grid(name, total, lower, upper):
 @pytest.mark.parametrize("total, lower, upper", [(600, 2.25, 11), (100, 2, 9)])
 def test_three_stages_against_a_grid(name, total, lower, upper):
     text, F = MODELS[name]
-    best = optimise_split(total, 3, lower=lower, upper=upper, model=StageErrorModel(parse(text, symbols={"u": U})))
+    best = optimize_split(total, 3, lower=lower, upper=upper, model=StageErrorModel(parse(text, symbols={"u": U})))
     # a grid over two of the three ln u_i (bounds included), the third from the product;
     # each of the three pairs in turn, so an optimum with two stages on bounds is a grid point
     x = np.linspace(math.log(lower), math.log(upper), 801)
@@ -76,7 +76,7 @@ def test_three_stages_against_a_grid(name, total, lower, upper):
 
 
 def test_linear_models_fill_from_the_output_and_the_explanation_says_why():
-    best = optimise_split(6000, 4, lower=Fraction("2.25"), upper=11, model=StageErrorModel.linear(Fraction("0.854"), Fraction("0.858")))
+    best = optimize_split(6000, 4, lower=Fraction("2.25"), upper=11, model=StageErrorModel.linear(Fraction("0.854"), Fraction("0.858")))
     assert best.exact_ratios == (sp.Rational(6000, 1331), 11, 11, 11)
     assert best.active == ("free", "upper", "upper", "upper") and best.global_optimum
     g = best.log_gradient
@@ -90,13 +90,13 @@ def test_linear_models_fill_from_the_output_and_the_explanation_says_why():
     assert "upper bound" in text and "global minimum" in text and "g_j - g_(j+1) > 0" in text
     # the derivative of the optimum with respect to ln U is nu: a finite difference
     h = 1e-4
-    up = optimise_split(6000 * math.exp(h), 4, lower=Fraction("2.25"), upper=11, model=StageErrorModel.linear(Fraction("0.854"), Fraction("0.858")))
+    up = optimize_split(6000 * math.exp(h), 4, lower=Fraction("2.25"), upper=11, model=StageErrorModel.linear(Fraction("0.854"), Fraction("0.858")))
     assert (up.objective - best.objective) / h == pytest.approx(best.nu, rel=1e-3)
 
 
 def test_a_reversed_linear_model_fills_from_the_input():
     # g_j - g_(j+1) = (a + b)/(u_(j+1)...u_n) < 0 when a + b < 0: ratio goes to the input
-    best = optimise_split(100, 3, lower=2, upper=10, model=StageErrorModel.linear(-3, 2))
+    best = optimize_split(100, 3, lower=2, upper=10, model=StageErrorModel.linear(-3, 2))
     assert best.exact_ratios == (10, 5, 2) and best.active == ("upper", "free", "lower")
     assert all(best.log_gradient[j] < best.log_gradient[j + 1] for j in range(2))
     assert "toward the input" in " ".join(best.explain())
@@ -106,7 +106,7 @@ def test_a_reversed_linear_model_fills_from_the_input():
 
 def test_profile_touches_the_optimum():
     p = SplitProblem.build(6000, 4, lower=Fraction("2.25"), upper=11, model=StageErrorModel.linear(Fraction("0.854"), Fraction("0.858")))
-    best = optimise_split(6000, 4, lower=Fraction("2.25"), upper=11, model=StageErrorModel.linear(Fraction("0.854"), Fraction("0.858")))
+    best = optimize_split(6000, 4, lower=Fraction("2.25"), upper=11, model=StageErrorModel.linear(Fraction("0.854"), Fraction("0.858")))
     for i in range(1, 5):
         values = profile(p, i, [best.ratios[i - 1], 3.0])
         assert values[0] == pytest.approx(best.objective, rel=1e-9)
@@ -126,9 +126,9 @@ SPLIT_BAD = [
 @pytest.mark.parametrize("kwargs, message", SPLIT_BAD)
 def test_bad_split_input(kwargs, message):
     with pytest.raises(InputError, match=message):
-        optimise_split(model=StageErrorModel.linear(1, 1), **kwargs)
+        optimize_split(model=StageErrorModel.linear(1, 1), **kwargs)
     with pytest.raises(InputError, match="not positive"):
-        optimise_split(60, 2, lower=1, upper=60, model=StageErrorModel.linear(-3, 2))
+        optimize_split(60, 2, lower=1, upper=60, model=StageErrorModel.linear(-3, 2))
 
 
 # ---------------------------------------------------------------------------- discrete

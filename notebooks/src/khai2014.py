@@ -22,9 +22,7 @@ from IPython.display import Math, display
 import symkin
 from symkin import schemes
 from symkin.derivations import khai2014 as paper
-from symkin.mechanisms.multistage.lostmotion import StageErrorModel, lost_motion
-from symkin.mechanisms.multistage.split import best_designs, optimise_split
-from symkin.mechanisms.multistage.stages import enumerate_stages
+from symkin.mechanisms.multistage import StageErrorModel, best_designs, enumerate_stages, lost_motion, optimize_split
 
 print(paper.CITATION)
 
@@ -100,7 +98,7 @@ print(", ".join(f"{s.sun}/{s.planet}: {s.ratio}" for s in stages))
 # is a posynomial, hence convex, so the KKT point below is the global minimum:
 
 # %%
-best = optimise_split(6000, 4, lower=2.25, upper=11, model=StageErrorModel.linear(0.854, 0.858))
+best = optimize_split(6000, 4, lower=2.25, upper=11, model=StageErrorModel.linear(0.854, 0.858))
 print("u* =", best.exact_ratios, "  objective =", best.exact_objective, "=", sp.N(best.exact_objective, 6))
 for line in best.explain():
     print(" -", line)

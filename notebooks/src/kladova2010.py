@@ -24,7 +24,7 @@ import sympy as sp
 from IPython.display import Math, display
 
 import symkin
-from symkin.mechanisms.helical import synthesis as HS
+from symkin.mechanisms.helical import balanced as HS
 from symkin import schemes
 from symkin.derivations import kladova2010 as paper
 from symkin.statics import balancing_hands, planet_forces, planet_statics

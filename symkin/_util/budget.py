@@ -44,8 +44,9 @@ from typing import Any
 import sympy as sp
 
 from symkin.errors import InputError, SimplificationBudgetWarning
+from symkin.values import as_rational
 
-__all__ = ["simplify_within", "time_limit", "SECONDS", "MAX_OPS"]
+__all__ = ["simplify_within", "time_limit", "seconds_limit", "SECONDS", "MAX_OPS"]
 
 #: Default time budget of one simplification, seconds.
 SECONDS = 2.0
@@ -135,6 +136,20 @@ def time_limit(seconds: float, message: str, error: type[Exception] = InputError
             yield
     except _OutOfTime:
         raise error(message) from None
+
+
+def seconds_limit(value: Any) -> float | None:
+    """A search's ``time_limit`` as a user gives it: None (no limit), or a positive number of seconds.
+
+    >>> seconds_limit(None), seconds_limit(2), seconds_limit(0.5)
+    (None, 2.0, 0.5)
+    """
+    if value is None:
+        return None
+    limit = as_rational(value, what="the time limit")
+    if limit <= 0:
+        raise InputError(f"the time limit must be a positive number of seconds, got {value!r}")
+    return float(limit)
 
 
 #: Seconds between repeated interrupts once the time is up (until the block has stopped).

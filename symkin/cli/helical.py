@@ -8,7 +8,7 @@ from symkin.cli.common import Progress, add_command, add_quiet_flag, emit, parse
 from symkin.errors import InputError
 
 if TYPE_CHECKING:
-    from symkin.mechanisms.helical.synthesis import SynthesisRequest
+    from symkin.mechanisms.helical.balanced import HelicalRequest
 
 #: Relative axial residual every listed design must meet in the independent force check.
 FORCE_TOLERANCE = 1e-12
@@ -47,13 +47,13 @@ def register(sub: Any) -> None:
     add_quiet_flag(p)
 
 
-def _request(args: Any) -> SynthesisRequest:
-    from symkin.mechanisms.helical.synthesis import SCHEMES, SynthesisRequest
+def _request(args: Any) -> HelicalRequest:
+    from symkin.mechanisms.helical.balanced import SCHEMES, HelicalRequest
 
     if args.scheme not in SCHEMES:
         raise InputError(f"unknown scheme {args.scheme!r}; choose one of {', '.join(SCHEMES)}")
     top = None if args.top.strip().lower() == "all" else parse_integer(args.top, what="--top")
-    return SynthesisRequest(
+    return HelicalRequest(
         scheme=args.scheme,
         ratio=parse_number(args.ratio, what="--ratio"),
         tolerance=parse_number(args.tolerance, what="--tolerance"),
@@ -72,13 +72,13 @@ def _request(args: Any) -> SynthesisRequest:
 
 def run_helical(args: Any) -> Any:
     """Run ``symkin helical`` with the parsed ``args``: the synthesis of helical stepped-planet trains with balanced axial forces; returns its output, :func:`symkin.cli.common.emit` (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
-    from symkin.mechanisms.helical.synthesis import synthesise
+    from symkin.mechanisms.helical.balanced import synthesize_helical
     from symkin.statics import planet_forces
 
     req = _request(args)
     bar = Progress(enabled=not args.quiet)
     try:
-        result = synthesise(req, progress=lambda done, total: bar.show(f"searching: Z2 {done}/{total}"))
+        result = synthesize_helical(req, progress=lambda done, total: bar.show(f"searching: Z2 {done}/{total}"))
     finally:
         bar.close()
     checks = []
@@ -107,9 +107,7 @@ def _text(result: Any, checks: list[dict[str, Any]]) -> str:
     if not result.designs:
         lines.append(f"no designs: {result.reason}")
         return "\n".join(lines)
-    shown = len(result.designs)
-    lines.append(f"{result.found} designs; {'all' if shown == result.found else f'the best {shown}'} by ratio error, "
-                 "then envelope diameter (hands: R right, L left, gears 1-4):")
+    lines.append(f"{result.message()} (hands: R right, L left, gears 1-4):")
     header = ("#", "Z1", "Z2", "Z3", "Z4", "i_1H^(4)", "error %", "beta12", "beta34", "hands", "P", "Q",
               "a_w mm", "dw2/dw3", "env. mm", "axial check")
     rows: list[tuple[str, ...]] = [header]

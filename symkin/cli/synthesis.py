@@ -173,8 +173,7 @@ def _text(result: Any, checks: list[Any], latex: bool, etas: list[Any] | None = 
                  f"{result.seconds:.2f} s in all")
     width = max(len(str(n)) for _, n in result.funnel)
     lines += [f"  {n:>{width}}  {name}" for name, n in result.funnel]
-    shown = len(result.designs)
-    lines.append(f"{result.found} designs; {'all' if shown == result.found else f'the best {shown}'} by {result.order}:")
+    lines.append(f"{result.message()}:")
     table = describe_designs(result.designs)
     for i, (row, check) in enumerate(zip(table, [None, *checks])):
         mark = "check" if check is None else ("ok" if check.passed else f"FAILED {check.problem}")

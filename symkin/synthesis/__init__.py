@@ -1,14 +1,18 @@
 """Tooth numbers for a target ratio, for any train: conditions derived from the model, an exact pruned search.
 
+- :mod:`.request`: what is asked, in request objects (:class:`SynthesisRequest` of a
+  :class:`Target` and :class:`Options`; :class:`RunOptions` for how the search runs);
 - :mod:`.problem`: the conditions derived from a train whose tooth numbers are symbols
-  (coaxiality, assembly of k planets, neighbours, limits), printable as LaTeX
-  (:func:`derive`, :class:`Condition`);
-- :mod:`.search`: the search plan (the coaxiality solved for some tooth numbers, the ratio
-  window for one more) and the evaluation of a chunk of the space, exact in integers and
-  rationals;
+  (coaxiality, assembly of k planets, neighbours, limits: :func:`derive`), made of the parts of
+  :mod:`.parts`, the assembly of :mod:`.assembly`, printable as LaTeX (:mod:`.conditions`);
+- :mod:`.search`: a chunk of the space searched, exact in integers and rationals: the plan
+  (:mod:`.plan`: the coaxiality solved for some tooth numbers, the ratio window for one more,
+  compiled), the tuples with the ratio (:mod:`.tuples`) and the checks (:mod:`.funnel`);
 - :mod:`.efficiency`: the train's efficiency law, for ranking designs by it exactly;
 - :mod:`.runner`: chunks run here or on Dask, with progress and a time limit;
 - :mod:`.result`: the designs, each re-checked by building its train;
+- :mod:`.searches`: what this search shares with the helical synthesis and the multistage
+  split (:class:`SearchResult`);
 - :func:`synthesize`: all of it in one call.
 
     >>> from symkin.synthesis import synthesize
@@ -22,9 +26,11 @@
 from __future__ import annotations
 
 from symkin.synthesis.api import synthesize
-from symkin.synthesis.problem import Condition, Options, Problem, derive, undercut_minimum
+from symkin.synthesis.conditions import Condition
+from symkin.synthesis.problem import Problem, derive
+from symkin.synthesis.request import Options, RunOptions, SynthesisRequest, Target, undercut_minimum
 from symkin.synthesis.result import Design, DesignCheck, SynthesisResult
-from symkin.synthesis.search import Target
+from symkin.synthesis.searches import SearchResult
 
-__all__ = ["synthesize", "derive", "Problem", "Condition", "Options", "Target", "Design", "DesignCheck",
-           "SynthesisResult", "undercut_minimum"]
+__all__ = ["synthesize", "SynthesisRequest", "Target", "Options", "RunOptions", "derive", "Problem", "Condition", "Design",
+           "DesignCheck", "SynthesisResult", "SearchResult", "undercut_minimum"]

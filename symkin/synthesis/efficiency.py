@@ -244,33 +244,9 @@ class EfficiencyLaw:
         for node in _relations(self.conditions):
             degenerate |= vals[node[1] + 1] == 0
 
-        def sign(i: int) -> np.ndarray:
-            p, q = vals[i], vals[i + 1]
-            return np.sign(p).astype(np.int64) * np.sign(q).astype(np.int64)  # 0 where undefined or on the boundary
-
-        def holds(node: tuple) -> np.ndarray:
-            kind = node[0]
-            if kind == "const":
-                return np.full(m, bool(node[1]))
-            if kind == "and":
-                out = np.ones(m, dtype=bool)
-                for a in node[1]:
-                    out &= holds(a)
-                return out
-            if kind == "or":
-                out = np.zeros(m, dtype=bool)
-                for a in node[1]:
-                    out |= holds(a)
-                return out
-            if kind == "not":
-                return ~holds(node[1])
-            s = sign(node[1])
-            defined = vals[node[1] + 1] != 0
-            return defined & _OPS[node[2]](s, 0)
-
         chosen = np.full(m, -1, dtype=np.int64)
         for b, cond in enumerate(self.conditions):
-            chosen = np.where((chosen < 0) & holds(cond), b, chosen)
+            chosen = np.where((chosen < 0) & _holds(cond, vals, m), b, chosen)
         found: list[Fraction | None] = [None] * m
         memo: dict[tuple[int, int], Fraction] = {}
         for b, (pi, qi) in enumerate(self.pieces):
@@ -305,6 +281,30 @@ def power_path(problem: Any, train: Any) -> tuple[str, str, tuple[str, ...], tup
         st = train.state(state)
         driver, driven, fixed, joined = st.input, st.output, st.brakes, st.clutches
     return driver, driven, tuple(f for f in (fixed or ()) if f is not None), tuple(joined)
+
+
+def _holds(node: tuple, vals: list[np.ndarray], m: int) -> np.ndarray:
+    """Where a condition between pieces holds, at each of ``m`` rows: ``vals`` holds each relation's
+    numerator and denominator; a relation holds only where it is defined."""
+    kind = node[0]
+    if kind == "const":
+        return np.full(m, bool(node[1]))
+    if kind == "and":
+        out = np.ones(m, dtype=bool)
+        for a in node[1]:
+            out &= _holds(a, vals, m)
+        return out
+    if kind == "or":
+        out = np.zeros(m, dtype=bool)
+        for a in node[1]:
+            out |= _holds(a, vals, m)
+        return out
+    if kind == "not":
+        return ~_holds(node[1], vals, m)
+    p, q = vals[node[1]], vals[node[1] + 1]
+    s = np.sign(p).astype(np.int64) * np.sign(q).astype(np.int64)  # 0 where undefined or on the boundary
+    defined = q != 0
+    return defined & _OPS[node[2]](s, 0)
 
 
 def _relations(nodes: Sequence[tuple]) -> list[tuple]:

@@ -60,15 +60,7 @@ def solvable(G: Sequence[Sequence[int]], h: Sequence[Fraction | int]) -> bool:
     col = 0
     for i in range(rows):
         row = M[i]
-        # column operations (unimodular) leave a single entry, the gcd, in column `col`
-        for j in range(col + 1, cols):
-            while row[j] != 0:
-                if row[col] == 0 or abs(row[j]) < abs(row[col]):
-                    _swap(M, col, j)
-                    continue
-                q = row[j] // row[col]
-                for r in M:
-                    r[j] -= q * r[col]
+        _reduce(M, i, col)
         known = sum(M[i][c] * y[c] for c in range(col))
         rest = b[i] - known
         if col < cols and row[col] != 0:
@@ -95,6 +87,19 @@ def divides(coefficients: Sequence[int], value: Fraction | int) -> bool:
     for c in coefficients:
         g = math.gcd(g, int(c))
     return value.numerator == 0 if g == 0 else value.numerator % g == 0
+
+
+def _reduce(M: list[list[int]], i: int, col: int) -> None:
+    """Column operations (unimodular) that leave one entry, the gcd, in row ``i`` from column ``col`` on."""
+    row = M[i]
+    for j in range(col + 1, len(row)):
+        while row[j] != 0:
+            if row[col] == 0 or abs(row[j]) < abs(row[col]):
+                _swap(M, col, j)
+                continue
+            q = row[j] // row[col]
+            for r in M:
+                r[j] -= q * r[col]
 
 
 def _swap(M: list[list[int]], a: int, b: int) -> None:

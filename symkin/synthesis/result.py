@@ -13,7 +13,7 @@ from __future__ import annotations
 import dataclasses
 import math
 import warnings
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any
@@ -23,9 +23,13 @@ import sympy as sp
 from symkin._util.jsonout import exact_json, float_text
 from symkin.errors import CoaxialityWarning, ModelError, SymkinError
 from symkin.model import Gear, LinkKind, Mechanism
+from symkin.synthesis.conditions import Condition
 from symkin.synthesis.efficiency import DEFAULT_RANK
-from symkin.synthesis.problem import Condition, Problem
-from symkin.synthesis.search import STAGES, ChunkResult, Plan, Record, Target
+from symkin.synthesis.funnel import Record
+from symkin.synthesis.plan import STAGES, SearchPlan
+from symkin.synthesis.problem import Problem
+from symkin.synthesis.request import Target
+from symkin.synthesis.search import ChunkResult
 
 __all__ = ["Design", "DesignCheck", "SynthesisResult"]
 
@@ -124,7 +128,7 @@ class Design:
     mesh_efficiency: tuple[tuple[str, sp.Expr], ...] = ()
 
     @classmethod
-    def from_record(cls, plan: Plan, record: Record) -> Design:
+    def from_record(cls, plan: SearchPlan, record: Record) -> Design:
         """A design from a search record: every gear's tooth number, the exact ratio and its error, the size, the planets' arms and the profile shifts."""
         problem = plan.problem
         values = dict(zip(problem.unknowns, record.teeth))
@@ -409,6 +413,8 @@ def _least_gap(problem: Problem, train: Mechanism, angles: dict[str, sp.Expr]) -
 class SynthesisResult:
     """A synthesis: the designs (best first), the funnel of conditions, and how the search ran.
 
+    A :class:`~symkin.synthesis.searches.SearchResult`: iterating it gives the designs.
+
     Attributes
     ----------
     problem : Problem
@@ -453,6 +459,21 @@ class SynthesisResult:
     rank: tuple[str, ...] = DEFAULT_RANK
     mesh_efficiency: tuple[tuple[str, sp.Expr], ...] = ()
 
+    def __iter__(self) -> Iterator[Design]:
+        return iter(self.designs)
+
+    def message(self) -> str:
+        """How many designs were found and which are listed, in what order; or why there are none.
+
+        >>> from symkin.synthesis import synthesize
+        >>> synthesize("simple", driver="S", driven="C", fixed="R", ratio=4, zmax=100, top=2).message()
+        '6 designs; the best 2 by ratio error, then size (envelope diameter), then tooth sum'
+        """
+        if not self.found:
+            return self.reason
+        shown = len(self.designs)
+        return f"{self.found} designs; {'all' if shown == self.found else f'the best {shown}'} by {self.order}"
+
     @property
     def order(self) -> str:
         """The ranking in words: "ratio error, then size (envelope diameter), then tooth sum"."""
@@ -494,7 +515,7 @@ class SynthesisResult:
         }
 
 
-def funnel_of(plan: Plan, merged: ChunkResult) -> tuple[tuple[str, int], ...]:
+def funnel_of(plan: SearchPlan, merged: ChunkResult) -> tuple[tuple[str, int], ...]:
     """The stages that apply to this plan, with the tuples passing each."""
     o = plan.problem.options
     k = sorted(set(plan.k.values())) or [1]
@@ -518,7 +539,7 @@ def funnel_of(plan: Plan, merged: ChunkResult) -> tuple[tuple[str, int], ...]:
     return tuple((names[s], n) for s, n in zip(STAGES, merged.counts) if applies[s])
 
 
-def empty_reason(plan: Plan, merged: ChunkResult) -> str:
+def empty_reason(plan: SearchPlan, merged: ChunkResult) -> str:
     """Which condition removed the last candidates, and how to relax it."""
     o = plan.problem.options
     t = plan.target

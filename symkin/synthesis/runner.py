@@ -8,8 +8,9 @@ Progress is reported as chunks finish, and a time limit stops the search with a
 
     >>> from symkin.trains import load_train
     >>> from symkin.synthesis.problem import derive
-    >>> from symkin.synthesis.search import Plan, Target
-    >>> plan = Plan.build(derive(load_train("simple"), driver="S", driven="C", fixed="R", zmax=80), Target.of(4),
+    >>> from symkin.synthesis.plan import SearchPlan
+    >>> from symkin.synthesis.request import Target
+    >>> plan = SearchPlan.build(derive(load_train("simple"), driver="S", driven="C", fixed="R", zmax=80), Target.of(4),
     ...                   chunk=10)
     >>> run(plan).found, len(plan.chunks)
     (3, 7)
@@ -26,7 +27,8 @@ from dataclasses import dataclass
 from typing import Any
 
 from symkin.errors import InputError, TimeLimitError, UnsupportedError
-from symkin.synthesis.search import ChunkResult, Plan, evaluate_chunk, merge
+from symkin.synthesis.plan import SearchPlan
+from symkin.synthesis.search import ChunkResult, evaluate_chunk, merge
 
 __all__ = ["run", "Execution", "local_cluster"]
 
@@ -53,7 +55,7 @@ class Execution:
                 "seconds": round(self.seconds, 4), "chunk_seconds": round(self.chunk_seconds, 4)}
 
 
-def run(plan: Plan, *, scheduler: str | None = None, workers: int | None = None, time_limit: float | None = None,
+def run(plan: SearchPlan, *, scheduler: str | None = None, workers: int | None = None, time_limit: float | None = None,
         progress: Callable[[int, int, int], None] | None = None, execution: list[Execution] | None = None,
         spent: float = 0.0) -> ChunkResult:
     """Evaluate every chunk of ``plan`` and merge them.
@@ -101,7 +103,7 @@ class _Results(list):
     elapsed = 0.0
 
 
-def _local(plan: Plan, chunks: list[tuple[int, int]], limit: float | None,
+def _local(plan: SearchPlan, chunks: list[tuple[int, int]], limit: float | None,
            progress: Callable[[int, int, int], None] | None, spent: float) -> list[ChunkResult]:
     start = time.perf_counter()
     out = _Results()
@@ -117,7 +119,7 @@ def _local(plan: Plan, chunks: list[tuple[int, int]], limit: float | None,
     return out
 
 
-def _check_time(plan: Plan, spent: float, searched: float, done: int, limit: float, *, final: bool = False) -> None:
+def _check_time(plan: SearchPlan, spent: float, searched: float, done: int, limit: float, *, final: bool = False) -> None:
     """Stop when the limit is passed, or when the work done so far says it will be passed well.
 
     ``spent`` seconds went before the search (deriving, compiling), ``searched`` into the
@@ -130,7 +132,7 @@ def _check_time(plan: Plan, spent: float, searched: float, done: int, limit: flo
         raise TimeLimitError(_too_long(plan, elapsed, fraction, projected, limit))
 
 
-def _too_long(plan: Plan, elapsed: float, fraction: float, projected: float, limit: float) -> str:
+def _too_long(plan: SearchPlan, elapsed: float, fraction: float, projected: float, limit: float) -> str:
     o = plan.problem.options
     dims = max(len(plan.outer), 1)
     span = o.zmax - o.zmin + 1
@@ -186,7 +188,7 @@ def _client(scheduler: str, workers: int | None) -> tuple[Any, Any, str, int]:
     return client, None, f"Dask scheduler {scheduler} ({n} worker{'s' * (n != 1)})", n
 
 
-def _dask(plan: Plan, chunks: list[tuple[int, int]], scheduler: str, workers: int | None, limit: float | None,
+def _dask(plan: SearchPlan, chunks: list[tuple[int, int]], scheduler: str, workers: int | None, limit: float | None,
           progress: Callable[[int, int, int], None] | None, spent: float) -> tuple[list[ChunkResult], int, str]:
     import distributed
 

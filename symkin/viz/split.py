@@ -3,8 +3,8 @@
 Built with matplotlib's object API; save with :func:`symkin.viz.figures.save`.
 
     >>> from symkin.mechanisms.multistage.lostmotion import StageErrorModel
-    >>> from symkin.mechanisms.multistage.split import optimise_split
-    >>> best = optimise_split(100, 2, lower=2, upper=20, model=StageErrorModel.linear(1, 1))
+    >>> from symkin.mechanisms.multistage.split import optimize_split
+    >>> best = optimize_split(100, 2, lower=2, upper=20, model=StageErrorModel.linear(1, 1))
     >>> fig = split_figure(best, points=9)
     >>> len(fig.axes)
     1

@@ -400,29 +400,9 @@ def enumerate_stages(ring: int, satellites: int, *, zmin: int = 1, zmax: int | N
     ...
     symkin.errors.InputError: no single-row AI stage fits a ring of 40 teeth with 15 <= z <= 100: coaxiality z_ring = z_sun + 2 z_planet leaves no sun and planet of at least 15 teeth each; use a ring of at least 45 teeth or lower zmin
     """
-    ring = int(as_integer(ring, what="the ring's tooth number", minimum=1))
-    if ring > MAX_RING:
-        raise InputError(f"the ring has {ring} teeth; the enumeration visits every sun, so at most {MAX_RING} are accepted")
-    k = int(as_integer(satellites, what="the number of satellites", minimum=1))
-    zmin = int(as_integer(zmin, what="zmin", minimum=1))
-    zmax = ring if zmax is None else int(as_integer(zmax, what="zmax", minimum=1))
-    ha_value = _tip_height(ha)
-    if zmax < zmin:
-        raise InputError(f"zmin = {zmin} is larger than zmax = {zmax}; give zmin <= zmax")
-    if not zmin <= ring <= zmax:
-        raise InputError(f"the ring's {ring} teeth are outside the limits {zmin} <= z <= {zmax}; widen the limits")
+    ring, k, zmin, zmax, ha_value = _limits(ring, satellites, zmin, zmax, ha)
     rejected = {"limits": 0, "coaxiality": 0, "assembly": 0, "neighbours": 0}
-    planet_of = _compiled()["planet"]
-    candidates: list[tuple[int, int, bool, bool]] = []  # coaxial, within limits: sun, planet, assembly, neighbours
-    for sun in range(1, ring):
-        planet_value = planet_of(sun, ring)
-        if not (zmin <= sun <= zmax and zmin <= planet_value <= zmax):
-            rejected["limits"] += 1
-        elif planet_value.denominator != 1:
-            rejected["coaxiality"] += 1
-        else:
-            planet = int(planet_value)
-            candidates.append((sun, planet, assembles(sun, ring, k), neighbours_clear(sun, planet, k, ha_value)))
+    candidates = _coaxial_candidates(ring, k, zmin, zmax, ha_value, rejected)
     found: list[Stage] = []
     for sun, planet, fits_assembly, fits_neighbours in candidates:
         if not fits_assembly:
@@ -436,6 +416,40 @@ def enumerate_stages(ring: int, satellites: int, *, zmin: int = 1, zmax: int | N
     if not found and not allow_empty:
         raise InputError(_why_empty(result, candidates))
     return result
+
+
+def _limits(ring: Any, satellites: Any, zmin: Any, zmax: Any, ha: Any) -> tuple[int, int, int, int, sp.Rational]:
+    """The ring, the satellites, the tooth limits and h_a*, checked."""
+    ring = int(as_integer(ring, what="the ring's tooth number", minimum=1))
+    if ring > MAX_RING:
+        raise InputError(f"the ring has {ring} teeth; the enumeration visits every sun, so at most {MAX_RING} are accepted")
+    k = int(as_integer(satellites, what="the number of satellites", minimum=1))
+    zmin = int(as_integer(zmin, what="zmin", minimum=1))
+    zmax = ring if zmax is None else int(as_integer(zmax, what="zmax", minimum=1))
+    ha_value = _tip_height(ha)
+    if zmax < zmin:
+        raise InputError(f"zmin = {zmin} is larger than zmax = {zmax}; give zmin <= zmax")
+    if not zmin <= ring <= zmax:
+        raise InputError(f"the ring's {ring} teeth are outside the limits {zmin} <= z <= {zmax}; widen the limits")
+    return ring, k, zmin, zmax, ha_value
+
+
+def _coaxial_candidates(ring: int, k: int, zmin: int, zmax: int, ha: sp.Rational,
+                        rejected: dict[str, int]) -> list[tuple[int, int, bool, bool]]:
+    """Every sun whose planet is coaxial and within the limits, with whether the stage assembles and its
+    neighbours clear (sun, planet, assembly, neighbours); the others counted in ``rejected``."""
+    planet_of = _compiled()["planet"]
+    candidates: list[tuple[int, int, bool, bool]] = []
+    for sun in range(1, ring):
+        planet_value = planet_of(sun, ring)
+        if not (zmin <= sun <= zmax and zmin <= planet_value <= zmax):
+            rejected["limits"] += 1
+        elif planet_value.denominator != 1:
+            rejected["coaxiality"] += 1
+        else:
+            planet = int(planet_value)
+            candidates.append((sun, planet, assembles(sun, ring, k), neighbours_clear(sun, planet, k, ha)))
+    return candidates
 
 
 def _why_empty(result: StageSet, candidates: Sequence[tuple[int, int, bool, bool]]) -> str:

@@ -16,7 +16,7 @@ stage error model Phi/d(u).  Two problems are solved:
   tolerance, the nearest designs are returned instead, and the result says so.
 
     >>> from symkin.mechanisms.multistage.lostmotion import StageErrorModel
-    >>> best = optimise_split(100, 2, lower=2, upper=20, model=StageErrorModel.linear(1, 1))
+    >>> best = optimize_split(100, 2, lower=2, upper=20, model=StageErrorModel.linear(1, 1))
     >>> best.exact_ratios, best.active
     ((5, 20), ('free', 'upper'))
 
@@ -29,13 +29,13 @@ from __future__ import annotations
 
 from symkin.mechanisms.multistage.split.continuous import (
     ContinuousSplit,
-    optimise_split,
+    optimize_split,
     profile,
     solve_continuous,
 )
 from symkin.mechanisms.multistage.split.discrete import (
-    Design,
     DiscreteSplit,
+    SplitDesign,
     best_designs,
 )
 from symkin.mechanisms.multistage.split.problem import MAX_STAGES, SplitProblem
@@ -45,9 +45,9 @@ _solve = solve_continuous  # the former private name
 __all__ = [
     "SplitProblem",
     "ContinuousSplit",
-    "Design",
+    "SplitDesign",
     "DiscreteSplit",
-    "optimise_split",
+    "optimize_split",
     "solve_continuous",
     "profile",
     "best_designs",

@@ -8,7 +8,7 @@ in the u_i (checked symbolically), it is convex in x and the KKT point is the gl
 minimum.
 
     >>> from symkin.mechanisms.multistage.lostmotion import StageErrorModel
-    >>> optimise_split(100, 2, lower=2, upper=20, model=StageErrorModel.linear(1, 1)).active
+    >>> optimize_split(100, 2, lower=2, upper=20, model=StageErrorModel.linear(1, 1)).active
     ('free', 'upper')
 """
 
@@ -29,7 +29,7 @@ from symkin.errors import SymkinError
 from symkin.mechanisms.multistage.lostmotion import StageErrorModel  # noqa: F401  (the doctests use it)
 from symkin.mechanisms.multistage.split.problem import _BOUND_TOL, SplitProblem
 
-__all__ = ["ContinuousSplit", "optimise_split", "solve_continuous", "profile"]
+__all__ = ["ContinuousSplit", "optimize_split", "solve_continuous", "profile"]
 
 
 @dataclass(frozen=True)
@@ -80,7 +80,7 @@ class ContinuousSplit:
     def explain(self) -> list[str]:
         """Sentences saying which bounds are active and why.
 
-        >>> r = optimise_split(100, 2, lower=2, upper=20, model=StageErrorModel.linear(1, 1))
+        >>> r = optimize_split(100, 2, lower=2, upper=20, model=StageErrorModel.linear(1, 1))
         >>> r.explain()[:2]
         ['stage 1: u = 5, free (inside its bounds)', 'stage 2: u = 20, on its upper bound 20']
         """
@@ -215,7 +215,7 @@ def _kkt(problem: SplitProblem, x: np.ndarray, lo: np.ndarray, hi: np.ndarray) -
     return tuple(active), g, nu, mult, resid
 
 
-def _minimise(problem: SplitProblem, lo: np.ndarray, hi: np.ndarray, L: float) -> tuple[np.ndarray, int, str]:
+def _minimize(problem: SplitProblem, lo: np.ndarray, hi: np.ndarray, L: float) -> tuple[np.ndarray, int, str]:
     from scipy.optimize import minimize
 
     n = len(lo)
@@ -277,7 +277,7 @@ def solve_continuous(problem: SplitProblem) -> ContinuousSplit:
     lo = np.array([math.log(float(v)) for v in problem.lower])
     hi = np.array([math.log(float(v)) for v in problem.upper])
     L = math.log(float(problem.total))
-    x, starts, method = _minimise(problem, lo, hi, L)
+    x, starts, method = _minimize(problem, lo, hi, L)
     active, g, nu, mult, resid = _kkt(problem, x, lo, hi)
     exact, exact_obj = _exact(problem, active)
     ratios = tuple(float(v) for v in np.exp(x))
@@ -320,7 +320,7 @@ def _exact(
     return ratios, problem.exact_value(ratios)
 
 
-def optimise_split(total: Any, stages: int, *, lower: Any, upper: Any, model: Any) -> ContinuousSplit:
+def optimize_split(total: Any, stages: int, *, lower: Any, upper: Any, model: Any) -> ContinuousSplit:
     """The continuous split of least lost motion, with its KKT explanation.
 
     Parameters
@@ -336,7 +336,7 @@ def optimise_split(total: Any, stages: int, *, lower: Any, upper: Any, model: An
     Examples
     --------
     >>> from symkin.mechanisms.multistage.lostmotion import StageErrorModel
-    >>> r = optimise_split(1000, 3, lower=2, upper=12, model=StageErrorModel.linear(1, 1))
+    >>> r = optimize_split(1000, 3, lower=2, upper=12, model=StageErrorModel.linear(1, 1))
     >>> r.exact_ratios, r.active, r.global_optimum
     ((125/18, 12, 12), ('free', 'upper', 'upper'), True)
     """
@@ -365,7 +365,7 @@ def profile(problem: SplitProblem, stage: int, values: Iterable[float]) -> np.nd
         if lo.sum() > L + 1e-12 or hi.sum() < L - 1e-12:
             out.append(math.nan)
             continue
-        xs, _, _ = _minimise(problem, lo, hi, L)
+        xs, _, _ = _minimize(problem, lo, hi, L)
         out.append(problem.value(np.exp(xs)))
     return np.array(out, dtype=float)
 

@@ -11,7 +11,7 @@ import heapq
 import math
 import time
 from bisect import bisect_left, bisect_right
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any
@@ -19,8 +19,9 @@ from typing import Any
 import numpy as np
 import sympy as sp
 
+from symkin._util.budget import seconds_limit
 from symkin._util.jsonout import exact_json, exact_json_list
-from symkin.errors import InputError, UnsupportedError
+from symkin.errors import InputError, TimeLimitError, UnsupportedError
 from symkin.mechanisms.multistage.lostmotion import StageErrorModel  # noqa: F401  (the doctests use it)
 from symkin.mechanisms.multistage.split.problem import (
     _TABLE_SIZE,
@@ -28,11 +29,11 @@ from symkin.mechanisms.multistage.split.problem import (
 )
 from symkin.values import as_rational
 
-__all__ = ["Design", "DiscreteSplit", "best_designs"]
+__all__ = ["SplitDesign", "DiscreteSplit", "best_designs"]
 
 
 @dataclass(frozen=True)
-class Design:
+class SplitDesign:
     """One discrete design: a feasible stage per position, input stage first.
 
     Attributes
@@ -72,12 +73,15 @@ class Design:
 class DiscreteSplit:
     """The best discrete designs, or the nearest ones when none meets the tolerance.
 
+    A :class:`~symkin.synthesis.searches.SearchResult`: iterating it gives the designs, and
+    :attr:`reason` says that none meets the tolerance when the designs are the nearest ones.
+
     Attributes
     ----------
     problem : SplitProblem
     tolerance : sympy.Rational
         The relative tolerance on the total ratio.
-    designs : tuple of Design
+    designs : tuple of SplitDesign
         Ranked by objective (within tolerance) or by ``|deviation|`` then objective (nearest).
     meets_tolerance : bool
     nodes : int
@@ -88,10 +92,18 @@ class DiscreteSplit:
 
     problem: SplitProblem
     tolerance: sp.Rational
-    designs: tuple[Design, ...]
+    designs: tuple[SplitDesign, ...]
     meets_tolerance: bool
     nodes: int
     distinct: bool
+
+    def __iter__(self) -> Iterator[SplitDesign]:
+        return iter(self.designs)
+
+    @property
+    def reason(self) -> str:
+        """Why no design meets the tolerance (the designs are then the nearest ones); empty when some do."""
+        return "" if self.meets_tolerance else self.message()
 
     def message(self) -> str:
         """One line that says whether the designs meet the tolerance, or which is nearest when none does."""
@@ -118,14 +130,41 @@ class DiscreteSplit:
         }
 
 
+class _Best:
+    """The best designs met so far, each multiset of stages once when ``distinct``, and the objective a
+    new design must beat once ``top`` are known."""
+
+    def __init__(self, top: int, distinct: bool) -> None:
+        self.top, self.distinct = top, distinct
+        self.found: dict[Any, tuple[float, tuple[int, ...]]] = {}
+        self.threshold = math.inf
+
+    def record(self, obj: float, design: tuple[int, ...]) -> None:
+        key = tuple(sorted(design)) if self.distinct else design
+        old = self.found.get(key)
+        if old is None or obj < old[0]:
+            self.found[key] = (obj, design)
+            if len(self.found) >= self.top:
+                values = heapq.nsmallest(self.top, (v[0] for v in self.found.values()))
+                self.threshold = values[-1]
+                if len(self.found) > 4 * self.top:
+                    keep = heapq.nsmallest(self.top, self.found.items(), key=lambda kv: kv[1][0])
+                    self.found.clear()
+                    self.found.update(keep)
+
+    def ranked(self) -> list[tuple[float, tuple[int, ...]]]:
+        return sorted(self.found.values())[: self.top]
+
+
 class _Search:
     """Depth-first branch and bound from the output stage (stage n) to the input (stage 1)."""
 
     def __init__(self, problem: SplitProblem, stages: Sequence[Any], top: int, distinct: bool,
-                 progress: Callable[[float, int], None] | None):
+                 progress: Callable[[float, int], None] | None, time_limit: float | None = None):
         lm = problem.lost_motion
         n = problem.stages
         self.n, self.top, self.distinct, self.progress = n, top, distinct, progress
+        self.time_limit, self.started = time_limit, time.perf_counter()
         self.stages = sorted(stages, key=lambda s: s.ratio, reverse=True)
         self.r = [float(s.ratio) for s in self.stages]
         self.exact = [Fraction(int(s.ratio.p), int(s.ratio.q)) for s in self.stages]
@@ -243,15 +282,22 @@ class _Search:
         lo, hi = r * min(self.log_r[k:]), r * max(self.log_r[k:])
         return max(0.0, lo - need, need - hi)
 
-    # -- progress: fraction of the first two levels done
+    # -- progress: fraction of the first two levels done; the time limit
     def _tick(self, k0: int, k1: int) -> None:
-        if self.progress is None:
+        if self.progress is None and self.time_limit is None:
             return
         now = time.perf_counter()
-        if now - self.last_report > 0.2:
+        m = len(self.r)
+        self._check_time(now, (k0 + k1 / m) / m)
+        if self.progress is not None and now - self.last_report > 0.2:
             self.last_report = now
-            m = len(self.r)
             self.progress((k0 + k1 / m) / m, self.nodes)
+
+    def _check_time(self, now: float, fraction: float) -> None:
+        if self.time_limit is not None and now - self.started > self.time_limit:
+            raise TimeLimitError(f"the split search did {fraction:.0%} ({self.nodes} nodes) in {now - self.started:.1f} s, "
+                                 f"more than the time limit of {self.time_limit:g} s; narrow the stage ratio bounds, "
+                                 "use fewer stages or raise the time limit")
 
     def _term(self, i: int, k: int, chosen: dict[int, int]) -> float:
         """Stage i's contribution with u_i = ratio k and the later stages in ``chosen``."""
@@ -275,47 +321,38 @@ class _Search:
         return total
 
     def run_tolerance(self, U: Fraction, tol: Fraction) -> list[tuple[float, tuple[int, ...]]]:
+        """The ``top`` designs of least objective whose total is within ``tol`` of ``U`` (objective, stage indices)."""
         lo_f, hi_f = float(U * (1 - tol)), float(U * (1 + tol))
         lo_x, hi_x = U * (1 - tol), U * (1 + tol)
         asc = sorted(range(len(self.r)), key=lambda k: self.r[k])
         asc_r = [self.r[k] for k in asc]
         log_lo, log_hi = math.log(lo_f), math.log(hi_f) if hi_f > 0 else -math.inf
-        best: dict[Any, tuple[float, tuple[int, ...]]] = {}
-        threshold = [math.inf]
+        best = _Best(self.top, self.distinct)
         n = self.n
 
-        def record(obj: float, design: tuple[int, ...]) -> None:
-            key = tuple(sorted(design)) if self.distinct else design
-            old = best.get(key)
-            if old is None or obj < old[0]:
-                best[key] = (obj, design)
-                if len(best) >= self.top:
-                    values = heapq.nsmallest(self.top, (v[0] for v in best.values()))
-                    threshold[0] = values[-1]
-                    if len(best) > 4 * self.top:
-                        keep = heapq.nsmallest(self.top, best.items(), key=lambda kv: kv[1][0])
-                        best.clear()
-                        best.update(keep)
+        def last(chosen: dict[int, int], Q: float, Qx: Fraction, partial: float) -> None:
+            # stages 1..n-1 chosen (0-based), product Q: the input stage brings the total into the window
+            lo_u, hi_u = lo_f / Q, hi_f / Q
+            a = bisect_left(asc_r, lo_u * (1 - 1e-12))
+            b = bisect_right(asc_r, hi_u * (1 + 1e-12))
+            for k in asc[a:b]:
+                self.nodes += 1
+                if n > 1 and not self.in_order(k, chosen[1]):
+                    continue
+                if not lo_x <= Qx * self.exact[k] <= hi_x:
+                    continue
+                chosen[0] = k
+                obj = partial + self._term(0, k, chosen)
+                if obj <= best.threshold * (1 + 1e-12):
+                    best.record(obj, tuple(chosen[j] for j in range(n)))
+            chosen.pop(0, None)
 
         def visit(i: int, chosen: dict[int, int], Q: float, Qx: Fraction, partial: float, top_index: tuple[int, int]) -> None:
             # stages i+1..n-1 chosen (0-based), product Q; now choose stage i
-            remaining = i  # stages after this one still to choose: 0..i-1
             if i == 0:
-                lo_u, hi_u = lo_f / Q, hi_f / Q
-                a = bisect_left(asc_r, lo_u * (1 - 1e-12))
-                b = bisect_right(asc_r, hi_u * (1 + 1e-12))
-                for k in asc[a:b]:
-                    self.nodes += 1
-                    if n > 1 and not self.in_order(k, chosen[1]):
-                        continue
-                    if not lo_x <= Qx * self.exact[k] <= hi_x:
-                        continue
-                    chosen[0] = k
-                    obj = partial + self._term(0, k, chosen)
-                    if obj <= threshold[0] * (1 + 1e-12):
-                        record(obj, tuple(chosen[j] for j in range(n)))
-                chosen.pop(0, None)
+                last(chosen, Q, Qx, partial)
                 return
+            remaining = i  # stages after this one still to choose: 0..i-1
             for k in range(len(self.r)):
                 self.nodes += 1
                 if i < n - 1 and not self.in_order(k, chosen[i + 1]):
@@ -331,15 +368,15 @@ class _Search:
                 part = partial + self._term(i, k, chosen)
                 exact_tail = self.prefix_bound(remaining, log_lo - lq, log_hi - lq)
                 if exact_tail is not None:
-                    if exact_tail == math.inf or part + exact_tail / q * (1 - 1e-12) > threshold[0] * (1 + 1e-12):
+                    if exact_tail == math.inf or part + exact_tail / q * (1 - 1e-12) > best.threshold * (1 + 1e-12):
                         continue
-                elif not self.completes(remaining, 0, log_lo - lq, log_hi - lq) or part + self._bound(i - 1, chosen) > threshold[0] * (1 + 1e-12):
+                elif not self.completes(remaining, 0, log_lo - lq, log_hi - lq) or part + self._bound(i - 1, chosen) > best.threshold * (1 + 1e-12):
                     continue
                 visit(i - 1, chosen, q, Qx * self.exact[k], part, top_index)
             chosen.pop(i, None)
 
         visit(n - 1, {}, 1.0, Fraction(1), 0.0, (0, 0))
-        return sorted(best.values())[: self.top]
+        return best.ranked()
 
     def nearest_multisets(self, U: Fraction) -> list[tuple[int, ...]]:
         """The ``top`` multisets of stages whose product is nearest the target in |ln(total/U)|."""
@@ -354,6 +391,8 @@ class _Search:
             rem = n - len(picked) - 1
             for k in range(start, len(self.r)):  # ratios descending: later picks are not larger
                 self.nodes += 1
+                if not picked:
+                    self._check_time(time.perf_counter(), k / len(self.r))
                 lq = logQ + self.log_r[k]
                 gap = self.nearest_gap(rem, k, logU - lq)
                 if gap > threshold() * (1 + 1e-12) + 1e-15:
@@ -388,7 +427,7 @@ class _Search:
 
 def best_designs(total: Any, stage_set: Any, stages: int, *, model: Any, tolerance: Any, top: int = 10,
                  lower: Any = None, upper: Any = None, distinct: bool = True,
-                 progress: Callable[[float, int], None] | None = None) -> DiscreteSplit:
+                 progress: Callable[[float, int], None] | None = None, time_limit: float | None = None) -> DiscreteSplit:
     """The best discrete designs: every stage from ``stage_set``, the total within ``tolerance``.
 
     Parameters
@@ -410,12 +449,15 @@ def best_designs(total: Any, stage_set: Any, stages: int, *, model: Any, toleran
         Show each multiset of stages once, in its best order (default); False lists every order.
     progress : callable(fraction, nodes), optional
         Called at most every 0.2 s during the search.
+    time_limit : float, optional
+        Seconds; a longer search raises :class:`~symkin.errors.TimeLimitError`.
 
     Returns
     -------
     DiscreteSplit
         Designs ranked by the exact objective; when no design meets the tolerance,
-        ``meets_tolerance`` is False and the designs nearest the target are returned.
+        ``meets_tolerance`` is False, ``reason`` says so and the designs nearest the target are
+        returned (a :class:`~symkin.synthesis.searches.SearchResult`).
 
     Examples
     --------
@@ -431,25 +473,14 @@ def best_designs(total: Any, stage_set: Any, stages: int, *, model: Any, toleran
     """
     stage_list = list(getattr(stage_set, "stages", stage_set))
     if not stage_list:
-        raise InputError("no feasible stages were given; enumerate them with symkin.mechanisms.multistage.stages.enumerate_stages")
+        raise InputError("no feasible stages were given; enumerate them with symkin.mechanisms.multistage.enumerate_stages")
     if isinstance(top, bool) or not isinstance(top, (int, sp.Integer)) or int(top) < 1:
         raise InputError(f"top must be a positive whole number, got {top!r}")
-    tol = as_rational(tolerance, what="the tolerance")
-    if tol < 0:
-        raise InputError(f"the tolerance must not be negative, got {tol}")
-    if tol >= 1:
-        raise InputError(f"the tolerance is relative (0.01 = 1%) and must be below 1, got {tol}")
-    ratios = [s.ratio for s in stage_list]
-    lo = as_rational(lower, what="the lower bound") if lower is not None else min(ratios)
-    hi = as_rational(upper, what="the upper bound") if upper is not None else max(ratios)
-    if lo > hi:
-        raise InputError(f"the bounds are reversed: lower {lo} > upper {hi}; give lower <= upper")
-    stage_list = [s for s in stage_list if lo <= s.ratio <= hi]
-    if not stage_list:
-        raise InputError(f"no feasible stage has a ratio between {lo} and {hi}; widen the bounds")
+    tol = _tolerance(tolerance)
+    stage_list = _within(stage_list, lower, upper)
     usable_lo, usable_hi = min(s.ratio for s in stage_list), max(s.ratio for s in stage_list)
     problem = SplitProblem.build(total, stages, lower=usable_lo, upper=usable_hi, model=model)
-    search = _Search(problem, stage_list, int(top), distinct, progress)
+    search = _Search(problem, stage_list, int(top), distinct, progress, seconds_limit(time_limit))
     U = Fraction(int(problem.total.p), int(problem.total.q))
     found = search.run_tolerance(U, Fraction(int(tol.p), int(tol.q)))
     meets = bool(found)
@@ -458,16 +489,46 @@ def best_designs(total: Any, stage_set: Any, stages: int, *, model: Any, toleran
         for multiset in search.nearest_multisets(U):
             orders = search.orders(multiset)
             found += orders[:1] if distinct else orders
+    designs = _ranked(search, problem, found, meets)
+    if progress is not None:
+        progress(1.0, search.nodes)
+    return DiscreteSplit(problem, tol, tuple(designs[: int(top)]), meets, search.nodes, distinct)
+
+
+def _ranked(search: _Search, problem: SplitProblem, found: list[tuple[float, tuple[int, ...]]],
+            meets: bool) -> list[SplitDesign]:
+    """The designs found, exact, ranked by the objective (within the tolerance) or by |deviation|, then the
+    objective (the nearest ones)."""
     designs = []
     for _, idx in found:
         chosen = tuple(search.stages[k] for k in idx)
         total_exact = sp.Mul(*[s.ratio for s in chosen])
-        designs.append(Design(chosen, total_exact, (total_exact - problem.total) / problem.total,
-                              problem.exact_value([s.ratio for s in chosen])))
+        designs.append(SplitDesign(chosen, total_exact, (total_exact - problem.total) / problem.total,
+                                   problem.exact_value([s.ratio for s in chosen])))
     if meets:
         designs.sort(key=lambda d: float(d.objective))
     else:
         designs.sort(key=lambda d: (abs(float(d.deviation)), float(d.objective)))
-    if progress is not None:
-        progress(1.0, search.nodes)
-    return DiscreteSplit(problem, tol, tuple(designs[: int(top)]), meets, search.nodes, distinct)
+    return designs
+
+
+def _tolerance(tolerance: Any) -> sp.Rational:
+    tol = as_rational(tolerance, what="the tolerance")
+    if tol < 0:
+        raise InputError(f"the tolerance must not be negative, got {tol}")
+    if tol >= 1:
+        raise InputError(f"the tolerance is relative (0.01 = 1%) and must be below 1, got {tol}")
+    return tol
+
+
+def _within(stage_list: list[Any], lower: Any, upper: Any) -> list[Any]:
+    """The stages with ratios within the bounds (default: all)."""
+    ratios = [s.ratio for s in stage_list]
+    lo = as_rational(lower, what="the lower bound") if lower is not None else min(ratios)
+    hi = as_rational(upper, what="the upper bound") if upper is not None else max(ratios)
+    if lo > hi:
+        raise InputError(f"the bounds are reversed: lower {lo} > upper {hi}; give lower <= upper")
+    stage_list = [s for s in stage_list if lo <= s.ratio <= hi]
+    if not stage_list:
+        raise InputError(f"no feasible stage has a ratio between {lo} and {hi}; widen the bounds")
+    return stage_list

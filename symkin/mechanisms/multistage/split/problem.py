@@ -38,6 +38,19 @@ _TABLE_SIZE = 200_000  # largest table of completion products the discrete searc
 
 
 # --------------------------------------------------------------------------- inputs
+def _models(model: Any, n: int) -> tuple[StageErrorModel, ...]:
+    """One stage error model per stage, from one model or ``n`` of them."""
+    if isinstance(model, StageErrorModel):
+        return (model,) * n
+    try:
+        models = tuple(model)
+    except TypeError:
+        raise InputError(f"model must be a StageErrorModel or one per stage, got {model!r}") from None
+    if len(models) != n or not all(isinstance(m, StageErrorModel) for m in models):
+        raise InputError(f"give one StageErrorModel or {n} of them, got {model!r}")
+    return models
+
+
 def _per_stage(value: Any, n: int, what: str) -> tuple[sp.Rational, ...]:
     if isinstance(value, (list, tuple)):
         if len(value) != n:
@@ -97,15 +110,7 @@ class SplitProblem:
                 f"the total ratio {U} is outside what {n} stage{'s' * (n > 1)} with these bounds allow "
                 f"({_show(pmin)} to {_show(pmax)}); change the total, the bounds or the number of stages"
             )
-        if isinstance(model, StageErrorModel):
-            models = (model,) * n
-        else:
-            try:
-                models = tuple(model)
-            except TypeError:
-                raise InputError(f"model must be a StageErrorModel or one per stage, got {model!r}") from None
-            if len(models) != n or not all(isinstance(m, StageErrorModel) for m in models):
-                raise InputError(f"give one StageErrorModel or {n} of them, got {model!r}")
+        models = _models(model, n)
         for m, a, b in zip(models, lo, hi):
             m.check_positive(a, b)
         return cls(U, n, lo, hi, models)

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import math
 import time
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass
 from fractions import Fraction
 from functools import cache
@@ -17,9 +17,10 @@ from typing import Any
 import numpy as np
 import sympy as sp
 
-from symkin.errors import InputError
+from symkin._util.budget import seconds_limit
+from symkin.errors import InputError, TimeLimitError
 from symkin.mechanisms.helical import SCHEME_MESHES, HelicalTrain
-from symkin.mechanisms.helical.synthesis.conditions import (
+from symkin.mechanisms.helical.balanced.conditions import (
     M12,
     M34,
     MU,
@@ -34,15 +35,15 @@ from symkin.mechanisms.helical.synthesis.conditions import (
     ratio_function,
     ratio_law,
 )
-from symkin.mechanisms.helical.synthesis.regions import _as_float, existence_range
-from symkin.mechanisms.helical.synthesis.request import (
+from symkin.mechanisms.helical.balanced.regions import _as_float, existence_range
+from symkin.mechanisms.helical.balanced.request import (
     HelicalDesign,
-    SynthesisRequest,
-    SynthesisResult,
+    HelicalRequest,
+    HelicalResult,
 )
 from symkin.numeric import compile
 
-__all__ = ["synthesise"]
+__all__ = ["synthesize_helical"]
 
 
 @dataclass(frozen=True)
@@ -109,8 +110,8 @@ def _nearest_region(scheme: str, ratio: Fraction) -> str:
     )
 
 
-def synthesise(request: SynthesisRequest | None = None, *, progress: Callable[[int, int], None] | None = None,
-               **kwargs: Any) -> SynthesisResult:
+def synthesize_helical(request: HelicalRequest | None = None, *, progress: Callable[[int, int], None] | None = None,
+                       time_limit: float | None = None, **kwargs: Any) -> HelicalResult:
     """Integer tooth sets and balancing helix angles for a target ratio.
 
     For every tooth set with Z in [teeth_min, teeth_max]: the ratio must lie within the
@@ -128,10 +129,19 @@ def synthesise(request: SynthesisRequest | None = None, *, progress: Callable[[i
 
     Parameters
     ----------
-    request : SynthesisRequest, optional
+    request : HelicalRequest, optional
         Or give its fields as keyword arguments.
     progress : callable(done, total), optional
         Called after each value of Z2.
+    time_limit : float, optional
+        Seconds; a longer search raises :class:`~symkin.errors.TimeLimitError` (checked after each
+        value of Z2).
+
+    Returns
+    -------
+    HelicalResult
+        A :class:`~symkin.synthesis.searches.SearchResult`: the designs, and the reason when
+        there are none.
 
     Raises
     ------
@@ -140,42 +150,73 @@ def synthesise(request: SynthesisRequest | None = None, *, progress: Callable[[i
 
     Examples
     --------
-    >>> res = synthesise(scheme="AI", ratio=12, tolerance=0.01, satellites=3, normal_modules=(2, 2.5),
+    >>> res = synthesize_helical(scheme="AI", ratio=12, tolerance=0.01, satellites=3, normal_modules=(2, 2.5),
     ...                  teeth_min=17, teeth_max=80, top=3)
     >>> res.found, res.designs[0].teeth, [round(b, 3) for b in res.designs[0].betas_deg]
     (14, (17, 51, 21, 77), [15.905, 8.109])
     """
     if request is None:
-        request = SynthesisRequest(**kwargs)
+        request = HelicalRequest(**kwargs)
     elif kwargs:
-        raise InputError("give either a SynthesisRequest or its fields, not both")
+        raise InputError("give either a HelicalRequest or its fields, not both")
+    limit = seconds_limit(time_limit)
     start = time.perf_counter()
     req = request
-    scheme = req.scheme
-    if not any(_as_float(lo) < float(req.ratio) < _as_float(hi) for lo, hi in existence_range(scheme)):
-        raise InputError(_nearest_region(scheme, req.ratio))
-    c = _compiled(scheme)
-    m12, m34 = req.normal_modules
-    m12f, m34f = float(m12), float(m34)
-    i_lo, i_hi = req.ratio_window
-    s_min, s_max = math.sin(math.radians(req.beta_min_deg)), math.sin(math.radians(req.beta_max_deg))
-    u_min, u_max = s_min**2, s_max**2
-    k, dmin = req.satellites, req.min_ring_difference
-    zmin, zmax = req.teeth_min, req.teeth_max
-    teeth = np.arange(zmin, zmax + 1, dtype=float)
-    z1c, z3r = teeth[:, None], teeth[None, :]
-    eps = 1e-9
-    alpha_n = math.radians(req.alpha_n_deg)
+    if not any(_as_float(lo) < float(req.ratio) < _as_float(hi) for lo, hi in existence_range(req.scheme)):
+        raise InputError(_nearest_region(req.scheme, req.ratio))
+    sieve = _Sieve.of(req)
     # "ratio window" is counted by the sieve; the others by the exact checks
     counts = dict.fromkeys(("ratio window", "ratio", "helix", "assembly", "neighbour"), 0)
     records: list[tuple] = []
-    total = len(teeth)
-    for n2, z2 in enumerate(teeth):
-        z2i = int(z2)
+    total = len(sieve.teeth)
+    for n2, z2 in enumerate(sieve.teeth):
+        for teeth in sieve.plane(z2, counts):
+            rec = _check_candidate(req, sieve.c, teeth, counts, sieve.u_min, sieve.u_max, sieve.alpha_n)
+            if rec is not None:
+                records.append(rec)
+        if progress is not None:
+            progress(n2 + 1, total)
+        elapsed = time.perf_counter() - start
+        if limit is not None and n2 + 1 < total and elapsed > limit:
+            raise TimeLimitError(f"the search over Z2 in [{req.teeth_min}, {req.teeth_max}] did {n2 + 1} of {total} "
+                                 f"values in {elapsed:.1f} s, more than the time limit of {limit:g} s; narrow the "
+                                 "tooth limits or raise the time limit")
+    return _result(req, sieve, records, counts, time.perf_counter() - start)
+
+
+@dataclass(frozen=True)
+class _Sieve:
+    """A request's laws and limits as the sieve uses them, in floats (the checks are exact)."""
+
+    c: _Compiled
+    teeth: np.ndarray
+    bounds: tuple[float, float, float, float, float, float]  # i_lo, i_hi, m12, m34, sin beta_min, sin beta_max
+    u_min: float
+    u_max: float
+    alpha_n: float
+    ring_difference: int
+
+    @classmethod
+    def of(cls, req: HelicalRequest) -> _Sieve:
+        i_lo, i_hi = req.ratio_window
+        m12, m34 = req.normal_modules
+        s_min, s_max = math.sin(math.radians(req.beta_min_deg)), math.sin(math.radians(req.beta_max_deg))
+        return cls(_compiled(req.scheme), np.arange(req.teeth_min, req.teeth_max + 1, dtype=float),
+                   (float(i_lo), float(i_hi), float(m12), float(m34), s_min, s_max), s_min**2, s_max**2,
+                   math.radians(req.alpha_n_deg), req.min_ring_difference)
+
+    def plane(self, z2: float, counts: dict[str, int]) -> Iterator[tuple[int, int, int, int]]:
+        """The tooth sets with this Z2 whose Z4 the ratio window and the helix limits leave (each bound is
+        monotone in the parameter it comes from), counting those in the ratio window."""
+        c, teeth, dmin = self.c, self.teeth, self.ring_difference
+        i_lo, i_hi, m12f, m34f, s_min, s_max = self.bounds
+        zmin, zmax = teeth[0], teeth[-1]
+        z1c, z3r = teeth[:, None], teeth[None, :]
+        eps = 1e-9
         col_ok = z1c >= z2 + dmin if c.internal1 else np.ones_like(z1c, dtype=bool)
         # Z4 from the ratio window (linear in i)
         with np.errstate(divide="ignore", invalid="ignore"):
-            za, zb = c.z4_of_ratio(float(i_lo), z1c, z2, z3r), c.z4_of_ratio(float(i_hi), z1c, z2, z3r)
+            za, zb = c.z4_of_ratio(i_lo, z1c, z2, z3r), c.z4_of_ratio(i_hi, z1c, z2, z3r)
         r_lo, r_hi = np.minimum(za, zb), np.maximum(za, zb)
         floor4 = np.maximum(zmin, z3r + dmin) if c.internal4 else np.full_like(z3r, zmin)
         lo_r = np.ceil(np.maximum(r_lo * (1 - eps) - eps, floor4))
@@ -194,29 +235,32 @@ def synthesise(request: SynthesisRequest | None = None, *, progress: Callable[[i
         lo4 = np.maximum(lo_r, np.ceil(h_lo * (1 - eps) - eps))
         hi4 = np.minimum(hi_r, np.floor(h_hi * (1 + eps) + eps))
         cand = in_window & row_ok & (lo4 <= hi4)
+        z2i = int(z2)
         for a, b in zip(*np.nonzero(cand)):
             z1i, z3i = int(teeth[a]), int(teeth[b])
             for z4i in range(int(lo4[a, b]), int(hi4[a, b]) + 1):
-                rec = _check_candidate(req, c, (z1i, z2i, z3i, z4i), counts, u_min, u_max, alpha_n)
-                if rec is not None:
-                    records.append(rec)
-        if progress is not None:
-            progress(n2 + 1, total)
+                yield z1i, z2i, z3i, z4i
+
+
+def _result(req: HelicalRequest, sieve: _Sieve, records: list[tuple], counts: dict[str, int],
+            seconds: float) -> HelicalResult:
+    """The designs ranked by ratio error, then envelope diameter, and how many tooth sets passed each condition."""
     records.sort(key=lambda r: (r[0], r[1], r[2]))
     listed = records if req.top is None else records[: req.top]
-    designs = tuple(_design(req, r, alpha_n) for r in listed)
-    ring = f" (internal gears >= {dmin} teeth more than their rims)" if c.internal1 or c.internal4 else ""
+    designs = tuple(_design(req, r, sieve.alpha_n) for r in listed)
+    c = sieve.c
+    ring = f" (internal gears >= {sieve.ring_difference} teeth more than their rims)" if c.internal1 or c.internal4 else ""
     stages = (
         ("ratio within tolerance" + ring, counts["ratio window"]),
         ("and balancing coaxial helix angles within limits", counts["helix"]),
-        (f"and assembly with k = {k} satellites", counts["assembly"]),
+        (f"and assembly with k = {req.satellites} satellites", counts["assembly"]),
         ("and neighbouring planets clear", counts["neighbour"]),
     )
     reason = "" if records else _empty_reason(req, counts)
-    return SynthesisResult(req, designs, len(records), stages, reason, time.perf_counter() - start)
+    return HelicalResult(req, designs, len(records), stages, reason, seconds)
 
 
-def _check_candidate(req: SynthesisRequest, c: _Compiled, teeth: tuple[int, int, int, int], counts: dict[str, int],
+def _check_candidate(req: HelicalRequest, c: _Compiled, teeth: tuple[int, int, int, int], counts: dict[str, int],
                      u_min: float, u_max: float, alpha_n: float) -> tuple | None:
     z1, z2, z3, z4 = teeth
     ratio = c.ratio(z1, z2, z3, z4)
@@ -255,14 +299,14 @@ def _check_candidate(req: SynthesisRequest, c: _Compiled, teeth: tuple[int, int,
     return (error, train.envelope_diameter, teeth, b12, b34, pq, ratio, free)
 
 
-def _design(req: SynthesisRequest, rec: tuple, alpha_n: float) -> HelicalDesign:
+def _design(req: HelicalRequest, rec: tuple, alpha_n: float) -> HelicalDesign:
     error, _, teeth, b12, b34, pq, ratio, free = rec
     train = HelicalTrain(req.scheme, teeth, req.normal_modules, (b12, b34), satellites=req.satellites,
                          alpha_n=alpha_n, addendum=float(req.addendum))
     return HelicalDesign(train, ratio, error, pq, free)
 
 
-def _empty_reason(req: SynthesisRequest, counts: Mapping[str, int]) -> str:
+def _empty_reason(req: HelicalRequest, counts: Mapping[str, int]) -> str:
     lo, hi = req.ratio_window
     if counts["ratio window"] == 0:
         return (

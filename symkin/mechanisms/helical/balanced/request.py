@@ -1,12 +1,13 @@
 """What a designer asks of the synthesis, and what it answers: request, design and result types.
 
-    >>> SynthesisRequest(scheme="AI", ratio=25, tolerance=0.02).ratio_window
+    >>> HelicalRequest(scheme="AI", ratio=25, tolerance=0.02).ratio_window
     (Fraction(49, 2), Fraction(51, 2))
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Iterator
 from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any
@@ -14,14 +15,14 @@ from typing import Any
 from symkin._util.jsonout import exact_json, exact_json_list
 from symkin.errors import InputError
 from symkin.mechanisms.helical import HelicalTrain, hand_name
-from symkin.mechanisms.helical.synthesis.conditions import _scheme
+from symkin.mechanisms.helical.balanced.conditions import _scheme
 from symkin.values import as_fraction, as_integer
 
-__all__ = ["SynthesisRequest", "HelicalDesign", "SynthesisResult"]
+__all__ = ["HelicalRequest", "HelicalDesign", "HelicalResult"]
 
 
 @dataclass(frozen=True)
-class SynthesisRequest:
+class HelicalRequest:
     """What a designer asks for; every field is checked on construction.
 
     Parameters
@@ -76,36 +77,12 @@ class SynthesisRequest:
         put("tolerance", as_fraction(self.tolerance, what="the ratio tolerance"))
         if not 0 <= self.tolerance < 1:  # (as symkin.synthesis: from 1 on the window holds every ratio of the sign)
             raise InputError(f"the relative ratio tolerance must be from 0 to less than 1, got {self.tolerance}; 0.01 is 1 %")
-        k = int(as_integer(self.satellites, what="the number of satellites"))
-        if k < 1:
-            raise InputError(f"the number of satellites must be at least 1, got {k}")
-        put("satellites", k)
-        try:
-            m12, m34 = self.normal_modules
-        except (TypeError, ValueError):
-            raise InputError("give two normal modules, m_n12 and m_n34") from None
-        mods = (as_fraction(m12, what="the normal module m_n12"), as_fraction(m34, what="the normal module m_n34"))
-        for name, m in zip(("m_n12", "m_n34"), mods):
-            if m <= 0:
-                raise InputError(f"the normal module {name} must be positive, got {m}")
-        put("normal_modules", mods)
-        lo, hi = as_fraction(self.beta_min_deg, what="beta-min"), as_fraction(self.beta_max_deg, what="beta-max")
-        for name, b in (("beta-min", lo), ("beta-max", hi)):
-            if not 0 < b < 45:
-                raise InputError(f"{name} must lie strictly between 0 and 45 degrees, got {float(b):g}")
-        if lo >= hi:
-            raise InputError(f"beta-min ({float(lo):g} deg) must be less than beta-max ({float(hi):g} deg): these limits exclude every design")
-        put("beta_min_deg", lo)
-        put("beta_max_deg", hi)
-        zmin, zmax = int(as_integer(self.teeth_min, what="zmin")), int(as_integer(self.teeth_max, what="zmax"))
-        if zmin < 1:
-            raise InputError(f"zmin must be at least 1, got {zmin}")
-        if zmin > zmax:
-            raise InputError(f"zmin ({zmin}) is larger than zmax ({zmax}): these limits exclude every design")
-        if zmax - zmin + 1 > self.MAX_SPAN:
-            raise InputError(
-                f"zmin..zmax spans {zmax - zmin + 1} tooth numbers; at most {self.MAX_SPAN} are searched, narrow the range"
-            )
+        put("satellites", _whole(self.satellites, "the number of satellites"))
+        put("normal_modules", _normal_modules(self.normal_modules))
+        put("beta_min_deg", as_fraction(self.beta_min_deg, what="beta-min"))
+        put("beta_max_deg", as_fraction(self.beta_max_deg, what="beta-max"))
+        _check_helix_limits(self.beta_min_deg, self.beta_max_deg)
+        zmin, zmax = _teeth_limits(self.teeth_min, self.teeth_max, self.MAX_SPAN)
         put("teeth_min", zmin)
         put("teeth_max", zmax)
         a_n = as_fraction(self.alpha_n_deg, what="the normal pressure angle")
@@ -116,15 +93,9 @@ class SynthesisRequest:
         if ha < 0:
             raise InputError(f"the addendum coefficient must be >= 0, got {ha}")
         put("addendum", ha)
-        dmin = int(as_integer(self.min_ring_difference, what="the least ring-planet tooth difference"))
-        if dmin < 1:
-            raise InputError(f"the least ring-planet tooth difference must be at least 1, got {dmin}")
-        put("min_ring_difference", dmin)
+        put("min_ring_difference", _whole(self.min_ring_difference, "the least ring-planet tooth difference"))
         if self.top is not None:
-            top = int(as_integer(self.top, what="top"))
-            if top < 1:
-                raise InputError(f"top must be at least 1, got {top}")
-            put("top", top)
+            put("top", _whole(self.top, "top"))
 
     @property
     def ratio_window(self) -> tuple[Fraction, Fraction]:
@@ -148,6 +119,45 @@ class SynthesisRequest:
             "min_ring_difference": self.min_ring_difference,
             "top": self.top,
         }
+
+
+def _whole(value: Any, what: str) -> int:
+    """A whole number of at least 1."""
+    n = int(as_integer(value, what=what))
+    if n < 1:
+        raise InputError(f"{what} must be at least 1, got {n}")
+    return n
+
+
+def _normal_modules(modules: Any) -> tuple[Fraction, Fraction]:
+    try:
+        m12, m34 = modules
+    except (TypeError, ValueError):
+        raise InputError("give two normal modules, m_n12 and m_n34") from None
+    mods = (as_fraction(m12, what="the normal module m_n12"), as_fraction(m34, what="the normal module m_n34"))
+    for name, m in zip(("m_n12", "m_n34"), mods):
+        if m <= 0:
+            raise InputError(f"the normal module {name} must be positive, got {m}")
+    return mods
+
+
+def _check_helix_limits(lo: Fraction, hi: Fraction) -> None:
+    for name, b in (("beta-min", lo), ("beta-max", hi)):
+        if not 0 < b < 45:
+            raise InputError(f"{name} must lie strictly between 0 and 45 degrees, got {float(b):g}")
+    if lo >= hi:
+        raise InputError(f"beta-min ({float(lo):g} deg) must be less than beta-max ({float(hi):g} deg): these limits exclude every design")
+
+
+def _teeth_limits(teeth_min: Any, teeth_max: Any, span: int) -> tuple[int, int]:
+    zmin, zmax = int(as_integer(teeth_min, what="zmin")), int(as_integer(teeth_max, what="zmax"))
+    if zmin < 1:
+        raise InputError(f"zmin must be at least 1, got {zmin}")
+    if zmin > zmax:
+        raise InputError(f"zmin ({zmin}) is larger than zmax ({zmax}): these limits exclude every design")
+    if zmax - zmin + 1 > span:
+        raise InputError(f"zmin..zmax spans {zmax - zmin + 1} tooth numbers; at most {span} are searched, narrow the range")
+    return zmin, zmax
 
 
 @dataclass(frozen=True)
@@ -217,18 +227,30 @@ class HelicalDesign:
 
 
 @dataclass(frozen=True)
-class SynthesisResult:
+class HelicalResult:
     """The designs found, best first, and how many tooth sets passed each condition.
 
-    ``reason`` says why nothing was found (empty when designs were found).
+    ``reason`` says why nothing was found (empty when designs were found).  A
+    :class:`~symkin.synthesis.searches.SearchResult`: iterating it gives the designs.
     """
 
-    request: SynthesisRequest
+    request: HelicalRequest
     designs: tuple[HelicalDesign, ...]
     found: int
     stages: tuple[tuple[str, int], ...]
     reason: str
     seconds: float
+
+    def __iter__(self) -> Iterator[HelicalDesign]:
+        return iter(self.designs)
+
+    def message(self) -> str:
+        """How many designs were found and which are listed, in what order; or why there are none."""
+        if not self.found:
+            return self.reason
+        shown = len(self.designs)
+        return (f"{self.found} designs; {'all' if shown == self.found else f'the best {shown}'} by ratio error, "
+                "then envelope diameter")
 
     def to_json(self) -> dict[str, Any]:
         """The result as JSON: the request, the designs, and what removed the last candidates when none is left."""

@@ -19,7 +19,7 @@ import sympy as sp
 
 from symkin import symbols as S
 from symkin.errors import InputError, UnsupportedError
-from symkin.mechanisms.helical.synthesis.conditions import (
+from symkin.mechanisms.helical.balanced.conditions import (
     _S,
     DELTA,
     SIN_PI_K,
@@ -172,17 +172,9 @@ def existence_interval(scheme: str, satellites: int, delta: Any) -> tuple[sp.Exp
     items = list(setup.constraints)
     if s is not None:
         items.append(("neighbour", arm * s - larger))
-    lower = None
-    for _name, expr in items:
-        e = sp.expand(expr.subs(subs))
-        poly = sp.Poly(e, R1)
-        a, b = poly.all_coeffs() if poly.degree() == 1 else (sp.Integer(0), e)
-        if a == 0:
-            if not (b > 0):
-                return None
-            continue
-        bound = -b / a
-        lower = bound if lower is None or bool(bound > lower) else lower
+    empty, lower = _least_r1(items, subs)
+    if empty:
+        return None
     num, den = sp.fraction(sp.cancel(setup.ratio.subs(subs)))
     pn, pd = sp.Poly(num, R1), sp.Poly(den, R1)
     if pn.is_zero:  # i = 0 for every size: the carrier cannot be driven
@@ -200,6 +192,23 @@ def existence_interval(scheme: str, satellites: int, delta: Any) -> tuple[sp.Exp
     if sp.simplify(hi - lo) == 0:
         return None
     return lo, hi
+
+
+def _least_r1(items: list[tuple[str, sp.Expr]], subs: dict[sp.Symbol, Any]) -> tuple[bool, Any]:
+    """The least r_1 the constraints (each ``expr > 0``, linear in r_1) leave; whether one constant
+    constraint fails for every r_1 (the interval is then empty)."""
+    lower = None
+    for _name, expr in items:
+        e = sp.expand(expr.subs(subs))
+        poly = sp.Poly(e, R1)
+        a, b = poly.all_coeffs() if poly.degree() == 1 else (sp.Integer(0), e)
+        if a == 0:
+            if not (b > 0):
+                return True, None
+            continue
+        bound = -b / a
+        lower = bound if lower is None or bool(bound > lower) else lower
+    return False, lower
 
 
 def _as_float(v: sp.Expr) -> float:

@@ -13,7 +13,7 @@ Everything here is derived from the engine and then used:
 * :func:`existence_bounds` and :func:`existence_interval` give, for k satellites and a
   diameter ratio delta, the ratios a scheme can realise (ratio, coaxiality and the
   neighbour condition on pitch circles);
-* :func:`synthesise` enumerates integer tooth sets for a target ratio, with the helix
+* :func:`synthesize_helical` enumerates integer tooth sets for a target ratio, with the helix
   angles that cancel the planet's axial forces for unshifted (zero) meshes, and keeps
   those that are coaxial, can be assembled and leave room between the planets.
 
@@ -28,7 +28,7 @@ The derived laws and tooth equations (:mod:`.conditions`), the existence regions
 
 from __future__ import annotations
 
-from symkin.mechanisms.helical.synthesis.conditions import (
+from symkin.mechanisms.helical.balanced.conditions import (
     ALPHA_T12,
     ALPHA_T34,
     ALPHA_TW12,
@@ -64,18 +64,18 @@ from symkin.mechanisms.helical.synthesis.conditions import (
     working_coaxiality,
     working_diameter_ratio,
 )
-from symkin.mechanisms.helical.synthesis.regions import (
+from symkin.mechanisms.helical.balanced.regions import (
     ExistenceBounds,
     existence_bounds,
     existence_interval,
     existence_range,
 )
-from symkin.mechanisms.helical.synthesis.request import (
+from symkin.mechanisms.helical.balanced.request import (
     HelicalDesign,
-    SynthesisRequest,
-    SynthesisResult,
+    HelicalRequest,
+    HelicalResult,
 )
-from symkin.mechanisms.helical.synthesis.search import synthesise
+from symkin.mechanisms.helical.balanced.search import synthesize_helical
 
 __all__ = [
     "ALPHA_T12",
@@ -116,8 +116,8 @@ __all__ = [
     "existence_bounds",
     "existence_interval",
     "existence_range",
-    "SynthesisRequest",
+    "HelicalRequest",
     "HelicalDesign",
-    "SynthesisResult",
-    "synthesise",
+    "HelicalResult",
+    "synthesize_helical",
 ]
