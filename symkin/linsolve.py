@@ -26,6 +26,12 @@ __all__ = ["generic_values", "nullspace", "independent_rows", "solve_rational", 
 
 
 def generic_values(symbols: set[sp.Symbol], seed: int) -> dict[sp.Symbol, sp.Rational]:
+    """Random rationals (reproducible from ``seed``) for ``symbols``: "generic" dimensions, at
+    which a rank or a zero seen is, with probability one, the rank or the zero for all.
+
+    >>> generic_values({sp.Symbol("a")}, 1)
+    {a: ...}
+    """
     rng = random.Random(seed)
     return {s: sp.Rational(rng.randint(1000, 9999), rng.randint(100, 999)) for s in sorted(symbols, key=str)}
 

@@ -113,7 +113,7 @@ def test_the_built_pages_hold_the_gallery_the_api_and_the_stored_notebooks(built
     for entry in _gallery().GALLERY:
         assert any(name.startswith(entry.name) for name in images), f"{entry.name} is not in the built gallery"
     engine = (out / "api" / "engine.html").read_text()
-    assert 'id="symkin.model.mechanism.Mechanism.ratio"' in engine and 'id="symkin.kinematics.solve_speeds"' in engine
+    assert 'id="symkin.model.Mechanism.ratio"' in engine and 'id="symkin.kinematics.solve_speeds"' in engine
     assert 'id="symkin.units.quantity"' in (out / "api" / "printing.html").read_text()
     tutorial = (out / "notebooks" / "tutorial.html").read_text()
     assert "<img" in tutorial  # a stored figure output, shown without executing the notebook

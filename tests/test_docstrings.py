@@ -25,7 +25,7 @@ def test_every_public_object_has_a_docstring():
 def test_the_audit_sees_the_public_api_and_skips_private_names():
     names = {name for name, _ in audit.public_objects()}
     assert len(names) > 500
-    assert {"symkin.model.Mechanism", "symkin.model.Mechanism.ratio", "symkin.units.quantity",
+    assert {"symkin.model.mechanism.Mechanism", "symkin.model.mechanism.Mechanism.ratio", "symkin.units.quantity",
             "symkin.derivations.khai2014.figures", "symkin.viz.figures.trajectory_figure"} <= names
     assert not any(part.startswith("_") for name in names for part in name.split("."))
 

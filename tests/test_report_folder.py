@@ -543,7 +543,13 @@ def test_the_worker_processes_end_when_the_run_is_killed(tmp_path):
             return False
 
     pids = [int((tmp_path / f"{n}.pid").read_text()) for n in "pq"]
-    assert pids[0] != pids[1] and not any(running(pid) for pid in pids)
+    assert pids[0] != pids[1]
+    # a process closes its files (the run's output ends) a moment before it is gone: on a loaded
+    # machine that moment is seen, so the workers get a few seconds to finish ending
+    deadline = time.monotonic() + 10
+    while any(running(pid) for pid in pids) and time.monotonic() < deadline:
+        time.sleep(0.05)
+    assert not any(running(pid) for pid in pids)
 
 
 _CTRL_C_AT_THE_FOLDER = """

@@ -40,3 +40,8 @@ from symkin.model.parts import (
 
 __all__ = ["FRAME", "MAIN_AXIS", "MAX_PLANETS", "LinkKind", "Gear", "Link", "Mesh", "MeshGeometry", "Mechanism",
            "as_length", "as_teeth"]
+
+# the public classes are known by the package's path (reprs, pickles, the API reference), as before the split
+for _cls in (Gear, Link, LinkKind, Mesh, MeshGeometry, Mechanism):
+    _cls.__module__ = __name__
+del _cls

@@ -391,6 +391,11 @@ class MeshGeometry:
 
 
 def mesh_pair(m: Iterable[str]) -> tuple[str, str]:
+    """The two gear names of a mesh given as a pair, or a ModelError.
+
+    >>> mesh_pair(["1", "2"])
+    ('1', '2')
+    """
     try:
         a, b = m
     except (TypeError, ValueError):
