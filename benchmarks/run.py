@@ -527,16 +527,16 @@ else numpy (`SYMKIN_BACKEND=numpy` or `numba` chooses). Float backends evaluate 
   (double-double where they cancel: within 3 units of 2^-53 while the inputs are below 2^995 and the products
   above 2^-969 in magnitude), sums of terms of one known sign, and products of these. Where every
   denominator is of these kinds the float backends return inf or nan with a PoleWarning at a pole, never a
-  finite number (tests/test_numeric_near_poles.py).
+  finite number (tests/numeric/test_stable.py).
 - Other denominators are evaluated in float64 as written and can lose digits near their poles; check such
   laws against `backend="mpmath"`.
 - Phases of the arguments named `t` are reduced modulo 2 pi by default (`reduce_phase=()` turns it off):
   `c t` with `c` a rational constant times inputs in double-double; `c t` with `c` any rational function of
   inputs (the planet's omega_1 r1 r3/(r1 r3 + r2 r4)) plainly where |c t| <= 8 rad and, beyond, with `c`
   evaluated in double-double from the inputs and the product reduced, so the rounding of `c` is not
-  multiplied by t (tests/test_numeric_long_phase.py). Exact while the phase is below 2^27 turns. When `c`'s
+  multiplied by t (tests/numeric/test_stable_long_phase.py). Exact while the phase is below 2^27 turns. When `c`'s
   inputs are numbers (an array of times), `c` is computed once and, if any phase of the call is long, every
-  phase of the call is reduced, branch-free (tests/test_numeric_fast_paths.py).
+  phase of the call is reduced, branch-free (tests/numeric/backends/test_numpy.py).
 - Where the products of `a b - c d` may cancel is decided per call from `g = a b/(a b - c d)`: its minimum
   and maximum in [-0.499, 1.499] certify every point (the plain difference is within 3 units there); only
   uncertified points are redone in double-double. A law that multiplies by `a b` and divides by the
@@ -545,15 +545,15 @@ else numpy (`SYMKIN_BACKEND=numpy` or `numba` chooses). Float backends evaluate 
   where that bound could overflow int64 are |z| and its maximum taken, and beyond it Python integers are used.
   The numba kernels evaluate the integer parts in float64 where a bound of every partial sum is below 2^53
   (exact there, a loop that vectorises) and redo the other points with integers
-  (tests/test_numeric.py).
+  (tests/numeric/test_numeric.py).
 - The numba backend (`backend="numba"`) runs one compiled loop per law over blocks of 1024 points, every
   argument read as a contiguous slice (a scalar as a block of copies of it), so that LLVM vectorises the
   inner loop; there `a b - c d` is taken plainly, the certification test of each point counting the
   uncertified ones, which a second kernel, compiled on the first call that needs it, redoes in double-double
-  (tests/test_numeric_near_poles.py). Where a long phase's coefficient depends on scalar arguments only (a
+  (tests/numeric/test_stable.py). Where a long phase's coefficient depends on scalar arguments only (a
   sweep of t), it is computed once per block in double-double and every phase of the block reduced, a loop
   without branches; elsewhere it is computed at the first point of a block that needs it and kept while its
-  inputs repeat (tests/test_numeric_long_phase.py). sin and cos are libm's scalar functions (as fast here as
+  inputs repeat (tests/numeric/test_stable_long_phase.py). sin and cos are libm's scalar functions (as fast here as
   NumPy's), so laws in time gain least (the planet law above). Rational laws gain most. A scalar argument's
   block of copies is kept for the next call with the same value. The first call of a law compiles its kernel
   (about 1-5 s on this machine) and caches it on disk (`$SYMKIN_CACHE_DIR`, else `~/.cache/symkin/kernels`):

@@ -1,7 +1,7 @@
 """Sphinx configuration of symkin's documentation (the API reference, the guides, the
 paper notebooks and the figure gallery).
 
-Build it with warnings as errors (tests/test_docs.py does, so CI does)::
+Build it with warnings as errors (tests/project/test_docs.py does, so CI does)::
 
     pip install -e ".[docs]"
     python -m sphinx -W -b html docs docs/_build/html

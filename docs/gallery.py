@@ -4,7 +4,7 @@ Every figure type symkin draws has an entry in :data:`GALLERY`: the function tha
 a caption, and a small script that calls it.  ``docs/conf.py`` runs :func:`draw` when the
 docs are built, so the gallery shows what the installed symkin draws today, never a stale
 image; ``python docs/gallery.py [FOLDER]`` draws them by hand (default ``docs/gallery``).
-tests/test_docs.py checks that every public figure function of :mod:`symkin.viz` has an
+tests/project/test_docs.py checks that every public figure function of :mod:`symkin.viz` has an
 entry here and a place on the gallery page.
 """
 

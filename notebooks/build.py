@@ -8,7 +8,7 @@ runs it so that the stored notebook shows its outputs (figures, LaTeX, tables)::
     python notebooks/build.py --execute          # rebuild and execute every notebook
     python notebooks/build.py --execute tutorial  # just one
 
-The tests (tests/test_notebooks.py) execute every notebooks/*.ipynb again and fail when
+The tests (tests/project/test_notebooks.py) execute every notebooks/*.ipynb again and fail when
 its stored outputs or its cells differ from what its source gives now.
 """
 

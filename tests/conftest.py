@@ -9,7 +9,7 @@ os.environ.setdefault("MPLBACKEND", "Agg")
 # symkin.compile's default backend is numba where it is installed; its first call of each law
 # compiles a kernel (1-5 s).  The tests compile hundreds of laws to test what the laws give,
 # so they take NumPy by default; the numba backend is tested where a test names it (the float
-# backends' tests run both), and the default's choice in tests/test_numeric.py.
+# backends' tests run both), and the default's choice in tests/numeric/test_numeric.py.
 os.environ.setdefault("SYMKIN_BACKEND", "numpy")
 if "SYMKIN_CACHE_DIR" not in os.environ:  # compiled Numba kernels of the tests: not in the user's cache
     import tempfile

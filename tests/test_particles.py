@@ -3,10 +3,10 @@
 import numpy as np
 import pytest
 import sympy as sp
-from zero import shown, zero
 
 from symkin import FrameMotion, Gear, InputError, Link, Mechanism, drives, schemes
 from symkin import symbols as S
+from tests.support.zero import shown, zero
 
 t = S.t
 

@@ -5,11 +5,11 @@ import random
 
 import pytest
 import sympy as sp
-from zero import shown, zero
 
 from symkin import SingularConfigurationError, UnsupportedError
 from symkin.errors import InputError
 from symkin.vectorloop import LinkVector, VectorLoop, harmonics
+from tests.support.zero import shown, zero
 
 a, b, c = sp.symbols("a b c", real=True)
 p, q, r = sp.symbols("p q r", real=True)

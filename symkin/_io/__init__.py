@@ -2,7 +2,7 @@
 
 Only the borders import these, the command line (:mod:`symkin.cli`) and the papers' reports
 (:mod:`symkin.papers`); the library returns objects and figures and writes nothing of its own
-(``tests/test_architecture.py`` holds this).
+(``tests/project/test_architecture.py`` holds this).
 
 - :mod:`.atomic`: outputs that appear whole or not at all (files, and report folders with
   their manifest);
