@@ -58,50 +58,45 @@ def _unwritable(err: OSError, where: Path, option: str) -> InputError:
 
 
 @contextmanager
-def replacing(*targets: str | os.PathLike[str]) -> Iterator[list[Path]]:
-    """Temporary files beside ``targets`` (same suffixes); each replaces its target on success.
+def replacing(target: str | os.PathLike[str]) -> Iterator[tuple[Path]]:
+    """A temporary file beside ``target`` (same suffix) that replaces it on success.
 
-    On any error or interrupt inside the block the temporary files are removed and the
-    targets are left as they were.  Several targets (a PNG and a PDF of one figure) are
-    renamed only once all of them are written.
+    On any error or interrupt inside the block the temporary file is removed and the target
+    is left as it was.
 
     Raises
     ------
     InputError
-        A target's folder does not exist or cannot be written, a target is a folder, or
-        the disk is full (the previous files are kept).
+        The target's folder does not exist or cannot be written, the target is a folder or an
+        existing file of another kind, or the disk is full (the previous file is kept).
     """
-    outs = [Path(t) for t in targets]
-    for out in outs:
-        folder = out.resolve().parent
-        if not folder.is_dir():
-            raise InputError(f"cannot write {out}: the folder {folder} does not exist")
-        if out.is_dir():
-            raise InputError(f"cannot write {out}: it is a folder; give a file name")
-        kind = _not_its_kind(out)
-        if kind:
-            raise InputError(f"cannot write {out}: it exists and is not {kind} (a file of yours?); choose another "
-                             "name, or remove it first")
-    temps: list[Path] = []
+    out = Path(target)
+    folder = out.resolve().parent
+    if not folder.is_dir():
+        raise InputError(f"cannot write {out}: the folder {folder} does not exist")
+    if out.is_dir():
+        raise InputError(f"cannot write {out}: it is a folder; give a file name")
+    kind = _not_its_kind(out)
+    if kind:
+        raise InputError(f"cannot write {out}: it exists and is not {kind} (a file of yours?); choose another "
+                         "name, or remove it first")
+    tmp = folder / f".{out.stem}.partial-{os.getpid()}-{secrets.token_hex(4)}{out.suffix}"
+    made = False
     try:
-        for out in outs:
-            try:
-                fd, name = tempfile.mkstemp(prefix=f".{out.stem}.partial-", suffix=out.suffix, dir=out.resolve().parent)
-            except OSError as err:
-                raise InputError(f"cannot write to {out.resolve().parent}: {err.strerror}; choose a writable folder") from None
-            os.close(fd)
-            temps.append(Path(name))
-            os.chmod(name, 0o666 & ~_umask())  # mkstemp makes the file private; the result is an ordinary file
         try:
-            yield list(temps)
+            os.close(os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666))  # the umask applies: an ordinary file
+            made = True
+        except OSError as err:
+            raise InputError(f"cannot write to {folder}: {err.strerror}; choose a writable folder") from None
+        try:
+            yield (tmp,)
         except OSError as err:
             if err.errno in _UNWRITABLE:
-                raise _unwritable(err, outs[0], "--out") from None
+                raise _unwritable(err, out, "--out") from None
             raise
-        for tmp, out in zip(temps, outs):
-            os.replace(tmp, out)
+        os.replace(tmp, out)
     finally:
-        for tmp in temps:
+        if made:
             tmp.unlink(missing_ok=True)
 
 
