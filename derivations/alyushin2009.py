@@ -38,6 +38,7 @@ from symkin.papers.checks import (
     compare_inequality,
     compare_rounded,
     compare_symbolic,
+    gather,
     judge,
     nonzero_somewhere,
 )
@@ -208,21 +209,27 @@ def paper_vx(mech, link: str, y, known) -> sp.Expr:
     return sp.factor(-particle.velocity[1].subs(t, 0))
 
 
+class _Schemes(dict):
+    """The four schemes, in radii or (``teeth``) in tooth numbers, each built when first asked for
+    (so that a scheme the engine cannot build fails only the parts that use it)."""
+
+    def __init__(self, teeth: bool = False) -> None:
+        super().__init__()
+        self.teeth = teeth
+
+    def __missing__(self, kind: str):
+        self[kind] = _scheme(kind, teeth=self.teeth)
+        return self[kind]
+
+
 def checks() -> list[Check]:
-    """Every listed equation and example of the paper, derived and compared."""
-    out: list[Check] = []
-    symbolic = {k: _scheme(k) for k in SCHEMES}
-    teeth = {k: _scheme(k, teeth=True) for k in SCHEMES}
-    out += _coaxiality_checks(symbolic)
-    out += _differential_checks(teeth)
-    out += _particle_checks()
-    out += _point_velocity_checks(symbolic)
-    out += _ratio_checks(symbolic, teeth)
-    out += _system_checks(symbolic)
-    out += _examples()
-    out += _efficiency_checks()
-    out += _drill_head_checks()
-    return out
+    """Every listed equation and example of the paper, derived and compared; each part on its
+    own (:func:`~symkin.papers.checks.gather`)."""
+    symbolic, teeth = _Schemes(), _Schemes(teeth=True)
+    part = functools.partial
+    return gather(KEY, part(_coaxiality_checks, symbolic), part(_differential_checks, teeth), _particle_checks,
+                  _engine_law_checks, part(_point_velocity_checks, symbolic), part(_ratio_checks, symbolic, teeth),
+                  part(_system_checks, symbolic), _examples, _efficiency_checks, _drill_head_checks)
 
 
 def _coaxiality_checks(symbolic) -> list[Check]:
@@ -290,19 +297,9 @@ def _particle_checks() -> list[Check]:
     pole's motion and the planet's rotation from the engine.
     """
     out = []
-    m = schemes.two_row("AI")
-    start = {carrier_law(0): 0}  # angles measured from the start
-    motion = m.motion({"H": AngleLaw(carrier_law(t)), "4": 0})
-    q = motion.particle("23", (a, b))
-    pole = motion.particle("23", (r1, 0))
-    dphi = motion.angle("23").subs(start)
-    q_position, p_position = q.position.subs(start), pole.position.subs(start)
-    omega, eps = sp.diff(dphi, t), sp.diff(dphi, t, 2)
-    v, vp = sp.diff(q_position, t), sp.diff(p_position, t)
-    acc, ap = sp.diff(q_position, t, 2), sp.diff(p_position, t, 2)
-    filled = {aP: r1, bP: 0, xP: p_position[0], yP: p_position[1], x_: q_position[0], y_: q_position[1],
-              dphi_: dphi, omega_: omega, eps_: eps, VxP: vp[0], VyP: vp[1], wxP: ap[0], wyP: ap[1]}
-    pole_text = "pole P: the planet's point at the sun, (r_1, 0) at t = 0; carrier angle phi_H(t), phi_H(0) = 0"
+    q, start, filled = _planet_particle()
+    q_position = q.position.subs(start)
+    v, acc = sp.diff(q_position, t), sp.diff(q_position, t, 2)
     for label, what, derived, published in (
         ("(4)", "position of a planet particle (a, b)", q_position, PUBLISHED_4),
         ("(5)", "velocity: d/dt of the particle's position (4)", v, PUBLISHED_5),
@@ -310,11 +307,53 @@ def _particle_checks() -> list[Check]:
     ):
         values = sp.Matrix([eq.rhs.subs(filled) for eq in published])
         laws = [sp.Eq(eq.lhs, d) for eq, d in zip(published, derived)]
-        out.append(_check(label, f"{what}; {pole_text}", laws, list(published), _vector_match(derived, values)))
+        out.append(_check(label, f"{what}; {POLE_TEXT}", laws, list(published), _vector_match(derived, values)))
     engine = sp.Matrix([*q.velocity, *q.acceleration]).subs(start)
     out.append(_check("(5)-(6) engine", "the engine's velocity and acceleration laws (eqs. 5, 6 with the planet axis as "
                       "pole) against the derivatives of its positions", list(engine), [*v, *acc],
                       _vector_match(engine, sp.Matrix([*v, *acc])), kind=Kind.CONSISTENCY))
+    return out
+
+
+POLE_TEXT = "pole P: the planet's point at the sun, (r_1, 0) at t = 0; carrier angle phi_H(t), phi_H(0) = 0"
+
+
+def _planet_particle():
+    """A particle (a, b) of the AI planet, gear 4 fixed, the carrier turning by any law phi_H(t);
+    the substitution that measures angles from the start; and the printed (4)-(6)'s symbols
+    filled in with the motion of the pole P (the planet's point at the sun: its position from
+    the engine, its velocity and acceleration the derivatives of that position), the planet's
+    rotation (the engine's angle and its derivatives) and the particle's position."""
+    motion = schemes.two_row("AI").motion({"H": AngleLaw(carrier_law(t)), "4": 0})
+    start = {carrier_law(0): 0}  # angles measured from the start
+    q = motion.particle("23", (a, b))
+    p_position = motion.particle("23", (r1, 0)).position.subs(start)
+    q_position = q.position.subs(start)
+    dphi = motion.angle("23").subs(start)
+    vp, ap = sp.diff(p_position, t), sp.diff(p_position, t, 2)
+    filled = {aP: r1, bP: 0, xP: p_position[0], yP: p_position[1], x_: q_position[0], y_: q_position[1],
+              dphi_: dphi, omega_: sp.diff(dphi, t), eps_: sp.diff(dphi, t, 2), VxP: vp[0], VyP: vp[1],
+              wxP: ap[0], wyP: ap[1]}
+    return q, start, filled
+
+
+def _engine_law_checks() -> list[Check]:
+    """(5) and (6) as the engine applies them (its velocity and acceleration laws of a planet
+    particle, with the planet's axis as pole) against the printed (5) and (6) evaluated on another
+    pole's motion (the planet's point at the sun) and the engine's rotation of the planet: a wrong
+    centripetal, angular-acceleration or Coriolis-like term in the engine's law turns these verdicts
+    (the checks (5) and (6) above hold for any rigid motion: they do not use the engine's laws)."""
+    q, start, filled = _planet_particle()
+    out = []
+    for label, law, published in (("(5) engine law", q.velocity, PUBLISHED_5), ("(6) engine law", q.acceleration, PUBLISHED_6)):
+        derived = sp.Matrix(list(law)).subs(start)
+        values = sp.Matrix([eq.rhs.subs(filled) for eq in published])
+        out.append(_check(
+            label, f"the engine's {'velocity' if label.startswith('(5)') else 'acceleration'} law for the particle (a, b) "
+            f"(its eq. {label[1]} with the planet axis as pole) against the printed ({label[1]}) on the {POLE_TEXT}",
+            [sp.Eq(eq.lhs, d) for eq, d in zip(published, derived)], list(published),
+            _vector_match(derived, values, "engine's law - printed law (filled in with the other pole's motion)"),
+            item=label.split()[0]))
     return out
 
 

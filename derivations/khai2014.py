@@ -31,6 +31,7 @@ from symkin.papers.checks import (
     compare_rounded,
     compare_symbolic,
     confirmation,
+    gather,
     judge,
 )
 from symkin.parsing import parse_number
@@ -216,13 +217,7 @@ def discrete(tolerance: str):
 # ---------------------------------------------------------------------------- checks
 def checks() -> list[Check]:
     """Every result of the paper, derived and compared."""
-    out: list[Check] = []
-    out += _train_checks()
-    out += _stage_checks()
-    out += _objective_checks()
-    out += _optimum_checks()
-    out += _model_checks()
-    return out
+    return gather(KEY, _train_checks, _stage_checks, _objective_checks, _optimum_checks, _model_checks)
 
 
 def _train_checks() -> list[Check]:

@@ -40,6 +40,7 @@ from symkin.papers.checks import (
     compare_claim,
     compare_symbolic,
     confirmation,
+    gather,
     judge,
     vanishes,
 )
@@ -147,14 +148,8 @@ def _check(label: str, description: str, derived, published, comparison: Compari
 
 def checks() -> list[Check]:
     """Every equation and table entry of the paper, derived and compared; the synthesis example."""
-    out: list[Check] = []
-    out += _balance_checks()
-    out += _section_11_checks()
-    out += _section_12_checks()
-    out += _true_aa_checks()
-    out += _table_checks()
-    out += _synthesis_checks()
-    return out
+    return gather(KEY, _balance_checks, _section_11_checks, _section_12_checks, _true_aa_checks, _table_checks,
+                  _synthesis_checks)
 
 
 # --------------------------------------------------------------------------- balance (the paper's [1]: extensions)

@@ -52,6 +52,7 @@ from symkin.papers.checks import (
     compare_rounded,
     compare_symbolic,
     confirmation,
+    gather,
     judge,
     nonzero_somewhere,
     proven_zero,
@@ -211,7 +212,7 @@ def elliptical_slider(ecc, order, theta0) -> CardanSlider:
 # --------------------------------------------------------------------------- checks
 def checks() -> list[Check]:
     """Every equation, Table 1, fig. 5 and the claims of figures 7-8, derived and compared."""
-    return _structure() + _continuity() + _laws() + _table1() + _guide_force() + _elliptical() + _figure_claims()
+    return gather(KEY, _structure, _continuity, _laws, _table1, _guide_force, _elliptical, _figure_claims)
 
 
 RECONSTRUCTED = {"source": "reconstructed"}
