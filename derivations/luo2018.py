@@ -79,6 +79,7 @@ PUBLISHED_3 = theta_H0 + omega_H * S.t  # (3): theta_H -> theta_H + omega_H t
 PUBLISHED_TEETH = (1, 2)  # z1 : z3 = 1 : 2, after (14)
 PUBLISHED_14 = sp.Eq(l_1, l_H)
 PUBLISHED_13_TEXT = "theta_1(0) = -(k + 1) pi, theta_2 free"  # (13) z = pi + k pi, "theta_H, theta_2 as needed"
+PUBLISHED_15 = "angle O_H O O_1 + angle O O_H O_1 + pi - theta_1 = pi"
 PUBLISHED_16 = 2 * (theta_2 - theta_H)
 PUBLISHED_18 = (l_H * sp.exp(sp.I * theta_H) + l_1 * sp.exp(sp.I * (theta_H + theta_1)), s * sp.exp(sp.I * theta_2))
 PUBLISHED_19 = sp.Eq(l_H * sp.cos(theta_H) + l_1 * sp.cos(theta_H + theta_1), s * sp.cos(theta_2))
@@ -145,8 +146,9 @@ SENSITIVITY = {
 }
 
 PRINTED_ITEMS = (
-    PrintedItem("(1), (4)-(12), (15), (17)", "the pin's coordinates and the continuity analysis",
+    PrintedItem("(1), (4)-(12), (17)", "the pin's coordinates and the continuity analysis",
                 "lost in the OCR; the conditions they lead to, (13), (14) and z1 : z3 = 1 : 2, are checked"),
+    PrintedItem("(15)", "the angles of the triangle O_H O O_1: angle O_H O O_1 + angle O O_H O_1 + pi - theta_1 = pi"),
     PrintedItem("(2)", "the planet's speed relative to the carrier (lost in the OCR)"),
     PrintedItem("planet spin", "planet 1 spins clockwise while it revolves counter-clockwise"),
     PrintedItem("(3)", "theta_H -> theta_H + omega_H t"),
@@ -325,6 +327,36 @@ def _continuity() -> list[Check]:
     return out
 
 
+def _triangle_check(slider: CardanSlider) -> Check:
+    """(15): the triangle O_H O O_1 (carrier centre, pin, planet centre) with its corners where the engine's gear
+    train puts them (the pin and the planet centre particles of the planet), its angles at O and O_H measured there
+    (arccos of the sides' directions, 40 digits), against pi - (pi - theta_1) with the engine's planet angle theta_1
+    (the interior angle at O_1; theta_1 taken in (0, pi], mirrored when the triangle turns over)."""
+    centre = slider.motion.particle("1", (0, 0), relative_to="pole").position
+    values = {l: 1, theta_2: sp.Rational(7, 10), theta_H0: sp.Rational(1, 5), omega_H: 1}
+
+    def angle(u, v):
+        return sp.acos((u[0] * v[0] + u[1] * v[1]) / sp.sqrt((u[0]**2 + u[1]**2) * (v[0]**2 + v[1]**2)))
+
+    gaps = []
+    for when in (sp.Rational(1, 10), sp.Rational(2, 5), sp.Rational(4, 5), sp.Rational(6, 5), sp.Rational(8, 5)):
+        at = {**values, t: when}
+        o1 = [sp.N(c.subs(at), 40) for c in centre]
+        o = [sp.N(c.subs(at), 40) for c in slider.pin.position]
+        theta1 = sp.N(sp.Mod(slider.planet_angle.subs(at), 2 * sp.pi), 40)
+        inner = theta1 if theta1 <= sp.pi else 2 * sp.pi - theta1
+        at_o = angle([-o[0], -o[1]], [o1[0] - o[0], o1[1] - o[1]])
+        at_h = angle(o, o1)
+        gaps.append(sp.N(at_o + at_h - inner, 40))
+    worst = max(abs(g) for g in gaps)
+    return _check(
+        "(15)", "the angles of the triangle O_H O O_1 at O and O_H (engine's positions) against theta_1 (engine's planet "
+        "angle), l = 1, theta_2 = 0.7, theta_H(0) = 0.2, omega_H = 1, t = 0.1 ... 1.6 s",
+        [sp.Float(g, 5) for g in gaps], PUBLISHED_15,
+        compare_claim(bool(worst < sp.Float("1e-30")), f"angle at O + angle at O_H - theta_1 = {float(worst):.1e} at most "
+                                                     "over the five instants (40 digits)"))
+
+
 def _laws() -> list[Check]:
     out = []
     # (21): the loop solved for the slider vector's length and angle (same vector), squared
@@ -334,6 +366,7 @@ def _laws() -> list[Check]:
                       compare_symbolic(s2, PUBLISHED_21)))
     uniform = _symbolic_slider(drive=omega_H)
     theta_now = theta_H0 + omega_H * t
+    out.append(_triangle_check(uniform))
     out.append(_check("(16)", "pin angle on the planet during the motion", uniform.planet_angle, PUBLISHED_16.subs(theta_H, theta_now),
                       compare_symbolic(uniform.planet_angle, PUBLISHED_16.subs(theta_H, theta_now))))
     out.append(_check("(22)", "slider displacement (vector loop along the guide)", uniform.displacement,

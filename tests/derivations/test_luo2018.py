@@ -161,3 +161,12 @@ def test_reproduce_luo2018_writes_report_and_figures(tmp_path):
     for name in ("paths", "fig4_constant_speed", "fig7_velocity", "fig8_acceleration", "carrier_angle_branches"):
         assert (out / "figures" / f"luo2018_{name}.png").stat().st_size > 10_000
     assert any("Stroke times" in n for n in data["papers"]["luo2018"]["notes"])
+
+
+def test_the_triangle_15_holds_and_catches_a_wrong_planet_angle(checks, monkeypatch):
+    assert checks["(15)"].verdict is Verdict.MATCH and checks["(15)"].kind is Kind.PAPER
+    from symkin.mechanisms.cardan import CardanSlider
+
+    planet_angle = CardanSlider.__dict__["planet_angle"].func
+    monkeypatch.setattr(CardanSlider, "planet_angle", property(lambda self: planet_angle(self) * sp.Rational(11, 10)))
+    assert luo2018._triangle_check(luo2018._symbolic_slider(drive=luo2018.omega_H)).verdict is Verdict.DIFFERS
