@@ -34,10 +34,12 @@ from symkin.papers.checks import (
     alternative,
     compare_claim,
     compare_digits,
+    compare_each,
     compare_exact,
     compare_inequality,
     compare_rounded,
     compare_symbolic,
+    gather,
     judge,
     nonzero_somewhere,
 )
@@ -106,6 +108,14 @@ PUBLISHED_POINT_VELOCITIES = [
     ("(18)", "II", "23", r1 - r2 + r3, {"H": wH, "23": w23}, -wH * (r1 - r2) - w23 * r3),  # B on rim 3
     ("(20)", "II", "23", r1, {"H": wH, "23": w23}, -wH * (r1 - r2) - w23 * r2),  # A on rim 2
 ]
+#: (12), (16), (21): (7) = (11), (15), (20) with the planet's speed (10), (14a), (19) put in, gear 4 fixed: the
+#: sun's V_x at A, -omega_1 r_1, in omega_H, as the middle and the last form of each line.  Garbled in the OCR
+#: (fractions lost), reconstructed from its legible terms: label -> (scheme, forms).
+PUBLISHED_EXPANDED = {
+    "(12)": ("AI", (-wH * (r1 + r2) - wH * (r1 + r2) * r2 / r3, -wH * (r1 + r2) * (r2 + r3) / r3)),
+    "(16)": ("AA", (-wH * (r1 + r2) + wH * (r1 + r2) * r2 / r3, -wH * (r1 + r2) * (1 - r2 / r3))),
+    "(21)": ("II", (-wH * (r1 - r2) + wH * (r1 - r2) * r2 / r3, -wH * (r1 - r2) * (1 - r2 / r3))),
+}
 #: Numeric examples (end of the paper), equal modules: label, scheme, teeth, driver, driven, printed value.
 EXAMPLES = [
     ("example AA 100/99/100/101", "AA", (100, 99, 100, 101), "H", "1", "10000"),
@@ -139,7 +149,7 @@ PRINTED_ITEMS = (
     PrintedItem("(9)", "AI: V_x at B on rim 3"),
     PrintedItem("(10)", "AI: planet speed with gear 4 fixed"),
     PrintedItem("(11)", "AI: V_x at A on rim 2"),
-    PrintedItem("(12)", "AI: (7) = (11) expanded", "an intermediate line, garbled in the OCR; its result is (13), checked"),
+    PrintedItem("(12)", "AI: (7) = (11) expanded, -omega_1 r_1 in omega_H (garbled in the OCR)"),
     PrintedItem("(13)", "AI: i_1H^(4) in pitch radii, two forms"),
     PrintedItem("(13a)", "AI: i_1H^(4) in tooth numbers"),
     PrintedItem("(13b)", "single-row AI: i_1H^(4) = 1 + z4/z1"),
@@ -147,12 +157,12 @@ PRINTED_ITEMS = (
     PrintedItem("(14)", "AA: V_x at B on rim 3, = 0 with gear 4 fixed"),
     PrintedItem("(14a)", "AA: planet speed with gear 4 fixed"),
     PrintedItem("(15)", "AA: V_x at A on rim 2"),
-    PrintedItem("(16)", "AA: (7) = (15) expanded", "an intermediate line, garbled in the OCR; its result is (17), checked"),
+    PrintedItem("(16)", "AA: (7) = (15) expanded, -omega_1 r_1 in omega_H (garbled in the OCR)"),
     PrintedItem("(17)", "AA: i_1H^(4) in pitch radii"),
     PrintedItem("(18)", "II: V_x at B on rim 3, = 0 with gear 4 fixed"),
     PrintedItem("(19)", "II: planet speed with gear 4 fixed"),
     PrintedItem("(20)", "II: V_x at A on rim 2"),
-    PrintedItem("(21)", "II: (7) = (20) expanded", "an intermediate line, garbled in the OCR; its result is (22), checked"),
+    PrintedItem("(21)", "II: (7) = (20) expanded, -omega_1 r_1 in omega_H (garbled in the OCR)"),
     PrintedItem("(22)", "II: i_1H^(4) in pitch radii"),
     PrintedItem("(22a)", "AA and II: i_1H^(4) in tooth numbers"),
     PrintedItem("(17), (22) direction", "AA and II: the sun and the carrier may turn the same way or opposite ways"),
@@ -208,21 +218,27 @@ def paper_vx(mech, link: str, y, known) -> sp.Expr:
     return sp.factor(-particle.velocity[1].subs(t, 0))
 
 
+class _Schemes(dict):
+    """The four schemes, in radii or (``teeth``) in tooth numbers, each built when first asked for
+    (so that a scheme the engine cannot build fails only the parts that use it)."""
+
+    def __init__(self, teeth: bool = False) -> None:
+        super().__init__()
+        self.teeth = teeth
+
+    def __missing__(self, kind: str):
+        self[kind] = _scheme(kind, teeth=self.teeth)
+        return self[kind]
+
+
 def checks() -> list[Check]:
-    """Every listed equation and example of the paper, derived and compared."""
-    out: list[Check] = []
-    symbolic = {k: _scheme(k) for k in SCHEMES}
-    teeth = {k: _scheme(k, teeth=True) for k in SCHEMES}
-    out += _coaxiality_checks(symbolic)
-    out += _differential_checks(teeth)
-    out += _particle_checks()
-    out += _point_velocity_checks(symbolic)
-    out += _ratio_checks(symbolic, teeth)
-    out += _system_checks(symbolic)
-    out += _examples()
-    out += _efficiency_checks()
-    out += _drill_head_checks()
-    return out
+    """Every listed equation and example of the paper, derived and compared; each part on its
+    own (:func:`~symkin.papers.checks.gather`)."""
+    symbolic, teeth = _Schemes(), _Schemes(teeth=True)
+    part = functools.partial
+    return gather(KEY, part(_coaxiality_checks, symbolic), part(_differential_checks, teeth), _particle_checks,
+                  _engine_law_checks, part(_point_velocity_checks, symbolic), part(_ratio_checks, symbolic, teeth),
+                  part(_system_checks, symbolic), _examples, _efficiency_checks, _drill_head_checks)
 
 
 def _coaxiality_checks(symbolic) -> list[Check]:
@@ -290,19 +306,9 @@ def _particle_checks() -> list[Check]:
     pole's motion and the planet's rotation from the engine.
     """
     out = []
-    m = schemes.two_row("AI")
-    start = {carrier_law(0): 0}  # angles measured from the start
-    motion = m.motion({"H": AngleLaw(carrier_law(t)), "4": 0})
-    q = motion.particle("23", (a, b))
-    pole = motion.particle("23", (r1, 0))
-    dphi = motion.angle("23").subs(start)
-    q_position, p_position = q.position.subs(start), pole.position.subs(start)
-    omega, eps = sp.diff(dphi, t), sp.diff(dphi, t, 2)
-    v, vp = sp.diff(q_position, t), sp.diff(p_position, t)
-    acc, ap = sp.diff(q_position, t, 2), sp.diff(p_position, t, 2)
-    filled = {aP: r1, bP: 0, xP: p_position[0], yP: p_position[1], x_: q_position[0], y_: q_position[1],
-              dphi_: dphi, omega_: omega, eps_: eps, VxP: vp[0], VyP: vp[1], wxP: ap[0], wyP: ap[1]}
-    pole_text = "pole P: the planet's point at the sun, (r_1, 0) at t = 0; carrier angle phi_H(t), phi_H(0) = 0"
+    q, start, filled = _planet_particle()
+    q_position = q.position.subs(start)
+    v, acc = sp.diff(q_position, t), sp.diff(q_position, t, 2)
     for label, what, derived, published in (
         ("(4)", "position of a planet particle (a, b)", q_position, PUBLISHED_4),
         ("(5)", "velocity: d/dt of the particle's position (4)", v, PUBLISHED_5),
@@ -310,11 +316,53 @@ def _particle_checks() -> list[Check]:
     ):
         values = sp.Matrix([eq.rhs.subs(filled) for eq in published])
         laws = [sp.Eq(eq.lhs, d) for eq, d in zip(published, derived)]
-        out.append(_check(label, f"{what}; {pole_text}", laws, list(published), _vector_match(derived, values)))
+        out.append(_check(label, f"{what}; {POLE_TEXT}", laws, list(published), _vector_match(derived, values)))
     engine = sp.Matrix([*q.velocity, *q.acceleration]).subs(start)
     out.append(_check("(5)-(6) engine", "the engine's velocity and acceleration laws (eqs. 5, 6 with the planet axis as "
                       "pole) against the derivatives of its positions", list(engine), [*v, *acc],
                       _vector_match(engine, sp.Matrix([*v, *acc])), kind=Kind.CONSISTENCY))
+    return out
+
+
+POLE_TEXT = "pole P: the planet's point at the sun, (r_1, 0) at t = 0; carrier angle phi_H(t), phi_H(0) = 0"
+
+
+def _planet_particle():
+    """A particle (a, b) of the AI planet, gear 4 fixed, the carrier turning by any law phi_H(t);
+    the substitution that measures angles from the start; and the printed (4)-(6)'s symbols
+    filled in with the motion of the pole P (the planet's point at the sun: its position from
+    the engine, its velocity and acceleration the derivatives of that position), the planet's
+    rotation (the engine's angle and its derivatives) and the particle's position."""
+    motion = schemes.two_row("AI").motion({"H": AngleLaw(carrier_law(t)), "4": 0})
+    start = {carrier_law(0): 0}  # angles measured from the start
+    q = motion.particle("23", (a, b))
+    p_position = motion.particle("23", (r1, 0)).position.subs(start)
+    q_position = q.position.subs(start)
+    dphi = motion.angle("23").subs(start)
+    vp, ap = sp.diff(p_position, t), sp.diff(p_position, t, 2)
+    filled = {aP: r1, bP: 0, xP: p_position[0], yP: p_position[1], x_: q_position[0], y_: q_position[1],
+              dphi_: dphi, omega_: sp.diff(dphi, t), eps_: sp.diff(dphi, t, 2), VxP: vp[0], VyP: vp[1],
+              wxP: ap[0], wyP: ap[1]}
+    return q, start, filled
+
+
+def _engine_law_checks() -> list[Check]:
+    """(5) and (6) as the engine applies them (its velocity and acceleration laws of a planet
+    particle, with the planet's axis as pole) against the printed (5) and (6) evaluated on another
+    pole's motion (the planet's point at the sun) and the engine's rotation of the planet: a wrong
+    centripetal, angular-acceleration or Coriolis-like term in the engine's law turns these verdicts
+    (the checks (5) and (6) above hold for any rigid motion: they do not use the engine's laws)."""
+    q, start, filled = _planet_particle()
+    out = []
+    for label, law, published in (("(5) engine law", q.velocity, PUBLISHED_5), ("(6) engine law", q.acceleration, PUBLISHED_6)):
+        derived = sp.Matrix(list(law)).subs(start)
+        values = sp.Matrix([eq.rhs.subs(filled) for eq in published])
+        out.append(_check(
+            label, f"the engine's {'velocity' if label.startswith('(5)') else 'acceleration'} law for the particle (a, b) "
+            f"(its eq. {label[1]} with the planet axis as pole) against the printed ({label[1]}) on the {POLE_TEXT}",
+            [sp.Eq(eq.lhs, d) for eq, d in zip(published, derived)], list(published),
+            _vector_match(derived, values, "engine's law - printed law (filled in with the other pole's motion)"),
+            item=label.split()[0]))
     return out
 
 
@@ -337,6 +385,15 @@ def _point_velocity_checks(symbolic) -> list[Check]:
         derived = paper_vx(m, link, y, known)
         out.append(_check(label, f"{k}: V_x of link {link} at the paper's point (0, {y}), t = 0 (particle laws, eq. 5)",
                           derived, pub, compare_symbolic(derived, pub)))
+    for label, (k, forms) in PUBLISHED_EXPANDED.items():
+        m = symbolic[k]
+        under = coaxial_substitution(m)
+        derived = sp.factor(-r1 * m.speeds({"H": wH, "4": 0})["1"])  # the sun's V_x at A, (7), from the engine's speeds
+        out.append(_check(
+            label, f"{k}, gear 4 fixed: -omega_1 r_1 (the sun's V_x at A) from the engine's speeds, against both forms "
+            "of the printed line", derived, list(forms),
+            compare_each([derived] * len(forms), forms, lambda d, p, under=under: compare_symbolic(d, p, under=under),
+                         names=["middle form", "last form"]), source="reconstructed"))
     return out
 
 
@@ -516,7 +573,7 @@ def _efficiency_checks() -> list[Check]:
     return [_ai_efficiency_check(), _ii_efficiency_check(), _ii_against_aa_check()]
 
 
-def _claim(label: str, description: str, published: str, decide) -> Check:
+def _claim(label: str, description: str, published: str, decide, rests_on: str = "") -> Check:
     """A claim decided on derived laws by ``decide() -> (derived, holds, detail)``.
 
     A law that cannot decide it (a relation SymPy cannot settle, no root where one is
@@ -525,7 +582,7 @@ def _claim(label: str, description: str, published: str, decide) -> Check:
         derived, holds, detail = decide()
     except (TypeError, ValueError, ZeroDivisionError) as exc:
         derived, holds, detail = f"the derived laws do not decide it: {exc}"[:400], False, "undecided on the derived laws"
-    return _check(label, description, derived, published, compare_claim(bool(holds), detail))
+    return _check(label, description, derived, published, compare_claim(bool(holds), detail), rests_on=rests_on)
 
 
 def _ai_efficiency_check() -> Check:
@@ -598,7 +655,9 @@ def _ii_against_aa_check() -> Check:
         "II against AA efficiency",
         "II trains have a higher efficiency than AA trains (read as: at the same tooth numbers, hence the same ratio, "
         "and the same drive, with internal meshes at least as efficient as external ones)",
-        "II more efficient than AA", _decide_ii_against_aa)
+        "II more efficient than AA", _decide_ii_against_aa,
+        rests_on="the mesh efficiencies symkin assumes by default (0.99 for an internal mesh, 0.98 for an external "
+                 "one): the paper gives none, and with equal mesh efficiencies the claim does not hold")
 
 
 def _decide_ii_against_aa():
@@ -675,10 +734,12 @@ def _ii_example() -> list[Check]:
     z4_derived = z4_of_z1.subs(z1, z1_derived)
     how = (f"z1 from coaxiality (z4 = {z4_of_z1}) with z2 = 99, z3 = 100 and the printed i_H1 = 198: "
            f"i_H1 = {i_H1} rounds to 198 for z1 in {fits} (three-digit z1)")
+    searched = ("z1 searched for as the three-digit value whose i_H1 rounds to the printed 198: the printed ratio is an "
+                "input of this derivation, so the match shows consistency with the legible digits, not a reproduction")
     out.append(_check("example II z1", "II example: z1 (the OCR prints ?00)", z1_derived, PRINTED_II_TEETH["1"],
-                      compare_digits(z1_derived, PRINTED_II_TEETH["1"]), how=how))
+                      compare_digits(z1_derived, PRINTED_II_TEETH["1"]), how=how, rests_on=searched))
     out.append(_check("example II z4", "II example: z4 (the OCR prints ?01)", z4_derived, PRINTED_II_TEETH["4"],
-                      compare_digits(z4_derived, PRINTED_II_TEETH["4"]), how=how))
+                      compare_digits(z4_derived, PRINTED_II_TEETH["4"]), how=how, rests_on=searched))
     zz = (200, 99, 100, 201)
     out.append(_coaxiality_example("example II coaxiality", "II", zz))
     derived = _scheme("II", teeth=zz).ratio("H", "1", fixed="4").rhs

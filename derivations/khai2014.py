@@ -31,6 +31,7 @@ from symkin.papers.checks import (
     compare_rounded,
     compare_symbolic,
     confirmation,
+    gather,
     judge,
 )
 from symkin.parsing import parse_number
@@ -96,7 +97,9 @@ PRINTED_ITEMS = (
                 "a quoted standard formula, not derivable by symkin; its printing is checked as an extension"),
     PrintedItem("regression a, b", "MathCAD line() on the GOST data: a = 51.932, b = 0.352",
                 "needs the GOST 9178-81 table, not in the paper"),
-    PrintedItem("(7) slope", "(7): the two-point line 50 + (120 - 50)/180 a_w = 50 + 0.389 a_w"),
+    PrintedItem("(7) slope", "(7): the two-point line 50 + (120 - 50)/180 a_w = 50 + 0.389 a_w",
+                "arithmetic on the paper's own two points (the consistency check '(7) slope' does it); the points "
+                "come from the GOST table, not in the paper"),
     PrintedItem("(7) end points", "j_n max = 50 at a_w = 0 and 120 at a_w = 180 (fig. 2)",
                 "read from the GOST table, not in the paper"),
     PrintedItem("fig. 1 regression line", "the regression line is attributed to fig. 1"),
@@ -216,13 +219,7 @@ def discrete(tolerance: str):
 # ---------------------------------------------------------------------------- checks
 def checks() -> list[Check]:
     """Every result of the paper, derived and compared."""
-    out: list[Check] = []
-    out += _train_checks()
-    out += _stage_checks()
-    out += _objective_checks()
-    out += _optimum_checks()
-    out += _model_checks()
-    return out
+    return gather(KEY, _train_checks, _stage_checks, _objective_checks, _optimum_checks, _model_checks)
 
 
 def _train_checks() -> list[Check]:
@@ -388,8 +385,9 @@ def _kkt_checks() -> list[Check]:
 def _model_checks() -> list[Check]:
     out = []
     slope = sp.Rational(LINE_J_END - LINE_J0, LINE_A_END)
-    out.append(_check("(7) slope", "(7): slope (120 - 50)/180 of the two-point line", slope, PUBLISHED_SLOPE,
-                      compare_rounded(slope, PUBLISHED_SLOPE)))
+    out.append(_check("(7) slope", "(7): slope (120 - 50)/180 of the two-point line: arithmetic on the paper's own "
+                      "numbers, so a consistency check", slope, PUBLISHED_SLOPE, compare_rounded(slope, PUBLISHED_SLOPE),
+                      kind=Kind.CONSISTENCY))
     # (6) and (8) are GOST formulas the paper quotes: symkin.mechanisms.multistage.lostmotion holds them as given inputs
     # (transcribed, not derived).  What can be checked is the paper's printing (extensions): a length formula
     # must scale with its lengths, and (8) without bearing clearances must reduce to (6).
@@ -439,6 +437,7 @@ def _figure_reference_checks() -> list[Check]:
                   confirmation=confirmation(where, second, derived, compare_exact),
                   hypothesis="a figure number left from an earlier numbering of the figures"),
             captions={str(n): c for n, c in FIGURE_CAPTIONS.items()},
+            rests_on="the paper's own captions and text (settled by looking them up, not by the engine)",
         ))
     return out
 

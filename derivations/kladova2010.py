@@ -40,6 +40,7 @@ from symkin.papers.checks import (
     compare_claim,
     compare_symbolic,
     confirmation,
+    gather,
     judge,
     vanishes,
 )
@@ -73,6 +74,13 @@ PUBLISHED = {
     "(4)": z1 * (i - 1) / x,  # Z4
     "from (34) line": sp.Eq(z1 / k * i - x * Q, P),  # printed after "from (34)"
     "(5)": k * (P + Q * x) / i,  # Z1
+    # "transform (2)": the lines before the product line (the first printed line holds two equations)
+    "(2) transformed": (
+        sp.Eq(z1 + z2, (z4 - z2 / x) / lam * sp.cos(a_tw12) / sp.cos(a_tw34) * sp.cos(b12) / sp.cos(b34)),
+        sp.Eq(z1 + z2, (z4 * x - z2) / (x * lam) * sp.cos(a_tw12) / sp.cos(a_tw34) * sp.cos(b12) / sp.cos(b34)),
+        sp.Eq(x * lam * (z1 + z2) * sp.cos(a_tw34) / sp.cos(a_tw12) * sp.cos(b34) / sp.cos(b12), z1 * (i - 1) / x * x - z2),
+        sp.Eq(x * lam * z1 * C + x * lam * z2 * C, z1 * (i - 1) - z2),
+    ),
     "(6) step": sp.Eq(z2 * (x * lam * C + 1), z1 * (i - 1 - x * lam * C)),  # the product line
     "(6) step solved": z1 - (i - 1 - x * lam * C) / (x * lam * C + 1),  # Z2, "Z2 = Z1 - ..." as printed
     "(6) identity": (i - 1 - C, sp.Symbol("d_w2") / sp.Symbol("d_w3")),  # "i - 1 - C = d_w2/d_w3" as printed
@@ -116,12 +124,11 @@ PRINTED_ITEMS = (
     PrintedItem("from (34)", "the reference 'from (34)' before the assembly condition in i"),
     PrintedItem("from (34) line", "Z1 i/k - x Q = P"),
     PrintedItem("(5)", "Z1 = k (P + Q x)/i"),
-    PrintedItem("(2) transformed", "three lines rewriting (2) with x and (4)",
-                "intermediate algebra; the line they lead to, the product line of (6), is checked"),
+    PrintedItem("(2) transformed", "three lines rewriting (2) with x and (4)"),
     PrintedItem("(6) step", "Z2 (x lambda C + 1) = Z1 (i - 1 - x lambda C), C the cosine group"),
-    PrintedItem("(6) step solved", "Z2 = Z1 - (i - 1 - x lambda C)/(x lambda C + 1) as printed"),
-    PrintedItem("(6) identity", "i - 1 - C = d_w2/d_w3 as printed"),
-    PrintedItem("(6)", "Z2 = Z1 (d_w2/d_w3 + 1)/(d_w2/d_w3 + 1) as printed"),
+    # one garbled block (possibly OCR damage), three lines: one item, so its error counts once
+    PrintedItem("(6)", "the block printed as (6): Z2 = Z1 - (i - 1 - x lambda C)/(x lambda C + 1), "
+                       "i - 1 - C = d_w2/d_w3 and Z2 = Z1 (d_w2/d_w3 + 1)/(d_w2/d_w3 + 1), as printed"),
     PrintedItem("(7)", "Z3 = Z2/x"),
     PrintedItem("1.2 II", "II: the expressions follow as for AA from ratio, coaxiality and assembly [2]",
                 "a statement of method; its results (8)-(11) are checked"),
@@ -147,14 +154,8 @@ def _check(label: str, description: str, derived, published, comparison: Compari
 
 def checks() -> list[Check]:
     """Every equation and table entry of the paper, derived and compared; the synthesis example."""
-    out: list[Check] = []
-    out += _balance_checks()
-    out += _section_11_checks()
-    out += _section_12_checks()
-    out += _true_aa_checks()
-    out += _table_checks()
-    out += _synthesis_checks()
-    return out
+    return gather(KEY, _balance_checks, _section_11_checks, _section_12_checks, _true_aa_checks, _table_checks,
+                  _synthesis_checks)
 
 
 # --------------------------------------------------------------------------- balance (the paper's [1]: extensions)
@@ -254,6 +255,8 @@ def _section_11_checks() -> list[Check]:
                       "profiles (free of the tooth numbers, helix and working pressure angles); with lambda read as the "
                       "plain module ratio m_n12/m_n34 it would hold only when alpha_t12 = alpha_t34"
                       if lam_value is not None else "no lambda free of the tooth numbers and angles makes (2) the derived coaxiality"),
+        rests_on="lambda, which the paper does not define, solved from this very comparison (the check shows that "
+                 "one constant lambda makes (2) hold, not that the paper's lambda is that constant)",
     ))
     # (3) assembly
     asm = HS.assembly_condition("AI")
@@ -333,14 +336,23 @@ def _six_checks(ch: dict, lam_value: sp.Expr | None) -> list[Check]:
         sp.Eq(z2, derived_step), step_printed,
         compare_symbolic(derived_step, step_solved.subs(paper)),
     ))
+    # the lines that transform (2) into the product line: each solved for Z2 (Z4 where it stands from the derived
+    # chain, the paper's (4)), against the derived Z2; lambda as solved in (2)
+    for n, line in enumerate(PUBLISHED["(2) transformed"], 1):
+        (solved,) = sp.solve(line.subs(z4, ch[z4]), z2, simplify=False)
+        out.append(_check(
+            f"(2) transformed, line {n}", f"AI: line {n} of the transformation of (2) (x = Z2/Z3, Z4 from (4)), solved for Z2",
+            sp.Eq(z2, derived_step), line, compare_symbolic(derived_step, sp.together(solved).subs(paper)),
+            item="(2) transformed"))
     printed_solved = PUBLISHED["(6) step solved"]
     out.append(_check(
-        "(6) step solved", "the product line solved for Z2, as printed ('Z2 = Z1 - ...')",
+        "(6) step solved", "the product line solved for Z2, as printed ('Z2 = Z1 - ...'): the first line of the block (6)",
         sp.Eq(z2, derived_step), sp.Eq(z2, printed_solved),
         judge(compare_symbolic(derived_step, printed_solved.subs(paper)),
               confirmation=confirmation("the paper's own product line (6) step, solved for Z2 by SymPy",
                                         step_solved.subs(paper), derived_step),
               hypothesis="the product Z1 (...) lost its multiplication and gained a '-' (OCR damage or a typo)"),
+        item="(6)",
     ))
     lhs_printed, _ = PUBLISHED["(6) identity"]
     printed_identity = lhs_printed.subs(paper)
@@ -353,6 +365,7 @@ def _six_checks(ch: dict, lam_value: sp.Expr | None) -> list[Check]:
               confirmation=confirmation("working pitch diameters by hand, d_w = m_n z cos(alpha_t)/(cos(beta) cos(alpha_tw))",
                                         hand, dw_ratio),
               hypothesis="the factor x lambda became 'i - 1 -' (the fragment missing from (6)'s numerator one line below)"),
+        item="(6)",
     ))
     # (6): Z2 from Z1, i, delta; the hand route: spur gears of one module (delta = x = Z2/Z3)
     printed6 = PUBLISHED["(6)"]

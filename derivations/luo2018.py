@@ -48,10 +48,13 @@ from symkin.papers.checks import (
     alternative,
     annotate,
     compare_claim,
+    compare_each,
     compare_exact,
+    compare_inequality,
     compare_rounded,
     compare_symbolic,
     confirmation,
+    gather,
     judge,
     nonzero_somewhere,
     proven_zero,
@@ -76,6 +79,7 @@ PUBLISHED_3 = theta_H0 + omega_H * S.t  # (3): theta_H -> theta_H + omega_H t
 PUBLISHED_TEETH = (1, 2)  # z1 : z3 = 1 : 2, after (14)
 PUBLISHED_14 = sp.Eq(l_1, l_H)
 PUBLISHED_13_TEXT = "theta_1(0) = -(k + 1) pi, theta_2 free"  # (13) z = pi + k pi, "theta_H, theta_2 as needed"
+PUBLISHED_15 = "angle O_H O O_1 + angle O O_H O_1 + pi - theta_1 = pi"
 PUBLISHED_16 = 2 * (theta_2 - theta_H)
 PUBLISHED_18 = (l_H * sp.exp(sp.I * theta_H) + l_1 * sp.exp(sp.I * (theta_H + theta_1)), s * sp.exp(sp.I * theta_2))
 PUBLISHED_19 = sp.Eq(l_H * sp.cos(theta_H) + l_1 * sp.cos(theta_H + theta_1), s * sp.cos(theta_2))
@@ -142,8 +146,9 @@ SENSITIVITY = {
 }
 
 PRINTED_ITEMS = (
-    PrintedItem("(1), (4)-(12), (15), (17)", "the pin's coordinates and the continuity analysis",
+    PrintedItem("(1), (4)-(12), (17)", "the pin's coordinates and the continuity analysis",
                 "lost in the OCR; the conditions they lead to, (13), (14) and z1 : z3 = 1 : 2, are checked"),
+    PrintedItem("(15)", "the angles of the triangle O_H O O_1: angle O_H O O_1 + angle O O_H O_1 + pi - theta_1 = pi"),
     PrintedItem("(2)", "the planet's speed relative to the carrier (lost in the OCR)"),
     PrintedItem("planet spin", "planet 1 spins clockwise while it revolves counter-clockwise"),
     PrintedItem("(3)", "theta_H -> theta_H + omega_H t"),
@@ -161,8 +166,7 @@ PRINTED_ITEMS = (
     *(PrintedItem(f"Table 1 {q} {w}", f"theory row: {n} {w}") for q, n in (("s", "displacement"), ("v", "velocity"),
                                                                           ("a", "acceleration"))
       for w in ("initial", "max", "min")),
-    PrintedItem("Table 1 simulation row", "SolidWorks Motion values: as the theory row, v(0) = -3.39e-16",
-                "a simulation's output; its numbers equal the theory row's, v(0) is numerical noise"),
+    PrintedItem("Table 1 simulation row", "SolidWorks Motion values: as the theory row, v(0) = -3.39e-16"),
     PrintedItem("period", "the slider moves with period T = 2 pi s"),
     PrintedItem("stroke", "stroke 80 mm"),
     PrintedItem("fig. 5", "without gravity the contact force between the bar and the housing is always zero"),
@@ -211,7 +215,7 @@ def elliptical_slider(ecc, order, theta0) -> CardanSlider:
 # --------------------------------------------------------------------------- checks
 def checks() -> list[Check]:
     """Every equation, Table 1, fig. 5 and the claims of figures 7-8, derived and compared."""
-    return _structure() + _continuity() + _laws() + _table1() + _guide_force() + _elliptical() + _figure_claims()
+    return gather(KEY, _structure, _continuity, _laws, _table1, _guide_force, _elliptical, _figure_claims)
 
 
 RECONSTRUCTED = {"source": "reconstructed"}
@@ -234,15 +238,33 @@ def _structure() -> list[Check]:
     uniform = _symbolic_slider(drive=omega_H)
     out.append(_check("(3)", "carrier angle under a constant carrier speed", uniform.carrier_angle, PUBLISHED_3,
                       compare_symbolic(uniform.carrier_angle, PUBLISHED_3)))
-    complex_loop = cardan.loop().complex_equation()
+    out += _loop_checks(uniform)
+    return out
+
+
+def _loop_checks(uniform: CardanSlider) -> list[Check]:
+    """(18)-(20): the pin's position as the engine's gear train gives it (the pin a particle of the
+    planet, eq. (4) of the 2009 paper: superposition, no vector loop) against the printed loop's
+    left side with the engine's carrier and planet angles.  The loop as symkin's model types it
+    (its input, not a result) against the printed (18) is a consistency check."""
+    pin = sp.Matrix(list(uniform.pin.position))
     lhs18, rhs18 = PUBLISHED_18
-    out.append(_check("(18)", "the vector loop in complex form", complex_loop, sp.Eq(lhs18, rhs18),
-                      compare_symbolic((complex_loop.lhs - complex_loop.rhs).rewrite(sp.cos),
-                                       (lhs18 - rhs18).rewrite(sp.cos))))
-    x_eq, y_eq = cardan.loop().components()
-    for label, derived, published in (("(19)", x_eq, PUBLISHED_19), ("(20)", y_eq, PUBLISHED_20)):
-        out.append(_check(label, "real / imaginary part of the loop (18)", derived, published,
-                          compare_symbolic(derived.lhs - derived.rhs, published.lhs - published.rhs)))
+    angles = {l_H: uniform.arm, l_1: uniform.pin_radius, theta_H: uniform.carrier_angle, theta_1: uniform.planet_angle}
+    printed = sp.expand_complex(lhs18.subs(angles))
+    parts = (sp.re(printed), sp.im(printed))
+    where = f"the printed left side with the engine's theta_H(t) = {uniform.carrier_angle}, theta_1(t) = {uniform.planet_angle}"
+    out = [_check("(18)", "the pin's position x + i y from the gear train (the pin a particle of the planet, eq. 4 of the "
+                  f"2009 paper), against the printed loop: {where}", pin[0] + sp.I * pin[1], lhs18,
+                  compare_symbolic(pin[0] + sp.I * pin[1], printed))]
+    for label, n, published in (("(19)", 0, PUBLISHED_19), ("(20)", 1, PUBLISHED_20)):
+        out.append(_check(label, f"{'x' if n == 0 else 'y'} of the pin from the gear train, against the "
+                          f"{'real' if n == 0 else 'imaginary'} part of (18) ({where})", pin[n], published,
+                          compare_symbolic(pin[n], parts[n])))
+    complex_loop = cardan.loop().complex_equation()
+    out.append(_check("(18) model loop", "the loop symkin's slider model is built on (its input, typed from the "
+                      "paper's geometry) against the printed (18): circular, so a consistency check", complex_loop,
+                      sp.Eq(lhs18, rhs18), compare_symbolic((complex_loop.lhs - complex_loop.rhs).rewrite(sp.cos),
+                                                            (lhs18 - rhs18).rewrite(sp.cos)), kind=Kind.CONSISTENCY))
     return out
 
 
@@ -305,6 +327,36 @@ def _continuity() -> list[Check]:
     return out
 
 
+def _triangle_check(slider: CardanSlider) -> Check:
+    """(15): the triangle O_H O O_1 (carrier centre, pin, planet centre) with its corners where the engine's gear
+    train puts them (the pin and the planet centre particles of the planet), its angles at O and O_H measured there
+    (arccos of the sides' directions, 40 digits), against pi - (pi - theta_1) with the engine's planet angle theta_1
+    (the interior angle at O_1; theta_1 taken in (0, pi], mirrored when the triangle turns over)."""
+    centre = slider.motion.particle("1", (0, 0), relative_to="pole").position
+    values = {l: 1, theta_2: sp.Rational(7, 10), theta_H0: sp.Rational(1, 5), omega_H: 1}
+
+    def angle(u, v):
+        return sp.acos((u[0] * v[0] + u[1] * v[1]) / sp.sqrt((u[0]**2 + u[1]**2) * (v[0]**2 + v[1]**2)))
+
+    gaps = []
+    for when in (sp.Rational(1, 10), sp.Rational(2, 5), sp.Rational(4, 5), sp.Rational(6, 5), sp.Rational(8, 5)):
+        at = {**values, t: when}
+        o1 = [sp.N(c.subs(at), 40) for c in centre]
+        o = [sp.N(c.subs(at), 40) for c in slider.pin.position]
+        theta1 = sp.N(sp.Mod(slider.planet_angle.subs(at), 2 * sp.pi), 40)
+        inner = theta1 if theta1 <= sp.pi else 2 * sp.pi - theta1
+        at_o = angle([-o[0], -o[1]], [o1[0] - o[0], o1[1] - o[1]])
+        at_h = angle(o, o1)
+        gaps.append(sp.N(at_o + at_h - inner, 40))
+    worst = max(abs(g) for g in gaps)
+    return _check(
+        "(15)", "the angles of the triangle O_H O O_1 at O and O_H (engine's positions) against theta_1 (engine's planet "
+        "angle), l = 1, theta_2 = 0.7, theta_H(0) = 0.2, omega_H = 1, t = 0.1 ... 1.6 s",
+        [sp.Float(g, 5) for g in gaps], PUBLISHED_15,
+        compare_claim(bool(worst < sp.Float("1e-30")), f"angle at O + angle at O_H - theta_1 = {float(worst):.1e} at most "
+                                                     "over the five instants (40 digits)"))
+
+
 def _laws() -> list[Check]:
     out = []
     # (21): the loop solved for the slider vector's length and angle (same vector), squared
@@ -314,6 +366,7 @@ def _laws() -> list[Check]:
                       compare_symbolic(s2, PUBLISHED_21)))
     uniform = _symbolic_slider(drive=omega_H)
     theta_now = theta_H0 + omega_H * t
+    out.append(_triangle_check(uniform))
     out.append(_check("(16)", "pin angle on the planet during the motion", uniform.planet_angle, PUBLISHED_16.subs(theta_H, theta_now),
                       compare_symbolic(uniform.planet_angle, PUBLISHED_16.subs(theta_H, theta_now))))
     out.append(_check("(22)", "slider displacement (vector loop along the guide)", uniform.displacement,
@@ -345,15 +398,22 @@ def _table1() -> list[Check]:
     for q, names in (("s", "displacement"), ("v", "velocity"), ("a", "acceleration")):
         for which, value, printed in zip(("initial", "max", "min"), derived[q], TABLE1[q]):
             label = f"Table 1 {q} {which}"
-            evidence = {}
+            evidence, rests = {}, ""
             if q == "v" and which != "initial":
-                alt_value = sampled[TABLE1_SAMPLING_STEP][0 if which == "max" else 1]
+                n = 0 if which == "max" else 1
+                alt_value = sampled[TABLE1_SAMPLING_STEP][n]
                 evidence["alternative"] = alternative(
                     f"the extremes of v sampled every {TABLE1_SAMPLING_STEP} s over one period (the derived law "
                     f"evaluated by symkin.numeric; sampled extremes by step: {sampling_table})",
                     alt_value, printed, compare_rounded)
+                fits = [step for step, ext in sampled.items() if compare_rounded(ext[n], printed).verdict.agrees]
+                misses = [step for step in sampled if step not in fits]
+                rests = (f"the sampling step {TABLE1_SAMPLING_STEP} s, chosen after the fact because it reproduces the "
+                         f"printed value: the paper states no step; steps of {', '.join(fits)} s reproduce it, steps of "
+                         f"{', '.join(misses)} s do not")
             out.append(_check(label, f"{names} {which} (l = 20 mm, omega_H = 0.8 pi rad/s)", value, printed,
-                              judge(compare_rounded(value, printed), **evidence)))
+                              judge(compare_rounded(value, printed), **evidence), rests_on=rests))
+    out.append(_simulation_row(derived, sampled, sampling_table))
     stroke = derived["s"][1] - derived["s"][2]
     out.append(_check("stroke", "slider stroke (80 mm)", stroke, PUBLISHED_STROKE, compare_exact(stroke, sp.Rational(PUBLISHED_STROKE))))
     unit_speed = table1_slider(sp.Integer(1)).period()
@@ -366,6 +426,34 @@ def _table1() -> list[Check]:
                  f"{', '.join(str(x) for x in _extreme_times(slider))} s"),
     ))
     return out
+
+
+def _simulation_row(derived: dict, sampled: dict, sampling_table: str) -> Check:
+    """Table 1's simulation row (SolidWorks Motion) against the derived values: each cell rounded as printed;
+    v(0) = -3.39e-16 within half a unit of the table's last velocity digit (1e-5 m/s) of the derived 0."""
+    cells = [(q, n) for q in "sva" for n in range(3)]
+    printed = [TABLE1_SIMULATED_V0 if cell == ("v", 0) else TABLE1[cell[0]][cell[1]] for cell in cells]
+    names = [f"{q} {('initial', 'max', 'min')[n]}" for q, n in cells]
+    noise = sp.Rational(5, 10**6)  # m/s: half a unit of the last digit of 100.52e-3
+
+    def cell(value, text):
+        if text == TABLE1_SIMULATED_V0:
+            gap = abs(sp.Rational(text) - value)
+            return compare_inequality(gap, "<", noise)
+        return compare_rounded(value, text)
+
+    values = [derived[q][n] for q, n in cells]
+    at_step = [sampled[TABLE1_SAMPLING_STEP][n - 1] if (q, n) in (("v", 1), ("v", 2)) else v
+               for (q, n), v in zip(cells, values)]
+    return _check(
+        "Table 1 simulation row", "the simulation row (SolidWorks Motion; l = 20 mm, omega_H = 0.8 pi rad/s) against "
+        "the derived laws: s, v, a initial, max, min", values, printed,
+        judge(compare_each(values, printed, cell, names),
+              alternative=alternative(f"the velocity extremes sampled every {TABLE1_SAMPLING_STEP} s, as a simulation "
+                                      f"reports them at its frames (sampled extremes by step: {sampling_table})",
+                                      at_step, printed, lambda d, p: compare_each(d, p, cell, names))),
+        rests_on=f"the sampling step {TABLE1_SAMPLING_STEP} s of the velocity extremes, as for the theory row: the "
+                 "paper states no frame rate")
 
 
 def _extreme_times(slider: CardanSlider) -> list[sp.Expr]:

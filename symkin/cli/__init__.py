@@ -170,7 +170,8 @@ def _note(w: warnings.WarningMessage) -> str:
     return one_line(f"{w.category.__name__}: {w.message}")
 
 
-#: The version of the layouts of every ``--json`` output (``symkin/cli/schemas/*.schema.json``).
+#: The version of the layouts of every ``--json`` output (``symkin/cli/schemas/*.schema.json``) but
+#: ``reproduce``'s, which prints the report with its own version (:data:`symkin.papers.reproduce.SCHEMA_VERSION`).
 JSON_SCHEMA_VERSION = "1.0"
 
 
@@ -198,7 +199,7 @@ def output_schema(command: str) -> dict:
 
 
 def _print_json(data: dict) -> None:
-    data = {"schema_version": JSON_SCHEMA_VERSION, **data}  # the report carries its own (the same)
+    data = {"schema_version": JSON_SCHEMA_VERSION, **data}  # the report carries its own (report.schema.json's)
     json.dump(data, sys.stdout, indent=2, ensure_ascii=False, allow_nan=False)
     sys.stdout.write("\n")
 

@@ -35,7 +35,10 @@ def register(sub: Any) -> None:
         "DIR/figures/. The folder is replaced only when the run completes: an interrupted or failed run "
         "leaves the previous report as it was. Every verdict is computed: match, match (published value "
         "rounded), paper slip (explained: an alternative reproduces the printed item), paper error "
-        "(confirmed by an independent route), or differs. Exit 1 when a check differs, 0 otherwise, 2 on "
+        "(confirmed by an independent route), or differs. A part of a derivation that raises (a broken "
+        "engine) is a failure check that differs; the report is still written. A weak verdict (kind column: "
+        "weak) rests on a chosen parameter or the paper's text and says so; reconstructed: the form compared "
+        "was rebuilt where the OCR lost it. Exit 1 when a check differs, 0 otherwise, 2 on "
         "bad input. With --json the report (symkin/papers/report.schema.json) is printed instead of the table.",
         run=run_reproduce,
     )

@@ -18,6 +18,13 @@ computed on every run:
   (:class:`Confirmation`);
 - ``differs``: anything else.  Only this verdict makes ``symkin reproduce`` exit 1.
 
+A part of a paper's derivation that raises (a broken engine, an input the engine refuses)
+does not end the run: :func:`gather` turns it into a ``failure`` check whose verdict is
+``differs`` with the error as evidence, and the printed items only that part compares
+turn to ``differs`` too (:func:`item_results`).  A verdict that rests on a parameter
+chosen to reproduce the printed item, or on the paper's own text rather than the engine,
+names it (``rests_on``) and counts as a weak one.
+
 :func:`judge` is the only way to reach the last three: a slip or an error cannot be
 attached by hand (:class:`Comparison` refuses one without its evidence).
 
@@ -37,6 +44,7 @@ attached by hand (:class:`Comparison` refuses one without its evidence).
 from __future__ import annotations
 
 import re
+import traceback
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
 from typing import Any
@@ -70,6 +78,8 @@ __all__ = [
     "Confirmation",
     "Check",
     "PrintedItem",
+    "failure",
+    "gather",
     "ItemResult",
     "compare_symbolic",
     "compare_exact",
@@ -116,6 +126,11 @@ class Check:
         ``"printed"`` when the published object is what the paper prints (in its OCR),
         ``"reconstructed"`` when the OCR lost it and the form compared is reconstructed
         from the paper's text.
+    rests_on : str
+        What the verdict rests on besides the engine, when it does: a parameter chosen so
+        that the item is reproduced (a value searched for, a sampling step, efficiencies
+        assumed), or the paper's own text (captions) rather than a derivation.  Named in
+        the evidence; such a check is ``weak`` (:attr:`strength`).
     """
 
     paper: str
@@ -130,6 +145,7 @@ class Check:
     kind: Kind = Kind.PAPER
     item: str = ""
     source: str = "printed"
+    rests_on: str = ""
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "kind", Kind(self.kind))
@@ -137,6 +153,14 @@ class Check:
             raise ValueError(f"source is 'printed' or 'reconstructed', got {self.source!r}")
         if not self.item:
             object.__setattr__(self, "item", self.label)
+        note = f"a weak verdict: it rests on {self.rests_on}"
+        if self.rests_on and note not in self.comparison.detail:
+            object.__setattr__(self, "comparison", annotate(self.comparison, note))
+
+    @property
+    def strength(self) -> str:
+        """``"weak"`` when the verdict rests on a chosen parameter or the paper's text (``rests_on``), else ``"genuine"``."""
+        return "weak" if self.rests_on else "genuine"
 
     @classmethod
     def make(
@@ -151,11 +175,12 @@ class Check:
         kind: Kind | str = Kind.PAPER,
         item: str = "",
         source: str = "printed",
+        rests_on: str = "",
         **extra: Any,
     ) -> Check:
         """A check from its parts, with the LaTeX of the derived and the published objects printed once here."""
         return cls(paper, label, description, derived, published, comparison, _tex(derived), _tex(published), extra,
-                   Kind(kind), item, source)
+                   Kind(kind), item, source, rests_on)
 
     @property
     def verdict(self) -> Verdict:
@@ -213,6 +238,8 @@ class Check:
             "item": self.item,
             "kind": self.kind.value,
             "source": self.source,
+            "strength": self.strength,
+            "rests_on": self.rests_on or None,
             "description": self.description,
             "derived": self.derived_text,
             "derived_latex": self.derived_latex,
@@ -243,6 +270,49 @@ class Check:
         }
 
 
+def failure(paper: str, part: str, error: BaseException) -> Check:
+    """The check that stands for a part of ``paper``'s derivation that raised ``error``:
+    kind ``failure``, verdict ``differs``, the error (and where it was raised) as evidence.
+
+    >>> c = failure("p", "ratios", ValueError("no root"))
+    >>> c.kind.value, c.verdict.value, c.comparison.detail
+    ('failure', 'differs', "the part 'ratios' raised ValueError: no root; none of its checks could be made")
+    """
+    frames = traceback.extract_tb(error.__traceback__)
+    where = f" (in {frames[-1].name}, {frames[-1].filename.rsplit('/', 1)[-1]}:{frames[-1].lineno})" if frames else ""
+    text = f"{type(error).__name__}: {error}"
+    return Check(paper, f"{part}: failed", f"the part {part!r} of the derivation, which raised instead of producing its checks",
+                 text, "its checks", Comparison(Verdict.DIFFERS, f"the part {part!r} raised {text}{where}; none of its "
+                                                                 "checks could be made"),
+                 _tex(text), _tex("its checks"), kind=Kind.FAILURE)
+
+
+def gather(paper: str, *parts: Callable[[], Check | Iterable[Check]]) -> list[Check]:
+    """The checks of each of ``parts`` (functions returning a check or a list of them), each run
+    on its own: a part that raises gives its :func:`failure` check, and the others still run.
+
+    >>> def broken():
+    ...     raise ZeroDivisionError("division by zero")
+    >>> [c.verdict.value for c in gather("p", lambda: Check.make("p", "(1)", "", 1, 1, compare_exact(1, 1)), broken)]
+    ['match', 'differs']
+    """
+    out: list[Check] = []
+    for part in parts:
+        try:
+            found = part()
+            out += [found] if isinstance(found, Check) else list(found)
+        except Exception as error:
+            out.append(failure(paper, _part_name(part), error))
+    return out
+
+
+def _part_name(part: Callable[..., Any]) -> str:
+    """A part's name for its failure check: its function's name (of a ``functools.partial``, the
+    function's), without the underscores around it."""
+    name = getattr(part, "__name__", None) or getattr(getattr(part, "func", None), "__name__", "part")
+    return str(name).strip("_").removesuffix("_checks").replace("_", " ")
+
+
 @dataclass(frozen=True)
 class PrintedItem:
     """An item the paper prints: an equation, a number, a table cell, a claim.
@@ -260,12 +330,22 @@ class PrintedItem:
 class ItemResult:
     """A printed item with the checks that compare it and their combined verdict.
 
-    ``verdict`` is the worst verdict of its ``paper`` checks, None when none compares it.
+    ``verdict`` is the worst verdict of its ``paper`` checks, None when none compares it;
+    ``differs`` when the paper lists no reason why none does and a part of its derivation
+    failed (``checks`` then holds the ``failure`` checks).
     """
 
     item: PrintedItem
     checks: tuple[Check, ...]
     verdict: Verdict | None
+
+    @property
+    def strength(self) -> str | None:
+        """None for an item no check compares; ``"weak"`` when every check that compares it is weak
+        (rests on a chosen parameter or the paper's text); else ``"genuine"``."""
+        if self.verdict is None:
+            return None
+        return "weak" if self.checks and all(c.strength == "weak" for c in self.checks) else "genuine"
 
     def to_json(self) -> dict[str, Any]:
         """The printed item as JSON: the item and what it is, the labels of the checks that compare it, its verdict (the worst of theirs, or "not checked") and why none does."""
@@ -274,12 +354,17 @@ class ItemResult:
             "what": self.item.what,
             "checks": [c.label for c in self.checks],
             "verdict": self.verdict.value if self.verdict is not None else "not checked",
+            "strength": self.strength,
             "not_checked": self.item.not_checked or None,
         }
 
 
 def item_results(items: Iterable[PrintedItem], checks: Iterable[Check]) -> list[ItemResult]:
     """Every printed item with its ``paper`` checks and their worst verdict.
+
+    An item that no check compares and that says no reason why is ``differs`` when a part of
+    the paper's derivation failed (a ``failure`` check): the part that failed may be the one
+    that compares it.
 
     Raises ValueError for a paper check whose item is not listed, an item listed twice, or an
     item compared by a paper check that also says why it is not checked.
@@ -292,7 +377,9 @@ def item_results(items: Iterable[PrintedItem], checks: Iterable[Check]) -> list[
     names = [i.item for i in items]
     if len(set(names)) != len(names):
         raise ValueError(f"a printed item is listed twice: {sorted({n for n in names if names.count(n) > 1})}")
+    checks = list(checks)
     paper_checks = [c for c in checks if c.kind is Kind.PAPER]
+    failures = tuple(c for c in checks if c.kind is Kind.FAILURE)
     unknown = sorted({c.item for c in paper_checks} - set(names))
     if unknown:
         raise ValueError(f"paper checks compare items that are not in the list of printed items: {unknown}")
@@ -302,6 +389,9 @@ def item_results(items: Iterable[PrintedItem], checks: Iterable[Check]) -> list[
         if mine and it.not_checked:
             raise ValueError(f"printed item {it.item!r} is compared by a paper check and says it is not checked "
                              f"({it.not_checked}): drop one")
+        if not mine and not it.not_checked and failures:
+            out.append(ItemResult(it, failures, Verdict.DIFFERS))
+            continue
         verdict = max((c.verdict for c in mine), key=SEVERITY.index) if mine else None
         out.append(ItemResult(it, mine, verdict))
     return out

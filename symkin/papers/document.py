@@ -89,7 +89,8 @@ def _plain_text(text: str) -> str:
 
 
 #: How the document names each kind of check.
-KIND_NAMES = {"paper": "paper item", "consistency": "consistency check", "extension": "extension"}
+KIND_NAMES = {"paper": "paper item", "consistency": "consistency check", "extension": "extension",
+              "failure": "failed part of the derivation"}
 
 
 PREAMBLE = r"""\documentclass[10pt,a4paper]{article}
@@ -170,6 +171,8 @@ def _check_block(check: Any, figure: int = 0, number: int = 0) -> str:
     kind = KIND_NAMES.get(getattr(kind, "value", kind), str(kind))
     if getattr(check, "source", "printed") == "reconstructed":
         kind += " (form reconstructed where the OCR lost it)"
+    if getattr(check, "rests_on", ""):
+        kind += " (weak: the verdict rests on a chosen parameter or the paper's text)"
     lines = [
         (rf"\subsection*{{[{number}] " if number else r"\subsection*{") + rf"{math_text(check.label)}: {math_text(_heading_text(check))}}}",
         r"\begin{align*}",
@@ -217,7 +220,9 @@ def _summary(results: list[Any]) -> str:
     text = (
         f"symkin {__version__} derived every result below with its own engine and compared it with the "
         f"published form: {summarize(results).line()}. A paper item is an item the paper prints; a consistency "
-        "check compares two routes of the engine; an extension goes beyond the paper."
+        "check compares two routes of the engine (or is circular, or arithmetic on the paper's own numbers); an "
+        "extension goes beyond the paper. A weak verdict rests on a parameter chosen so that the item is "
+        "reproduced, or on the paper's own text, and says so."
     )
     return escape(text) + "\n"
 

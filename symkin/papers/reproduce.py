@@ -1,7 +1,10 @@
 """Reproduce the papers: derive, compare, and write a report folder atomically.
 
 The report is built in a temporary folder beside the target and renamed into place
-only when complete, so an interrupted or failing run leaves the previous report intact.
+only when complete, so an interrupted run leaves the previous report intact.  A fault
+of the engine or of a paper's module (an exception while it loads, derives, notes or draws)
+is a ``failure`` check of that paper with verdict ``differs``: the other checks and papers
+still run and the report is written (see :func:`symkin.papers.checks.gather`).
 
     >>> from symkin.papers.reproduce import paper_names
     >>> "alyushin2009" in paper_names()
@@ -31,7 +34,7 @@ from symkin._io.atomic import STOP_SIGNALS, check_replaceable, recover, stop_sig
 from symkin._io.progress import Progress
 from symkin._version import __version__
 from symkin.errors import InputError
-from symkin.papers.checks import Check, ItemResult, PrintedItem, Verdict
+from symkin.papers.checks import Check, ItemResult, PrintedItem, Verdict, failure, gather
 from symkin.papers.document import check_rows, equations_document
 from symkin.papers.registry import load, paper_names
 from symkin.papers.summary import Summary, paper_items, summarize
@@ -45,7 +48,7 @@ __all__ = [
 #: The version of the layout of report.json, described by ``report.schema.json`` beside this
 #: module (:func:`report_schema`).  A new key raises the minor number, a changed or removed
 #: one the major number.
-SCHEMA_VERSION = "1.0"
+SCHEMA_VERSION = "1.1"
 
 
 @dataclass
@@ -137,7 +140,7 @@ def run(
         pdflatex is installed but fails on the document (``out`` is left as it was).
     """
     names = list(names)
-    modules = {n: load(n) for n in names}
+    modules = {n: _load(n) for n in names}
     check_target(out)
     pdflatex = find_pdflatex() if pdf else None
     results: list[PaperResult] = []
@@ -183,28 +186,59 @@ def run(
     return results
 
 
+def _load(name: str) -> ModuleType:
+    """The module of paper ``name``; one that raises while it loads stands in as a module whose
+    ``checks()`` raises that error (an unknown name is still an :class:`InputError`)."""
+    if name not in paper_names():
+        return load(name)  # the InputError that names the choices
+    try:
+        return load(name)
+    except Exception as error:  # a broken paper module is a failing check, not a lost report
+        stand_in, caught = ModuleType(name), error  # ``error`` itself is unbound when the block ends
+
+        def checks() -> list[Check]:
+            raise caught
+
+        stand_in.__dict__.update(CITATION=name, checks=checks, figures=lambda folder: [])
+        return stand_in
+
+
 #: The papers' modules a worker process runs (set in each worker by :func:`_start_worker`).
 _MODULES: dict[str, ModuleType] = {}
 
 
-def _paper(mod: ModuleType, figures_dir: Path) -> tuple[list[Any], list[str], list[Path], float]:
-    """One paper's checks, notes and figures, and the seconds they took, in this process."""
+def _paper(mod: ModuleType, figures_dir: Path, key: str = "") -> tuple[list[Any], list[str], list[Path], float]:
+    """One paper's checks, notes and figures, and the seconds they took, in this process; each of
+    the three that raises gives a ``failure`` check instead (:func:`~symkin.papers.checks.gather`)."""
     start = time.perf_counter()
-    checks = list(mod.checks())
-    notes = list(getattr(mod, "notes", lambda: [])())
-    figures = list(mod.figures(figures_dir))
-    return checks, notes, figures, time.perf_counter() - start
+    key = key or str(getattr(mod, "KEY", mod.__name__.rsplit(".", 1)[-1]))
+    notes: list[str] = []
+    figures: list[Path] = []
+
+    def checks() -> list[Check]:
+        return list(mod.checks())
+
+    def notes_() -> list[Check]:  # its failure is labelled "notes: failed"
+        notes.extend(getattr(mod, "notes", lambda: [])())
+        return []
+
+    def figures_() -> list[Check]:
+        figures.extend(mod.figures(figures_dir))
+        return []
+
+    found = gather(key, checks, notes_, figures_)
+    return found, notes, figures, time.perf_counter() - start
 
 
 def _paper_in_worker(name: str, figures_dir: Path) -> tuple[list[Any], list[str], list[Path], float]:
-    return _paper(_MODULES[name], figures_dir)
+    return _paper(_MODULES[name], figures_dir, name)
 
 
 def run_papers(modules: dict[str, ModuleType], order: list[str], figures_dir: Path, *, jobs: int,
                done: Callable[[str, Any], None]) -> None:
     """Run each paper of ``order`` (its checks, then its figures: one task, so that what its
     module caches is computed once) and call ``done(name, (checks, notes, figures, seconds))``
-    in this process as each ends.  An exception of a paper is raised here.
+    in this process as each ends.  A worker that dies gives its paper a ``failure`` check.
 
     With ``jobs`` > 1, on Linux and from a process running one thread, the papers run in a
     process pool whose workers are forked: they run the modules as this process has them
@@ -216,7 +250,7 @@ def run_papers(modules: dict[str, ModuleType], order: list[str], figures_dir: Pa
     can_fork = sys.platform.startswith("linux") and threading.active_count() == 1
     if jobs <= 1 or not can_fork:
         for name in order:
-            done(name, _paper(modules[name], figures_dir))
+            done(name, _paper(modules[name], figures_dir, name))
         return
     _import_figures()  # once here, not once in each worker
     before = set(multiprocessing.active_children())
@@ -229,7 +263,11 @@ def run_papers(modules: dict[str, ModuleType], order: list[str], figures_dir: Pa
     workers = set(multiprocessing.active_children()) - before
     try:
         for future in as_completed(futures):
-            done(futures[future], future.result())
+            try:
+                value = future.result()
+            except Exception as error:
+                value = ([failure(futures[future], "worker", error)], [], [], 0.0)
+            done(futures[future], value)
     except BaseException:
         for worker in workers:  # a failure or an interrupt ends the other papers at once
             worker.kill()
@@ -370,14 +408,24 @@ def _short(text: str, width: int) -> str:
     return text if len(text) <= width else text[: width - 3] + "..."
 
 
+def _kind_cell(check: Check) -> str:
+    """The check's kind, with ``reconstructed`` and ``weak`` when they apply."""
+    marks = [m for m, on in (("reconstructed", check.source == "reconstructed"), ("weak", bool(check.rests_on))) if on]
+    return check.kind.value + (f" ({', '.join(marks)})" if marks else "")
+
+
 def format_table(results: list[PaperResult]) -> str:
     """The verification table (paper, kind, result, derived, published, verdict), the
-    summary line, the evidence of every verdict other than a plain match, and the printed
-    items no check compares."""
+    summary line, the checks compared with a reconstructed form, the evidence of every verdict
+    other than a plain match and of every weak one, and the printed items no check compares.
+
+    The kind column says ``reconstructed`` for a check whose published side is reconstructed
+    where the OCR lost the printed form, and ``weak`` for one whose verdict rests on a chosen
+    parameter or the paper's own text (:attr:`Check.rests_on`)."""
     rows = [("paper", "kind", "result", "derived", "published", "verdict")]
     for r in results:
         for c in r.checks:
-            rows.append((r.key, c.kind.value, c.label, _short(c.derived_text, 38), _short(c.published_text, 38),
+            rows.append((r.key, _kind_cell(c), c.label, _short(c.derived_text, 38), _short(c.published_text, 38),
                          c.verdict.value))
     widths = [max(len(row[i]) for row in rows) for i in range(len(rows[0]))]
     lines = ["  ".join(cell.ljust(w) for cell, w in zip(row, widths)).rstrip() for row in rows]
@@ -388,10 +436,14 @@ def format_table(results: list[PaperResult]) -> str:
     bad = [c for r in results for c in r.checks if not c.verdict.ok]
     if bad:
         lines.append("differ: " + ", ".join(f"{c.paper} {c.label}" for c in bad))
+    rebuilt = [f"{c.paper} {c.label}" for r in results for c in r.checks if c.source == "reconstructed"]
+    if rebuilt:
+        lines.append("compared with a form reconstructed from the paper's text (the OCR lost the printed one): "
+                     + ", ".join(rebuilt))
     for r in results:
         for c in r.checks:
-            if c.verdict is not Verdict.MATCH:
-                lines.append(f"  {r.key} {c.label} [{c.kind.value}]: {c.verdict.value}: {c.comparison.detail}")
+            if c.verdict is not Verdict.MATCH or c.rests_on:
+                lines.append(f"  {r.key} {c.label} [{_kind_cell(c)}]: {c.verdict.value}: {c.comparison.detail}")
     unchecked = [(r.key, i) for r in results for i in r.item_results if i.verdict is None]
     if unchecked:
         lines.append("printed items not checked:")

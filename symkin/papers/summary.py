@@ -5,7 +5,7 @@
     >>> paper = SimpleNamespace(checks=[Check.make("p", "(1)", "", 2, 2, compare_exact(2, 2))],
     ...                         items=[PrintedItem("(1)", "a law"), PrintedItem("(2)", "a claim", "not derivable")])
     >>> summarize([paper]).line()
-    '1 of 2 paper items reproduced, 0 slips explained, 0 paper errors confirmed, 0 differ, 1 not checked; 0 consistency checks; 0 extensions'
+    '1 of 2 paper items reproduced genuinely, 0 slips explained, 0 paper errors confirmed, 0 differ, 1 not checked; 0 consistency checks; 0 extensions'
 """
 
 from __future__ import annotations
@@ -36,10 +36,16 @@ def paper_items(result: Any) -> list[ItemResult]:
 
 @dataclass(frozen=True)
 class Summary:
-    """Counts over papers: printed items by verdict, and checks by kind.
+    """Counts over papers: printed items by verdict (and how many of each rest on a chosen
+    parameter or the paper's text: ``weak``), and checks by kind.
+
+    The line counts the genuine reproductions apart from the weak ones, and says how many
+    parts of the derivations failed (their checks could not be made) when any did.
 
     >>> Summary(items=3, reproduced=2, slips=1).line()
-    '2 of 3 paper items reproduced, 1 slip explained, 0 paper errors confirmed, 0 differ; 0 consistency checks; 0 extensions'
+    '2 of 3 paper items reproduced genuinely, 1 slip explained, 0 paper errors confirmed, 0 differ; 0 consistency checks; 0 extensions'
+    >>> Summary(items=3, reproduced=2, reproduced_weak=1, errors=1, errors_weak=1, failures=1).line()
+    '1 of 3 paper items reproduced genuinely, 1 more weakly, 0 slips explained, 1 paper error confirmed (1 weakly), 0 differ; 0 consistency checks; 0 extensions; 1 part failed'
     """
 
     items: int = 0
@@ -55,6 +61,10 @@ class Summary:
     extensions_differ: int = 0
     checks: int = 0
     differs: int = 0
+    reproduced_weak: int = 0
+    slips_weak: int = 0
+    errors_weak: int = 0
+    failures: int = 0
 
     def line(self) -> str:
         """The one-line summary: paper items apart from consistency checks and extensions."""
@@ -65,10 +75,15 @@ class Summary:
         def more(n: int, bad: int) -> str:
             return f" ({bad} differ)" if bad else ""
 
-        parts = [
-            f"{self.reproduced} of {self.items} paper items reproduced",
-            plural(self.slips, "slip") + " explained",
-            plural(self.errors, "paper error") + " confirmed",
+        def weakly(n: int) -> str:
+            return f" ({n} weakly)" if n else ""
+
+        parts = [f"{self.reproduced - self.reproduced_weak} of {self.items} paper items reproduced genuinely"]
+        if self.reproduced_weak:
+            parts.append(f"{self.reproduced_weak} more weakly")
+        parts += [
+            plural(self.slips, "slip") + " explained" + weakly(self.slips_weak),
+            plural(self.errors, "paper error") + " confirmed" + weakly(self.errors_weak),
             f"{self.differ} differ",
         ]
         if self.not_checked:
@@ -77,6 +92,7 @@ class Summary:
             ", ".join(parts)
             + "; " + plural(self.consistency, "consistency check") + more(self.consistency, self.consistency_differ)
             + "; " + plural(self.extensions, "extension") + more(self.extensions, self.extensions_differ)
+            + (f"; {plural(self.failures, 'part')} failed" if self.failures else "")
         )
 
     def _repr_html_(self) -> str:
@@ -85,10 +101,11 @@ class Summary:
         >>> "<td>reproduced</td><td>2</td>" in Summary(items=3, reproduced=2)._repr_html_()
         True
         """
-        rows = [("paper items", self.items), ("reproduced", self.reproduced), ("slips explained", self.slips),
+        rows = [("paper items", self.items), ("reproduced", self.reproduced),
+                ("of them weakly", self.reproduced_weak), ("slips explained", self.slips),
                 ("paper errors confirmed", self.errors), ("differ", self.differ), ("not checked", self.not_checked),
                 ("consistency checks", f"{self.consistency} ({self.consistency_differ} differ)"),
-                ("extensions", f"{self.extensions} ({self.extensions_differ} differ)")]
+                ("extensions", f"{self.extensions} ({self.extensions_differ} differ)"), ("parts failed", self.failures)]
         return html_table(["", "count"], rows, caption=self.line())
 
     def to_json(self) -> dict[str, Any]:
@@ -96,13 +113,16 @@ class Summary:
         return {
             "line": self.line(),
             "paper_items": {"total": self.items, "reproduced": self.reproduced, "slips": self.slips,
-                            "errors": self.errors, "differ": self.differ, "not_checked": self.not_checked},
+                            "errors": self.errors, "differ": self.differ, "not_checked": self.not_checked,
+                            "weak": {"reproduced": self.reproduced_weak, "slips": self.slips_weak,
+                                     "errors": self.errors_weak}},
             "paper_checks": self.paper_checks,
             "consistency": {"checks": self.consistency, "differ": self.consistency_differ},
             "extension": {"checks": self.extensions, "differ": self.extensions_differ},
             "checks": self.checks,
             "ok": self.checks - self.differs,
             "differs": self.differs,
+            "failures": self.failures,
         }
 
 
@@ -115,6 +135,9 @@ def summarize(results: Iterable[Any]) -> Summary:
 
     def count(kind: Kind, bad: bool = False) -> int:
         return sum(c.kind is kind and (not bad or not c.verdict.ok) for c in checks)
+
+    def weak(*verdicts: Verdict) -> int:
+        return sum(r.verdict in verdicts and r.strength == "weak" for r in items)
 
     return Summary(
         items=len(items),
@@ -130,6 +153,10 @@ def summarize(results: Iterable[Any]) -> Summary:
         extensions_differ=count(Kind.EXTENSION, True),
         checks=len(checks),
         differs=sum(not c.verdict.ok for c in checks),
+        reproduced_weak=weak(Verdict.MATCH, Verdict.ROUNDED),
+        slips_weak=weak(Verdict.SLIP),
+        errors_weak=weak(Verdict.ERROR),
+        failures=count(Kind.FAILURE),
     )
 
 

@@ -17,12 +17,17 @@ class Kind(str, enum.Enum):
     ``paper``: an item printed in the paper (an equation, a number, a claim) against its
     derivation; ``consistency``: two routes of the engine against each other;
     ``extension``: a result beyond the paper (a generalisation, a check the paper does
-    not make).  Only ``paper`` checks count as reproductions.
+    not make); ``failure``: a part of a paper's derivation that raised an exception instead
+    of producing its checks (its verdict is ``differs``, the error its evidence; see
+    :func:`symkin.papers.checks.gather`).  Only ``paper`` checks count as reproductions.
+    A comparison that is circular (the model's own input against the printed item) or
+    arithmetic on the paper's own numbers is a ``consistency`` check, not a ``paper`` one.
     """
 
     PAPER = "paper"
     CONSISTENCY = "consistency"
     EXTENSION = "extension"
+    FAILURE = "failure"
 
 
 class Verdict(str, enum.Enum):

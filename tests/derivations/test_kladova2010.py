@@ -6,7 +6,7 @@ import pytest
 import sympy as sp
 
 from symkin.derivations import kladova2010
-from symkin.papers.checks import Kind, Verdict
+from symkin.papers.checks import Kind, Verdict, item_results
 from symkin.papers.reproduce import run
 
 
@@ -99,3 +99,23 @@ def test_a_region_curve_is_not_drawn_across_a_pole():
     np.testing.assert_allclose(v[finite], reference[finite], rtol=1e-12)
     # a bound without a pole on the grid is drawn whole
     assert not np.isnan(kladova2010.region_curve(1 + kladova2010.DELTA, d)).any()
+
+
+def test_lambda_is_a_weak_match_and_the_garbled_6_counts_once(checks):
+    assert checks["(2)"].strength == "weak" and "solved from this very comparison" in checks["(2)"].comparison.detail
+    items = {r.item.item: r for r in item_results(kladova2010.PRINTED_ITEMS, checks.values())}
+    assert [c.label for c in items["(6)"].checks] == ["(6) step solved", "(6) identity", "(6)"]
+    assert items["(6)"].verdict is Verdict.ERROR and "(6) identity" not in items
+
+
+def test_the_lines_transforming_2_lead_to_the_derived_z2(checks, monkeypatch):
+    lines = [checks[f"(2) transformed, line {n}"] for n in (1, 2, 3, 4)]
+    assert all(c.item == "(2) transformed" and c.verdict is Verdict.MATCH for c in lines)
+    # a line with a sign slip is caught: -Z2 read +Z2 in the third line
+    printed = list(kladova2010.PUBLISHED["(2) transformed"])
+    z2 = kladova2010.z2
+    printed[2] = sp.Eq(printed[2].lhs, printed[2].rhs + 2 * z2)
+    monkeypatch.setitem(kladova2010.PUBLISHED, "(2) transformed", tuple(printed))
+    again = {c.label: c for c in kladova2010._section_11_checks()}
+    assert again["(2) transformed, line 3"].verdict is Verdict.DIFFERS
+    assert again["(2) transformed, line 4"].verdict is Verdict.MATCH

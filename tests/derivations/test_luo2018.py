@@ -25,12 +25,43 @@ def test_every_check_is_reproduced_or_an_explained_slip(checks):
                   "(33)-(35)", "e = 0: (22)", "e = 0: (23)", "e = 0: (24)", "stroke", "period", "fig. 5"]:
         assert label in checks, label
     slips = {k for k, c in checks.items() if c.verdict is Verdict.SLIP}
-    assert slips == {"Table 1 v max", "Table 1 v min", "period", "fig. 7(b)"}
+    assert slips == {"Table 1 v max", "Table 1 v min", "Table 1 simulation row", "period", "fig. 7(b)"}
     assert {k for k, c in checks.items() if c.verdict is Verdict.ERROR} == {"(13)"}
     assert {k for k, c in checks.items() if c.kind is Kind.CONSISTENCY} == {
-        "(12) identity", "(22) superposition", "e = 0: (22)", "e = 0: (23)", "e = 0: (24)"}
+        "(12) identity", "(22) superposition", "e = 0: (22)", "e = 0: (23)", "e = 0: (24)", "(18) model loop"}
+    # the slips of Table 1's velocity rest on a sampling step chosen after the fact, and say so
+    assert {k for k, c in checks.items() if c.strength == "weak"} == {
+        "Table 1 v max", "Table 1 v min", "Table 1 simulation row"}
+    for label in ("Table 1 v max", "Table 1 v min"):
+        detail = checks[label].comparison.detail
+        assert "chosen after the fact" in detail and "0.001, 0.005" in detail and "do not" in detail
     reconstructed = {k for k, c in checks.items() if c.source == "reconstructed"}
     assert reconstructed == {"(2)", "(22)", "(24)", "(25)", "(26)", "(27)-(28)", "(29)", "(30)-(31)", "(32)", "(33)-(35)"}
+
+
+def test_the_loop_18_is_the_pin_of_the_gear_train(checks):
+    # by hand: 1 : 2 Cardan pair, arm l, pin on the pitch circle at theta_1(0) = 2 (theta_2 - theta_H0) ((16) at t = 0),
+    # the planet turning -2 omega_H t relative to the carrier
+    names = {s.name: s for c in ("(18)", "(19)", "(20)") for s in checks[c].derived.free_symbols}
+    l, th2, thH0, w, t = (names[n] for n in ("l", "theta_2", "theta_H0", "omega_H", "t"))
+    carrier = thH0 + w * t
+    planet = 2 * (th2 - thH0) - 2 * w * t
+    x = l * sp.cos(carrier) + l * sp.cos(carrier + planet)
+    y = l * sp.sin(carrier) + l * sp.sin(carrier + planet)
+    assert compare_symbolic(checks["(19)"].derived, x).verdict.agrees
+    assert compare_symbolic(checks["(20)"].derived, y).verdict.agrees
+    assert compare_symbolic(checks["(18)"].derived, x + sp.I * y).verdict.agrees
+    assert checks["(18)"].kind is Kind.PAPER and checks["(18) model loop"].kind is Kind.CONSISTENCY
+
+
+def test_the_simulation_row_is_the_theory_row_and_its_v0_is_noise(checks):
+    row = checks["Table 1 simulation row"]
+    # by hand: s = 2 l cos(omega t), l = 0.02 m, omega = 0.8 pi: 2 l, 2 l omega, 2 l omega^2
+    two_l, omega = sp.Rational(4, 100), sp.Rational(4, 5) * sp.pi
+    assert row.derived == [two_l, two_l, -two_l, 0, two_l * omega, -two_l * omega,
+                           -two_l * omega**2, two_l * omega**2, -two_l * omega**2]
+    assert row.published[3] == "-3.39e-16" and "satisfies < 1/200000" in row.comparison.detail
+    assert row.comparison.alternative.matches_published and row.strength == "weak"
 
 
 def test_table1_values(checks):
@@ -130,3 +161,12 @@ def test_reproduce_luo2018_writes_report_and_figures(tmp_path):
     for name in ("paths", "fig4_constant_speed", "fig7_velocity", "fig8_acceleration", "carrier_angle_branches"):
         assert (out / "figures" / f"luo2018_{name}.png").stat().st_size > 10_000
     assert any("Stroke times" in n for n in data["papers"]["luo2018"]["notes"])
+
+
+def test_the_triangle_15_holds_and_catches_a_wrong_planet_angle(checks, monkeypatch):
+    assert checks["(15)"].verdict is Verdict.MATCH and checks["(15)"].kind is Kind.PAPER
+    from symkin.mechanisms.cardan import CardanSlider
+
+    planet_angle = CardanSlider.__dict__["planet_angle"].func
+    monkeypatch.setattr(CardanSlider, "planet_angle", property(lambda self: planet_angle(self) * sp.Rational(11, 10)))
+    assert luo2018._triangle_check(luo2018._symbolic_slider(drive=luo2018.omega_H)).verdict is Verdict.DIFFERS

@@ -156,3 +156,43 @@ def test_a_failing_run_keeps_the_previous_report(tmp_path):
     assert (out / "keep.txt").read_text() == "previous"
     assert not (out / "half.txt").exists()
     assert [p.name for p in tmp_path.iterdir()] == ["report"]
+
+
+def test_the_expanded_lines_12_16_21_are_the_willis_ratios_by_hand(checks):
+    r1, r2, r3 = (S.radius(str(i)) for i in (1, 2, 3))
+    wH = S.omega("H")
+    # by hand, gear 4 fixed: omega_1 = omega_H i_1H^(4), i_1H^(4) = 1 -+ r2 r4/(r1 r3) with r4 from coaxiality
+    by_hand = {"(12)": (1 + r2 * (r1 + r2 + r3) / (r1 * r3)), "(16)": (1 - r2 * (r1 + r2 - r3) / (r1 * r3)),
+               "(21)": (1 - r2 * (r1 - r2 + r3) / (r1 * r3))}
+    for label, ratio in by_hand.items():
+        c = checks[label]
+        assert c.kind is Kind.PAPER and c.source == "reconstructed" and c.verdict is Verdict.MATCH
+        for form in c.published:
+            assert sp.cancel(form - (-r1 * wH * ratio)) == 0, label
+
+
+def test_a_wrong_centripetal_term_turns_the_engine_law_item_and_only_it(monkeypatch):
+    from collections import OrderedDict
+
+    import symkin.model.mechanism
+    import symkin.particles
+    from symkin.superposition import vec
+
+    def flipped(pole_acc, w, eps, point, pole):  # w_P + eps k x r + omega^2 r: the centripetal sign flipped
+        rel = point - pole
+        return sp.ImmutableMatrix(pole_acc + eps * vec(-rel[1], rel[0]) + w**2 * rel)
+
+    monkeypatch.setattr(symkin.particles, "acceleration", flipped)
+    monkeypatch.setattr(symkin.model.mechanism, "_CACHES", OrderedDict())  # no law derived before the patch
+    laws = {c.label: c for c in alyushin2009._engine_law_checks()}
+    assert laws["(6) engine law"].verdict is Verdict.DIFFERS and laws["(6) engine law"].kind is Kind.PAPER
+    assert laws["(5) engine law"].verdict is Verdict.MATCH
+    # the printed (6) against the derivatives of the positions holds for any rigid motion: blind to the engine's law
+    assert {c.label: c.verdict for c in alyushin2009._particle_checks()}["(6)"] is Verdict.MATCH
+
+
+def test_matches_that_rest_on_a_chosen_value_say_so(checks):
+    weak = {label for label, c in checks.items() if c.strength == "weak"}
+    assert weak == {"example II z1", "example II z4", "II against AA efficiency"}
+    assert "searched for" in checks["example II z1"].comparison.detail
+    assert "0.99 for an internal mesh" in checks["II against AA efficiency"].comparison.detail

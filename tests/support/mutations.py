@@ -6,6 +6,10 @@ in this fresh process (so no cache of an earlier run hides it), runs each paper'
 part unable to build its mechanism) and prints one JSON object per check (paper, label,
 kind, verdict, derived).  ``none`` runs the papers unpatched.  Each patch perturbs a result
 the derivations take from the engine, by more than the printed digits of a number can absorb.
+
+``python tests/support/mutations.py --report OUT MUTATION PAPER ...`` applies the patch and
+runs ``symkin reproduce``'s :func:`~symkin.papers.reproduce.run` on the papers (one process,
+no PDF), writing the report folder OUT; it prints nothing and exits 0 when ``run`` returns.
 """
 
 from __future__ import annotations
@@ -155,6 +159,53 @@ def helical_coaxiality() -> None:
     _wrap(HS, "helical_coaxiality", lambda eq, *a, **k: sp.Eq(eq.lhs, eq.rhs * (1 + Z[3] / (10 * Z[4])), evaluate=False))
 
 
+def mesh_sign() -> None:
+    """The mesh condition (equal velocities at the pitch point) with the first gear's velocity negated."""
+    import symkin.kinematics as kinematics
+    import symkin.synthesis.assembly as assembly
+
+    original = kinematics.contact_condition
+
+    def flipped(mech, mesh):
+        cond = original(mech, mesh)
+        return sp.Eq(-cond.lhs, cond.rhs, evaluate=False)
+
+    kinematics.contact_condition = assembly.contact_condition = flipped
+
+
+def stage_limits() -> None:
+    """The 2014 stage enumeration: the lower tooth limit off by one (zmin + 1)."""
+    import symkin.mechanisms.multistage.stages as stages
+
+    original = stages._limits
+    stages._limits = lambda ring, satellites, zmin, zmax, ha: original(ring, satellites, zmin + 1, zmax, ha)
+
+
+def centripetal() -> None:
+    """Eq. (6) with the centripetal term's sign flipped: w = w_P + eps k x r + omega^2 r."""
+    import symkin.particles
+    from symkin.superposition import vec
+
+    def wrong_acceleration(pole_acc, w, eps, point, pole):
+        rel = point - pole
+        return sp.ImmutableMatrix(pole_acc + eps * vec(-rel[1], rel[0]) + w**2 * rel)
+
+    symkin.particles.acceleration = wrong_acceleration
+
+
+def pitch_radius() -> None:
+    """A gear of z teeth gets the pitch radius m (z + 1)/2 instead of m z/2."""
+    from symkin.model.parts import Gear
+
+    original = Gear.from_teeth.__func__
+
+    def from_teeth(cls, name, teeth, **kw):
+        gear = original(cls, name, teeth, **kw)
+        return dataclasses.replace(gear, radius=gear.radius * (gear.teeth + 1) / gear.teeth)
+
+    Gear.from_teeth = classmethod(from_teeth)
+
+
 MUTATIONS: dict[str, Callable[[], None]] = {
     "none": lambda: None,
     "pitch point": pitch_point,
@@ -171,10 +222,27 @@ MUTATIONS: dict[str, Callable[[], None]] = {
     "helical ratio": helical_ratio,
     "existence bounds": existence_bounds,
     "helical coaxiality": helical_coaxiality,
+    "mesh sign": mesh_sign,
+    "stage limits": stage_limits,
+    "centripetal": centripetal,
+    "pitch radius": pitch_radius,
 }
 
 
+def report(out: str, name: str, papers: list[str]) -> int:
+    """Apply mutation ``name`` and write the report of ``papers`` to ``out``."""
+    from pathlib import Path
+
+    from symkin.papers.reproduce import run
+
+    MUTATIONS[name]()
+    run(papers, Path(out), quiet=True, pdf=False, jobs=1)
+    return 0
+
+
 def main(argv: list[str]) -> int:
+    if argv[0] == "--report":
+        return report(argv[1], argv[2], argv[3:])
     name, *papers = argv
     MUTATIONS[name]()
     from symkin.papers.registry import load
