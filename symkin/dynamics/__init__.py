@@ -14,5 +14,7 @@ converted to metres.  docs/dynamics.md explains the model and its assumptions.
 
 from symkin.dynamics.bodies import MILLIMETRE
 from symkin.dynamics.rigid import EquationsOfMotion, Simulation, equations_of_motion
+from symkin.dynamics.torsional import Modes, TorsionalModel, natural_modes, torsional_model
 
-__all__ = ["MILLIMETRE", "EquationsOfMotion", "Simulation", "equations_of_motion"]
+__all__ = ["MILLIMETRE", "EquationsOfMotion", "Simulation", "equations_of_motion", "Modes", "TorsionalModel",
+           "natural_modes", "torsional_model"]
