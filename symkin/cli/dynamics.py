@@ -32,6 +32,7 @@ def register(sub: Any) -> None:
     p.add_argument("--torque", action="append", default=[], metavar="LINK=VALUE",
                    help="a torque on a link, in N m or with a unit (20, 1.5kN*m), or a symbol name (T_in); repeat")
     p.add_argument("--latex", action="store_true", help="print the equations in LaTeX (an align* body)")
+    _add_value_argument(p)
 
     q = add_command(
         sub, "modes",
@@ -45,6 +46,27 @@ def register(sub: Any) -> None:
     )
     add_train_argument(q, required=True)
     q.add_argument("--state", metavar="NAME", help="a gear state of the file (default: none)")
+    _add_value_argument(q)
+
+
+def _add_value_argument(parser: Any) -> None:
+    parser.add_argument("--value", action="append", default=[], metavar="NAME=NUMBER",
+                        help="a number for a symbol the file leaves, in SI units (J_S=0.01, m_P=0.5, k_s_p=5e8); repeat")
+
+
+def _values(items: list[str]) -> dict[str, Any]:
+    from symkin.parsing import parse_number
+
+    out: dict[str, Any] = {}
+    for item in items:
+        name, _, value = item.partition("=")
+        name = name.strip()
+        if not _NAME.match(name) or not value.strip():
+            raise InputError(f"--value takes NAME=NUMBER (for example J_S=0.01), got {item!r}")
+        if name in out:
+            raise InputError(f"--value gives {name} twice; give each symbol once")
+        out[name] = parse_number(value, what=f"--value {name}")
+    return out
 
 
 def _torques(items: list[str]) -> dict[str, Any]:
@@ -78,7 +100,8 @@ def run_dynamics(args: Any) -> Any:
         coordinates = [c.strip() for c in args.coordinates.split(",")]
         if not all(coordinates):
             raise InputError(f"--coordinates takes link names separated by commas, got {args.coordinates!r}")
-    eom = equations_of_motion(train, state=args.state, coordinates=coordinates, torques=_torques(args.torque))
+    eom = equations_of_motion(train, state=args.state, coordinates=coordinates, torques=_torques(args.torque),
+                              values=_values(args.value))
     data = eom.to_json()
     text = eom.text()
     if args.latex:
@@ -92,5 +115,5 @@ def run_modes(args: Any) -> Any:
     from symkin.dynamics import natural_modes
     from symkin.trains import load_train
 
-    modes = natural_modes(load_train(args.train), state=args.state)
+    modes = natural_modes(load_train(args.train), state=args.state, values=_values(args.value))
     return emit(modes.text(), modes.to_json())

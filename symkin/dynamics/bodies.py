@@ -22,10 +22,42 @@ from symkin import symbols as S
 from symkin.errors import InputError
 from symkin.model import FRAME, LinkKind, Mechanism
 
-__all__ = ["MILLIMETRE", "Arm", "inertia_of", "mass_of", "carrier_chain", "multiplicity", "pinion_distance"]
+__all__ = ["MILLIMETRE", "Arm", "inertia_of", "mass_of", "carrier_chain", "multiplicity", "pinion_distance", "by_name"]
 
 #: Metres per millimetre: the model's lengths (module in mm, ISO 54) in SI.
 MILLIMETRE = sp.Rational(1, 1000)
+
+
+def by_name(expr: Any, values: Mapping[Any, Any] | None) -> Any:
+    """``expr`` with each symbol named in ``values`` (by its name, or the symbol itself) replaced by
+    its value (a number, an expression, or a pint quantity in SI units); a positive symbol (a mass
+    property, a stiffness) takes no negative value.
+
+    >>> by_name(sp.Symbol("J_S", positive=True) + 1, {"J_S": 0.01})
+    101/100
+    """
+    if not values:
+        return expr
+    from symkin.values import as_rational
+
+    given = {}
+    for key, value in values.items():
+        name = key.name if isinstance(key, sp.Symbol) else key
+        if not isinstance(name, str):
+            raise InputError(f"values are given by symbol name, such as 'J_S', got {key!r}")
+        if isinstance(value, float):
+            value = as_rational(value, what=f"value of {name}")
+        given[name] = value
+    swap = {}
+    for sym in expr.free_symbols:
+        if sym.name in given:
+            from symkin.values import as_expr
+
+            swap[sym] = as_expr(given[sym.name], what=f"value of {sym.name}")
+            if sym.is_positive and swap[sym].is_negative:
+                raise InputError(f"{sym.name} is a mass property or a stiffness: give it a value of 0 or more, "
+                                 f"got {given[sym.name]}")
+    return expr.xreplace(swap)
 
 
 def inertia_of(mech: Mechanism, link: str) -> sp.Expr:

@@ -24,7 +24,7 @@ import sympy as sp
 
 from symkin import symbols as S
 from symkin._util.jsonout import exact_json
-from symkin.dynamics.bodies import MILLIMETRE, angles_of, link_speeds, multiplicity, rigid_kinetic_energy
+from symkin.dynamics.bodies import MILLIMETRE, angles_of, by_name, link_speeds, multiplicity, rigid_kinetic_energy
 from symkin.errors import InputError
 from symkin.model import FRAME, Mechanism
 from symkin.values import as_expr
@@ -64,7 +64,8 @@ def _coordinates(mech: Mechanism, held: Mapping[str, Any], joined: Any, st: Any,
 
 
 def equations_of_motion(train: Mechanism, state: Any = None, coordinates: Sequence[str] | None = None,
-                        torques: Mapping[str, Any] | None = None, *, length: Any = MILLIMETRE) -> EquationsOfMotion:
+                        torques: Mapping[str, Any] | None = None, *, length: Any = MILLIMETRE,
+                        values: Mapping[Any, Any] | None = None) -> EquationsOfMotion:
     """The rigid-body equations of motion ``M q'' = f`` of a train, exact and symbolic.
 
     Parameters
@@ -83,6 +84,8 @@ def equations_of_motion(train: Mechanism, state: Any = None, coordinates: Sequen
     length : number
         Metres per model length unit: 1/1000 for a train file's millimetres (the default),
         1 for a model in metres.
+    values : mapping of symbol name to value, optional
+        Numbers for the symbols of mass properties and torques (``{"J_C": 0.05}``).
 
     Returns
     -------
@@ -101,7 +104,7 @@ def equations_of_motion(train: Mechanism, state: Any = None, coordinates: Sequen
     known = {**held, **{c: S.omega(c) for c in coords}}
     speeds = link_speeds(train, known, joined)
     angles = angles_of(speeds, coords)
-    T = sp.expand(rigid_kinetic_energy(train, speeds, angles, length))
+    T = sp.expand(by_name(rigid_kinetic_energy(train, speeds, angles, length), values))
     u = [S.omega(c) for c in coords]
     q = [S.angle(c) for c in coords]
     M = sp.ImmutableMatrix(len(u), len(u), lambda i, j: sp.factor_terms(sp.expand(sp.diff(T, u[i], u[j]))))
@@ -112,7 +115,7 @@ def equations_of_motion(train: Mechanism, state: Any = None, coordinates: Sequen
             raise InputError("a torque on the frame does no work; apply torques to moving links")
         if link in applied:
             raise InputError(f"the torque on link {link} is given twice; give it once")
-        applied[link] = as_expr(value, what=f"torque on link {link}", unit="N*m")
+        applied[link] = by_name(as_expr(value, what=f"torque on link {link}", unit="N*m"), values)
     Q = [sp.expand(sum((multiplicity(train, n) * tau * sp.diff(speeds[n], ui) for n, tau in applied.items()),
                        sp.Integer(0))) for ui in u]
     dTdu = [sp.diff(T, ui) for ui in u]

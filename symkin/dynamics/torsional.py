@@ -39,7 +39,7 @@ from typing import Any
 import sympy as sp
 
 from symkin import symbols as S
-from symkin.dynamics.bodies import MILLIMETRE, carrier_chain, inertia_of, mass_of
+from symkin.dynamics.bodies import MILLIMETRE, by_name, carrier_chain, inertia_of, mass_of
 from symkin.dynamics.rigid import state_constraints
 from symkin.errors import InputError
 from symkin.model import FRAME, LinkKind, Mechanism
@@ -48,6 +48,9 @@ from symkin.values import as_expr
 __all__ = ["torsional_model", "TorsionalModel", "natural_modes", "Modes"]
 
 Body = tuple[str, tuple[int, ...]]
+#: The most coordinates whose characteristic polynomial the commands expand in symbols (seven
+#: took over a minute for the double-pinion set; six, about a second).
+MAX_SYMBOLIC = 6
 
 
 def mesh_stiffness(mesh: Any) -> sp.Expr:
@@ -56,7 +59,7 @@ def mesh_stiffness(mesh: Any) -> sp.Expr:
 
 
 def torsional_model(train: Mechanism, state: Any = None, *, pressure_angle: Any = sp.pi / 9,
-                    length: Any = MILLIMETRE) -> TorsionalModel:
+                    length: Any = MILLIMETRE, values: Mapping[Any, Any] | None = None) -> TorsionalModel:
     """The rotational lumped-parameter model of a train: its coordinates, mass matrix M and stiffness matrix K.
 
     Parameters
@@ -71,6 +74,8 @@ def torsional_model(train: Mechanism, state: Any = None, *, pressure_angle: Any 
         Radians (20 degrees by default): base radius = pitch radius x cos(pressure angle).
     length : number
         Metres per model length unit (1/1000: millimetres).
+    values : mapping of symbol name to value, optional
+        Numbers for the symbols left (``{"J_S": 0.01, "k_s_p": 5e8}``).
     """
     from symkin.kinematics import contact_condition
 
@@ -155,6 +160,7 @@ def torsional_model(train: Mechanism, state: Any = None, *, pressure_angle: Any 
         if L.stiffness is not None:
             V += L.stiffness * turn(L.name, ()) ** 2 / 2
     u = [rates[c] for c in coordinates]
+    T, V = by_name(T, values), by_name(V, values)
     M = sp.ImmutableMatrix(len(u), len(u), lambda i, j: sp.expand(sp.diff(T, u[i], u[j])))
     K = sp.ImmutableMatrix(len(u), len(u), lambda i, j: sp.expand(sp.diff(V, coordinates[i], coordinates[j])))
     return TorsionalModel(train, tuple(c.name.removeprefix("varphi_") for c in coordinates), tuple(coordinates), M, K)
@@ -194,14 +200,20 @@ class TorsionalModel:
 
 
 def natural_modes(train: Mechanism, state: Any = None, *, pressure_angle: Any = sp.pi / 9, length: Any = MILLIMETRE,
-                  rigid_tolerance: float = 1e-9) -> Modes:
+                  values: Mapping[Any, Any] | None = None, rigid_tolerance: float = 1e-9) -> Modes:
     """Natural frequencies (Hz) and mode shapes of a train's torsional model (:func:`torsional_model`).
 
     With every value a number, SciPy's ``eigh`` on K and M (frequencies below
     ``rigid_tolerance`` x the largest are rigid-body modes, 0); with symbols left, the
-    characteristic polynomial only (``frequencies_hz`` is None).
+    characteristic polynomial only (``frequencies_hz`` is None).  ``values`` gives numbers to
+    symbols, as for :func:`torsional_model`.
+
+    >>> from symkin.trains import load_train
+    >>> J = {"J_S": 0.01, "J_C": 0.05, "J_P": 0.002, "m_P": 0.5, "k_s_p": 5e8, "k_p_r": 5e8}
+    >>> [round(f) for f in natural_modes(load_train("simple"), "low", values=J).frequencies_hz]
+    [0, 968, 1269, 1269, 1384]
     """
-    model = torsional_model(train, state, pressure_angle=pressure_angle, length=length)
+    model = torsional_model(train, state, pressure_angle=pressure_angle, length=length, values=values)
     M, K = model.mass_matrix, model.stiffness_matrix
     if M.free_symbols or K.free_symbols:
         return Modes(model, None, None)
@@ -252,7 +264,8 @@ class Modes:
             "mode_shapes": [dict(zip(self.model.names, s)) for s in self.shapes] if self.shapes is not None else None,
         }
         if self.frequencies_hz is None:
-            out["characteristic_polynomial"] = str(self.model.characteristic_polynomial())
+            out["characteristic_polynomial"] = str(self.model.characteristic_polynomial()) \
+                if len(self.model.names) <= MAX_SYMBOLIC else None
         return out
 
     def text(self) -> str:
@@ -263,6 +276,10 @@ class Modes:
             symbols = sorted(map(str, self.model.mass_matrix.free_symbols | self.model.stiffness_matrix.free_symbols))
             lines.append(f"symbols left ({', '.join(symbols)}): give inertias, masses and stiffnesses in the file for "
                          "numbers; det(K - lambda M) =")
+            if len(self.model.names) > MAX_SYMBOLIC:
+                lines[-1] = lines[-1].removesuffix(" det(K - lambda M) =") + f" {len(self.model.names)} coordinates " \
+                    f"are too many for the determinant in symbols (at most {MAX_SYMBOLIC}); M and K are in --json"
+                return "\n".join(lines)
             poly = str(self.model.characteristic_polynomial())
             lines.append(f"  {poly}" if len(poly) <= 2000 else f"  ({len(poly)} characters: --json gives it)")
             return "\n".join(lines)

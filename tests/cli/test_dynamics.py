@@ -83,8 +83,29 @@ def test_modes_text_of_a_planetary_set_lists_each_planet(train_file, capsys):
     (["dynamics", "--train", "simple", "--state", "low", "--coordinates", "R"], "does not move"),
     (["dynamics", "--train", "simple", "--torque", "S=1kg"], "--torque"),
     (["modes", "--train", "simple", "--state", "nope"], "no state"),
+    (["modes", "--train", "simple", "--value", "J_S=-1"], "0 or more"),
+    (["modes", "--train", "simple", "--value", "J_S"], "NAME=NUMBER"),
 ])
 def test_bad_input_is_one_line_and_exit_2(argv, message, capsys):
     assert main(argv) == 2
     err = capsys.readouterr().err
     assert message in err and len(err.strip().splitlines()) == 1 and "Traceback" not in err
+
+
+def test_values_give_numbers_to_a_ready_made_train(capsys):
+    values = ["J_S=0.01", "J_C=0.05", "J_P=0.002", "m_P=0.5", "k_s_p=5e8", "k_p_r=5e8"]
+    assert main(["modes", "--train", "simple", "--state", "low", *(f"--value={v}" for v in values), "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert len(data["frequencies_hz"]) == 5 and data["frequencies_hz"][0] == 0
+    assert main(["dynamics", "--train", "simple", "--state", "low", "--torque", "S=2", *(f"--value={v}" for v in values),
+                 "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    J = 0.01 + 0.05 / 16 + 3 * (0.002 / 4 + 0.5 * 0.024**2 / 16)  # module 1: planet axes at 24 mm
+    assert data["accelerations"][0]["float"] == pytest.approx(2 / J, rel=1e-12)
+
+
+def test_a_large_symbolic_model_answers_at_once_without_its_determinant(capsys):
+    assert main(["modes", "--train", "ravigneaux", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["frequencies_hz"] is None and data["characteristic_polynomial"] is None
+    assert len(data["coordinates"]) == 10
