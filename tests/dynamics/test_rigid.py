@@ -90,6 +90,42 @@ def test_two_degree_of_freedom_simple_planetary_matches_a_mechanics_model():
     assert (eom.mass_matrix - M_ref).applyfunc(sp.simplify) == sp.zeros(2, 2)
 
 
+def test_double_pinion_compound_set_matches_a_mechanics_model():
+    # sun 30, inner pinions P1 and outer pinions P2 of 18 (three each), ring 90, module 1 mm; P1 at 24 mm on
+    # the carrier's x axis, P2 at 36 mm where its 18 mm centre distance to P1 puts it (law of cosines, by hand)
+    (qs, qr, qc, q1, q2), (us, ur, uc, u1, u2) = _speeds("S", "R", "C", "P1", "P2")
+    N = me.ReferenceFrame("N")
+    O = me.Point("O")
+    O.set_vel(N, 0)
+    Sf, Rf, Cf = (N.orientnew(n, "Axis", (q, N.z)) for n, q in (("Sf", qs), ("Rf", qr), ("Cf", qc)))
+    bodies = [_body("sun", Sf, O, 0, J("S")), _body("ring", Rf, O, 0, J("R")), _body("carrier", Cf, O, 0, J("C"))]
+    cos_b = sp.Rational(24**2 + 36**2 - 18**2, 2 * 24 * 36)
+    sin_b = sp.sqrt(1 - cos_b**2)
+    constraints = []
+    for k in range(3):
+        Ck = N.orientnew(f"C{k}", "Axis", (qc + 2 * sp.pi * k / 3, N.z))
+        F1 = N.orientnew(f"F1{k}", "Axis", (q1 + 2 * sp.pi * k / 3, N.z))
+        F2 = N.orientnew(f"F2{k}", "Axis", (q2 + 2 * sp.pi * k / 3, N.z))
+        c1 = O.locatenew(f"c1{k}", 24 * MM * Ck.x)
+        c2 = O.locatenew(f"c2{k}", 36 * MM * (cos_b * Ck.x + sin_b * Ck.y))
+        for c in (c1, c2):
+            c.set_vel(N, c.pos_from(O).dt(N))
+        bodies += [_body(f"p1{k}", F1, c1, m("P1"), J("P1")), _body(f"p2{k}", F2, c2, m("P2"), J("P2"))]
+        if k == 0:
+            mid = (c1.pos_from(O) + c2.pos_from(O)) / 2  # equal pinions: the pitch point halfway
+            e12 = (c2.pos_from(O) - c1.pos_from(O)) / (18 * MM)
+            e2 = c2.pos_from(O) / (36 * MM)
+            pairs = [((O, Sf), (c1, F1), 15 * MM * Ck.x, Ck.y), ((c1, F1), (c2, F2), mid, Ck.z.cross(e12)),
+                     ((c2, F2), (O, Rf), 45 * MM * (cos_b * Ck.x + sin_b * Ck.y), Ck.z.cross(e2))]
+            for n, ((pa, fa), (pb, fb), at, tangent) in enumerate(pairs):
+                A, B = O.locatenew(f"A{n}", at), O.locatenew(f"B{n}", at)
+                constraints.append(_rolling(N, A, pa, fa, B, pb, fb, tangent))
+    T = sum(b.kinetic_energy(N) for b in bodies)
+    M_ref = _reduce(T, constraints, [us, ur], [uc, u1, u2])
+    eom = equations_of_motion(load_train("double-pinion"), coordinates=["S", "R"])
+    assert (eom.mass_matrix - M_ref).applyfunc(sp.simplify) == sp.zeros(2, 2)
+
+
 def test_kanes_method_on_the_same_model_gives_the_same_accelerations():
     # ring held, torque T_S on the sun; KanesMethod with the carrier and planet speeds dependent
     (qs, qc, qp), _ = _speeds("S", "C", "P")
