@@ -132,3 +132,17 @@ def test_bad_models_are_one_line_errors():
     massless = SIMPLE.replace("inertia = 0.002", "inertia = 0")
     with pytest.raises(InputError, match="mass matrix is singular"):
         natural_modes(read_train(massless))
+
+
+def test_planet_modes_have_lin_and_parkers_closed_form():
+    # Lin and Parker (1999), the rotational planet modes: sun, carrier and ring still, the planets'
+    # deflections summing to zero, multiplicity N - 1, at omega^2 = (k_sp + k_rp) c^2 r_p^2 / J_p
+    modes = natural_modes(read_train(SIMPLE), state="low")
+    omega2 = (5e8 + 6e8) * math.cos(math.radians(20)) ** 2 * 0.024**2 / 0.002
+    f = omega2**0.5 / (2 * math.pi)
+    planet = [k for k, x in enumerate(modes.frequencies_hz) if x == pytest.approx(f, rel=1e-9)]
+    assert len(planet) == 2
+    for k in planet:
+        shape = dict(zip(modes.model.names, modes.shapes[k]))
+        assert abs(shape["S"]) < 1e-9 and abs(shape["C"]) < 1e-9
+        assert shape["P_1"] + shape["P_2"] + shape["P_3"] == pytest.approx(0, abs=1e-9)
