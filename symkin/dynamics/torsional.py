@@ -150,7 +150,7 @@ def torsional_model(train: Mechanism, state: Any = None, *, pressure_angle: Any 
         eq = contact_condition(train, mesh)
         relative = sp.expand(eq.lhs - eq.rhs)
         names = [n for n in dict.fromkeys((geo.link_a.name, geo.link_b.name, geo.holder)) if n != FRAME]
-        deepest = max(names, key=lambda n: len(chains[n]))
+        deepest = max(names, key=lambda n: (len(chains[n]), math.prod(arm.count for arm in chains[n])))
         for index in itertools.product(*(range(arm.count) for arm in chains[deepest])):
             d = sp.Integer(0)
             for n in names:

@@ -146,3 +146,19 @@ def test_planet_modes_have_lin_and_parkers_closed_form():
         shape = dict(zip(modes.model.names, modes.shapes[k]))
         assert abs(shape["S"]) < 1e-9 and abs(shape["C"]) < 1e-9
         assert shape["P_1"] + shape["P_2"] + shape["P_3"] == pytest.approx(0, abs=1e-9)
+
+
+@pytest.mark.parametrize("name", ["nested", "ravigneaux", "double-pinion", "bevel-epicyclic", "simpson"])
+def test_every_copy_summed_gives_the_rigid_mass_matrix(name):
+    # a second route to the rigid M: the torsional model's kinetic energy sums every planet copy at its
+    # place (no cancellation rule); in a rigid motion each body turns by the engine's law
+    from symkin import symbols as S
+    from symkin.dynamics import equations_of_motion
+    from symkin.trains import load_train
+
+    train = load_train(name)
+    eom = equations_of_motion(train)
+    model = torsional_model(train)
+    G = sp.Matrix([[sp.diff(eom.speeds[n.rsplit("_", 1)[0] if n not in eom.speeds else n], S.omega(c))
+                    for c in eom.coordinates] for n in model.names])
+    assert (G.T * model.mass_matrix * G - eom.mass_matrix).applyfunc(sp.simplify) == sp.zeros(*eom.mass_matrix.shape)
