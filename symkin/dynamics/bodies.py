@@ -12,6 +12,7 @@ model length unit, 1/1000 by default) wherever a length enters an energy.
 
 from __future__ import annotations
 
+import itertools
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
@@ -187,6 +188,90 @@ def rigid_kinetic_energy(mech: Mechanism, speeds: Mapping[str, sp.Expr], angles:
                 v2 += 2 * outer.length * inner.length * length ** 2 * omega(outer.carrier) * omega(inner.carrier) * sp.cos(phase)
         total += n * m * v2 / 2
     return total
+
+
+def base_motion(base: Any, length: sp.Expr) -> tuple[sp.Matrix, sp.Matrix] | None:
+    """The base's angular velocity and the velocity of its main-axis point O, both in the base's
+    own axes (rad/s, m/s; O's coordinates are model lengths), or None for a base that does not move."""
+    if base is None:
+        return None
+    R, dR, _ = base.turns
+    _, dO, _ = base.origin
+    if dR == sp.zeros(3, 3) and dO == sp.zeros(3, 1):
+        return None
+    # R^T R' is skew: the angular velocity in the base's axes
+    Omega = sp.Matrix([_sin_squares((R[:, i].T * dR[:, j])[0]) for i, j in ((2, 1), (0, 2), (1, 0))])
+    V = (R.T * dO).applyfunc(_sin_squares) * length
+    return Omega, V
+
+
+def moving_base_kinetic_energy(mech: Mechanism, speeds: Mapping[str, sp.Expr], angles: Mapping[str, sp.Expr],
+                               length: sp.Expr, Omega: sp.Matrix, V: sp.Matrix) -> sp.Expr:
+    """The kinetic energy on a base that turns at ``Omega`` with its point O moving at ``V`` (both in the
+    base's axes), every planet copy summed at its place.  Each body is axisymmetric about its own axis;
+    the terms of a main-axis or parallel link's transverse inertia depend on time only, enter no equation
+    and are left out; a bevel pinion's transverse moment is half its axial one (a thin disc).
+    """
+    def omega(name: str) -> sp.Expr:
+        return sp.Integer(0) if name == FRAME else speeds[name]
+
+    def angle(name: str) -> sp.Expr:
+        return sp.Integer(0) if name == FRAME else angles[name]
+
+    z = sp.Matrix([0, 0, 1])
+    total = sp.Integer(0)
+    for L in mech.moving_links:
+        J = inertia_of(mech, L.name)
+        chain = carrier_chain(mech, L.name)
+        if not chain:
+            total += J * (omega(L.name) + Omega[2]) ** 2 / 2
+            continue
+        m = mass_of(mech, L.name)
+        for index in itertools.product(*(range(arm.count) for arm in chain)):
+            r, v, offset = sp.zeros(3, 1), sp.zeros(3, 1), sp.Integer(0)
+            for k, arm in enumerate(chain):
+                offset += 2 * sp.pi * sp.Integer(index[k]) / arm.count
+                psi = angle(arm.carrier) + arm.angle + offset
+                e = sp.Matrix([sp.cos(psi), sp.sin(psi), 0])
+                r += arm.length * length * e
+                v += arm.length * length * omega(arm.carrier) * z.cross(e)
+            centre = V + Omega.cross(r) + v
+            total += m * centre.dot(centre) / 2
+            if L.axis == "radial":
+                assert L.carrier is not None
+                along = e  # the pinion's axis: the last arm's direction
+                w = Omega + omega(L.carrier) * z + omega(L.name) * along
+                spin = w.dot(along)
+                total += J * spin ** 2 / 2 + J / 2 * (w.dot(w) - spin ** 2) / 2
+            else:
+                total += J * (omega(L.name) + Omega[2]) ** 2 / 2
+    return _tidy_trig(total)
+
+
+def _tidy_trig(expr: sp.Expr) -> sp.Expr:
+    """Sines and cosines of sums expanded (the copies' offsets are exact angles, so their sums
+    over the copies cancel) and sin^2 written as 1 - cos^2, so equal terms meet."""
+    expr = expr.replace(lambda e: isinstance(e, (sp.sin, sp.cos)), lambda e: type(e)(sp.expand(e.args[0])))
+    return _sin_squares(sp.expand_trig(expr))
+
+
+def _sin_squares(expr: sp.Expr) -> sp.Expr:
+    """``expr`` expanded with every sin(x)^n (n >= 2) written as sin(x)^(n-2) (1 - cos(x)^2): a
+    polynomial in sines and cosines reduced so that sin^2 + cos^2 = 1 is used (far cheaper than
+    trigsimp on a base's rotation).
+
+    >>> x = sp.Symbol("x")
+    >>> _sin_squares(sp.sin(x)**2 + sp.cos(x)**2)
+    1
+    """
+    expr = sp.expand(expr)
+    while True:
+        new = sp.expand(expr.replace(
+            lambda e: e.is_Pow and isinstance(e.base, sp.sin) and e.exp.is_Integer and e.exp >= 2,
+            lambda e: sp.sin(e.base.args[0]) ** (e.exp - 2) * (1 - sp.cos(e.base.args[0]) ** 2)))
+        if new == expr:
+            return expr
+        expr = new
 
 
 def angles_of(speeds: Mapping[str, sp.Expr], coordinates: tuple[str, ...]) -> dict[str, sp.Expr]:

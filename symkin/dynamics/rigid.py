@@ -24,7 +24,16 @@ import sympy as sp
 
 from symkin import symbols as S
 from symkin._util.jsonout import exact_json
-from symkin.dynamics.bodies import MILLIMETRE, angles_of, by_name, link_speeds, multiplicity, rigid_kinetic_energy
+from symkin.dynamics.bodies import (
+    MILLIMETRE,
+    angles_of,
+    base_motion,
+    by_name,
+    link_speeds,
+    moving_base_kinetic_energy,
+    multiplicity,
+    rigid_kinetic_energy,
+)
 from symkin.errors import InputError
 from symkin.model import FRAME, Mechanism
 from symkin.values import as_expr
@@ -65,7 +74,7 @@ def _coordinates(mech: Mechanism, held: Mapping[str, Any], joined: Any, st: Any,
 
 def equations_of_motion(train: Mechanism, state: Any = None, coordinates: Sequence[str] | None = None,
                         torques: Mapping[str, Any] | None = None, *, length: Any = MILLIMETRE,
-                        values: Mapping[Any, Any] | None = None) -> EquationsOfMotion:
+                        values: Mapping[Any, Any] | None = None, base: bool = True) -> EquationsOfMotion:
     """The rigid-body equations of motion ``M q'' = f`` of a train, exact and symbolic.
 
     Parameters
@@ -86,6 +95,10 @@ def equations_of_motion(train: Mechanism, state: Any = None, coordinates: Sequen
         1 for a model in metres.
     values : mapping of symbol name to value, optional
         Numbers for the symbols of mass properties and torques (``{"J_C": 0.05}``).
+    base : bool
+        Take the base's prescribed motion (a train's ``[base]``: O's position in model lengths,
+        the yaw, pitch and roll) into the kinetic energy, as the motion of a non-inertial frame
+        (True, the default); False takes the frame as still.
 
     Returns
     -------
@@ -104,7 +117,12 @@ def equations_of_motion(train: Mechanism, state: Any = None, coordinates: Sequen
     known = {**held, **{c: S.omega(c) for c in coords}}
     speeds = link_speeds(train, known, joined)
     angles = angles_of(speeds, coords)
-    T = sp.expand(by_name(rigid_kinetic_energy(train, speeds, angles, length), values))
+    moving = base_motion(getattr(train, "base", None), length) if base else None
+    if moving is None:
+        T = rigid_kinetic_energy(train, speeds, angles, length)
+    else:
+        T = moving_base_kinetic_energy(train, speeds, angles, length, *moving)
+    T = sp.expand(by_name(T, values))
     u = [S.omega(c) for c in coords]
     q = [S.angle(c) for c in coords]
     M = sp.ImmutableMatrix(len(u), len(u), lambda i, j: sp.factor_terms(sp.expand(sp.diff(T, u[i], u[j]))))
@@ -121,7 +139,7 @@ def equations_of_motion(train: Mechanism, state: Any = None, coordinates: Sequen
     dTdu = [sp.diff(T, ui) for ui in u]
     forcing = []
     for i in range(len(u)):
-        coriolis = sum((sp.diff(dTdu[i], qj) * uj for qj, uj in zip(q, u)), sp.Integer(0))
+        coriolis = sum((sp.diff(dTdu[i], qj) * uj for qj, uj in zip(q, u)), sp.diff(dTdu[i], S.t))
         forcing.append(sp.factor_terms(sp.expand(Q[i] + sp.diff(T, q[i]) - coriolis)))
     return EquationsOfMotion(train, st, coords, tuple(q), tuple(u), dict(speeds), T, M,
                              sp.ImmutableMatrix(forcing), sp.ImmutableMatrix(Q), dict(applied), length)
