@@ -351,3 +351,59 @@ def test_a_moving_base_gives_the_equations_of_a_mechanics_model_on_that_base():
     # and the base's motion matters: the still frame gives another forcing
     still = equations_of_motion(read_train(ON_A_BASE), state="low", torques={"S": torque}, base=False)
     assert sp.N(still.forcing[0].subs(values).subs(ours)) != pytest.approx(float(sp.N(eom.forcing[0].subs(values).subs(ours))))
+
+
+def test_bevel_pinions_on_a_turning_tilting_base_match_mechanics():
+    # the bevel differential with R held (case C drives), on a base that yaws and pitches; the pinion's
+    # and L's speeds per case speed from the rolling constraints written here in the still frame
+    rs, rp = 8 * MM, 5 * MM
+    wc, wl, wp = sp.symbols("w_c w_l w_p")
+    N0 = me.ReferenceFrame("N0")
+    O0 = me.Point("O0")
+    O0.set_vel(N0, 0)
+    C0 = N0.orientnew("C0", "Axis", (0, N0.z))
+    C0.set_ang_vel(N0, wc * N0.z)
+    L0 = N0.orientnew("L0", "Axis", (0, N0.z))
+    L0.set_ang_vel(N0, wl * N0.z)
+    P0 = C0.orientnew("P0", "Axis", (0, C0.x))
+    P0.set_ang_vel(C0, wp * C0.x)
+    c0 = O0.locatenew("c0", rs * C0.x)
+    c0.v2pt_theory(O0, N0, C0)
+    up = (O0.locatenew("U", rs * C0.x + rp * C0.z).v2pt_theory(O0, N0, L0)
+          - O0.locatenew("Up", rs * C0.x + rp * C0.z).v2pt_theory(c0, N0, P0)).dot(C0.y)
+    down = O0.locatenew("Dp", rs * C0.x - rp * C0.z).v2pt_theory(c0, N0, P0).dot(C0.y)  # on R, held
+    ratio = sp.solve([up, down], [wl, wp], dict=True)[0]
+    kl, kp = ratio[wl] / wc, ratio[wp] / wc
+    q = me.dynamicsymbols("q_C")
+    N = me.ReferenceFrame("N")
+    B = N.orientnew("B", "Body", (t**2 / 2, t / 3, 0), "ZYX")
+    O = me.Point("O")
+    O.set_vel(N, 0)
+    Cf, Lf = B.orientnew("Cf", "Axis", (q, B.z)), B.orientnew("Lf", "Axis", (kl * q, B.z))
+    Jt = sp.Symbol("J_t", positive=True)
+    bodies = [me.RigidBody("C", O, Cf, 0, (me.inertia(Cf, Jt, Jt, J("C")), O)),
+              me.RigidBody("L", O, Lf, 0, (me.inertia(Lf, Jt, Jt, J("L")), O))]
+    for k in range(2):
+        Ck = B.orientnew(f"C{k}", "Axis", (q + sp.pi * k, B.z))
+        Pk = Ck.orientnew(f"P{k}", "Axis", (kp * q, Ck.x))
+        centre = O.locatenew(f"c{k}", rs * Ck.x)
+        centre.set_vel(N, centre.pos_from(O).dt(N))
+        bodies.append(me.RigidBody(f"P{k}", centre, Pk, m("P"), (me.inertia(Pk, J("P"), J("P") / 2, J("P") / 2), centre)))
+    lm = me.LagrangesMethod(sum(b.kinetic_energy(N) for b in bodies), [q], frame=N)
+    lm.form_lagranges_equations()
+    train = read_train(_bevel_on_a_base())
+    eom = equations_of_motion(train, state="one-wheel-stuck")
+    point = {q: sp.Rational(2, 5), q.diff(t): sp.Rational(9, 4), t: sp.Rational(3, 4)}
+    ours = {S.angle("C"): point[q], S.omega("C"): point[q.diff(t)], S.t: point[t]}
+    values = {J("C"): 2, J("L"): 3, J("R"): 4, J("P"): 1, m("P"): 3000, Jt: 7}
+    for mine, theirs in ((eom.mass_matrix[0], lm.mass_matrix[0]), (eom.forcing[0], lm.forcing[0])):
+        a = sp.N(mine.subs(values).subs(ours), 30)
+        b = sp.N(theirs.subs(values).subs(point).doit(), 30)
+        assert a == pytest.approx(float(b), rel=1e-12)
+
+
+def _bevel_on_a_base() -> str:
+    from importlib.resources import files
+
+    text = (files("symkin.trains") / "library" / "bevel-differential.toml").read_text()
+    return text.replace("[states.straight]", '[base]\nyaw = "t**2/2"\npitch = "t/3"\n\n[states.straight]')
