@@ -306,6 +306,9 @@ class _Reader:
                     count = table.get("count", 1)
                     if isinstance(count, bool) or not isinstance(count, int):
                         raise self.fail(f"{where} count", f"must be a whole number of planets, got {_show(count)}")
+                    if "stiffness" in props:
+                        raise self.fail(f"{where} stiffness", "a planet takes no shaft stiffness: a stiffness holds a "
+                                                              "link about the main axis to the frame")
                     axis = table.get("axis", "parallel")
                     if axis not in ("parallel", "radial"):
                         raise self.fail(f"{where} axis", f"is \"parallel\" (a planet) or \"radial\" (a bevel pinion), got {_show(axis)}")
