@@ -136,10 +136,11 @@ def torsional_model(train: Mechanism, state: Any = None, *, pressure_angle: Any 
         chain = chains[link]
         if not chain:
             continue
-        vx = vy = sp.Integer(0)
+        vx = vy = offset = sp.Integer(0)
         for k, arm in enumerate(chain):
             w = rates.get(turn(arm.carrier, index[:k]), sp.Integer(0))
-            psi = arm.angle + 2 * sp.pi * index[k] / arm.count
+            offset += 2 * sp.pi * sp.Integer(index[k]) / arm.count  # a copy turned with the copy carrying it
+            psi = arm.angle + offset
             vx -= w * arm.length * length * sp.sin(psi)
             vy += w * arm.length * length * sp.cos(psi)
         T += mass_of(train, link) * (vx ** 2 + vy ** 2) / 2

@@ -13,6 +13,7 @@ from symkin import symbols as S
 from symkin.dynamics import equations_of_motion
 from symkin.errors import InputError
 from symkin.trains import load_train, read_train
+from tests.support.dynamics import NESTED_ONE
 
 J = lambda name: sp.Symbol(f"J_{name}", positive=True)  # noqa: E731
 m = lambda name: sp.Symbol(f"m_{name}", positive=True)  # noqa: E731
@@ -187,23 +188,7 @@ def test_bevel_differential_matches_a_mechanics_model_in_space():
     assert (eom.mass_matrix - M_ref).applyfunc(sp.simplify) == sp.zeros(2, 2)
 
 
-NESTED_ONE = """
-module = 1
-meshes = [["s0", "p"], ["g", "q"]]
-[links.frame]
-gears = { s0 = 60 }
-[links.C]
-[links.P]
-carrier = "C"
-gears = { p = 30 }
-[links.G]
-carrier = "P"
-arm = 0
-gears = { g = 18 }
-[links.Q]
-carrier = "P"
-gears = { q = 12 }
-"""
+
 
 
 def test_a_single_planet_carrying_a_planet_has_a_configuration_dependent_mass_matrix_as_mechanics_gives():
