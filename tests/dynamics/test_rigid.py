@@ -392,3 +392,12 @@ def _bevel_on_a_base() -> str:
 
     text = (files("symkin.trains") / "library" / "bevel-differential.toml").read_text()
     return text.replace("[states.straight]", '[base]\nyaw = "t**2/2"\npitch = "t/3"\n\n[states.straight]')
+
+
+def test_a_clutch_that_locks_the_set_makes_it_one_rigid_body():
+    # double-pinion, sun and carrier joined: everything turns at omega_S, the pinion centres at 24 and 36 mm
+    eom = equations_of_motion(load_train("double-pinion"), state="direct")
+    by_hand = (J("S") + J("C") + J("R") + 3 * J("P1") + 3 * J("P2")
+               + 3 * m("P1") * (24 * MM) ** 2 + 3 * m("P2") * (36 * MM) ** 2)
+    assert eom.coordinates == ("S",)
+    assert sp.simplify(eom.mass_matrix[0, 0] - by_hand) == 0
