@@ -10,7 +10,7 @@ import decimal
 import enum
 import re
 from collections.abc import Iterable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import sympy as sp
@@ -289,9 +289,10 @@ class Link:
     position_angle: sp.Expr | None = None
     count: int = 1
     axis: str = "parallel"
-    inertia: sp.Expr | None = None
-    mass: sp.Expr | None = None
-    stiffness: sp.Expr | None = None
+    # out of the repr (which the stored notebooks show): mass properties are for symkin.dynamics
+    inertia: sp.Expr | None = field(default=None, repr=False)
+    mass: sp.Expr | None = field(default=None, repr=False)
+    stiffness: sp.Expr | None = field(default=None, repr=False)
 
     def __post_init__(self) -> None:
         _name(self.name, "link name")
@@ -393,7 +394,7 @@ class Mesh:
     b: str
     centre_distance: sp.Expr | None = None
     efficiency: sp.Expr | None = None
-    stiffness: sp.Expr | None = None
+    stiffness: sp.Expr | None = field(default=None, repr=False)
 
     def __post_init__(self) -> None:
         _name(self.a, "gear name in a mesh")
