@@ -10,7 +10,7 @@ import decimal
 import enum
 import re
 from collections.abc import Iterable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import sympy as sp
@@ -20,7 +20,7 @@ from symkin.errors import ModelError
 from symkin.values import as_expr, as_rational, sign_of
 
 __all__ = ["FRAME", "MAIN_AXIS", "MAX_PLANETS", "LinkKind", "Gear", "Link", "Mesh", "MeshGeometry", "as_length",
-           "as_teeth", "mesh_pair"]
+           "as_teeth", "as_property", "mesh_pair"]
 
 #: Name of the mechanism frame (the fixed link that holds the main axis).
 FRAME = "0"
@@ -99,6 +99,26 @@ def as_teeth(value: Any, what: str) -> sp.Expr:
 #: backslash, a brace, ``% & # $ ^ ~``, a blank or a non-ASCII letter would run a command,
 #: break the document, or need fonts it has not.
 _NAME = re.compile(r"[A-Za-z0-9]+(?:[_.\-][A-Za-z0-9]+)*'*", re.ASCII)
+
+
+def as_property(value: Any, what: str, unit: str) -> sp.Expr | None:
+    """A mass property or a stiffness (``unit``, SI): a number >= 0 or a symbol; None stays None.
+
+    >>> as_property(0.01, "inertia of link S", "kg*m**2")
+    1/100
+    >>> as_property(-1, "mass of planet P", "kg")
+    Traceback (most recent call last):
+    ...
+    symkin.errors.ModelError: mass of planet P must be 0 or more (kg), got -1
+    """
+    if value is None:
+        return None
+    if isinstance(value, float):  # exact, as its decimal
+        value = as_rational(value, what=what, error=ModelError)
+    expr = as_expr(value, what=what, error=ModelError, unit=unit)
+    if expr.is_negative or (expr.is_number and expr.is_extended_real is False):
+        raise ModelError(f"{what} must be 0 or more ({unit.replace('**', '^')}), got {value!r}")
+    return expr
 
 
 def _name(value: Any, what: str) -> str:
@@ -251,6 +271,14 @@ class Link:
         perpendicular to it, pointing away from it at the position angle (a bevel pinion,
         whose gears are bevel gears).  The angular velocity of a radial planet is its spin
         about its own axis relative to its carrier.
+    inertia : sympy expression or None
+        Moment of inertia about the link's own axis (kg m^2; of one planet), for
+        :mod:`symkin.dynamics`.
+    mass : sympy expression or None
+        For a planet: the mass of one planet (kg), whose centre moves with its axis.
+    stiffness : sympy expression or None
+        For a link about the main axis: the torsional stiffness of a shaft holding it to the
+        frame (N m/rad), for the torsional model of :mod:`symkin.dynamics`.
     """
 
     name: str
@@ -261,9 +289,23 @@ class Link:
     position_angle: sp.Expr | None = None
     count: int = 1
     axis: str = "parallel"
+    # out of the repr (which the stored notebooks show): mass properties are for symkin.dynamics
+    inertia: sp.Expr | None = field(default=None, repr=False)
+    mass: sp.Expr | None = field(default=None, repr=False)
+    stiffness: sp.Expr | None = field(default=None, repr=False)
 
     def __post_init__(self) -> None:
         _name(self.name, "link name")
+        for key, unit in (("inertia", "kg*m**2"), ("mass", "kg"), ("stiffness", "N*m/rad")):
+            object.__setattr__(self, key, as_property(getattr(self, key), f"{key} of link {self.name}", unit))
+        if self.kind is LinkKind.FRAME and (self.inertia is not None or self.mass is not None or self.stiffness is not None):
+            raise ModelError("the frame does not move: it takes no inertia, mass or stiffness")
+        if self.kind is LinkKind.CENTRAL and self.mass is not None:
+            raise ModelError(f"link {self.name} turns about the main axis, so its mass adds nothing: give its inertia "
+                             "only (mass is for planets, whose centres move)")
+        if self.kind is LinkKind.PLANET and self.stiffness is not None:
+            raise ModelError(f"planet {self.name} takes no shaft stiffness: a stiffness holds a link about the main "
+                             "axis to the frame")
         if not isinstance(self.kind, LinkKind):
             raise ModelError(f"kind of link {self.name} must be a LinkKind, got {self.kind!r}")
         gears = tuple(self.gears)
@@ -305,14 +347,14 @@ class Link:
             raise ModelError(f"the frame must be named {FRAME!r}, got {self.name!r}")
 
     @classmethod
-    def central(cls, name: str, *gears: Gear) -> Link:
+    def central(cls, name: str, *gears: Gear, inertia: Any = None, stiffness: Any = None) -> Link:
         """A link turning about the main axis: a sun, a ring, or a carrier."""
-        return cls(name, LinkKind.CENTRAL, gears)
+        return cls(name, LinkKind.CENTRAL, gears, inertia=inertia, stiffness=stiffness)
 
     @classmethod
     def planet(
         cls, name: str, *gears: Gear, carrier: str = "H", arm: Any = None, position_angle: Any = None, count: int = 1,
-        axis: str = "parallel",
+        axis: str = "parallel", inertia: Any = None, mass: Any = None,
     ) -> Link:
         """A planet (satellite) carried by ``carrier``; a stepped planet has two gears.
 
@@ -321,7 +363,7 @@ class Link:
         equal planets of this kind are equally spaced on the carrier.
         """
         return cls(name, LinkKind.PLANET, gears, carrier=carrier, arm=arm,
-                   position_angle=position_angle, count=count, axis=axis)
+                   position_angle=position_angle, count=count, axis=axis, inertia=inertia, mass=mass)
 
     @classmethod
     def frame(cls, *gears: Gear) -> Link:
@@ -341,6 +383,9 @@ class Mesh:
     for a common module) that fit that distance.  Only positions change: the ratio of a
     mesh is the ratio of its working radii, which is that of its pitch radii.
 
+    ``stiffness`` (optional, N/m) is the mesh's stiffness along its line of action, for the
+    torsional model of :mod:`symkin.dynamics`.
+
     >>> Mesh("p", "s2", centre_distance=60).centre_distance
     60
     """
@@ -349,6 +394,7 @@ class Mesh:
     b: str
     centre_distance: sp.Expr | None = None
     efficiency: sp.Expr | None = None
+    stiffness: sp.Expr | None = field(default=None, repr=False)
 
     def __post_init__(self) -> None:
         _name(self.a, "gear name in a mesh")
@@ -363,6 +409,7 @@ class Mesh:
             if eta.is_number and not (0 < eta <= 1):
                 raise ModelError(f"the efficiency of mesh {self.a}-{self.b} must lie in (0, 1], got {self.efficiency!r}")
             object.__setattr__(self, "efficiency", eta)
+        object.__setattr__(self, "stiffness", as_property(self.stiffness, f"stiffness of mesh {self.a}-{self.b}", "N/m"))
 
 
 @dataclass(frozen=True)

@@ -36,6 +36,11 @@ Beyond it (all optional):
   distance other than the pitch circles give, i.e. a profile-shifted mesh (the working
   circles keep the tooth ratio, so the ratio is exact and the planet axis coaxial);
   ``efficiency = 0.985``: the mesh's efficiency for the statics (symkin efficiency);
+  ``stiffness = 3e8``: its stiffness along the line of action (N/m), for the torsional model;
+- mass properties, for symkin dynamics and symkin modes (SI; a number, or a name such as
+  ``"J_S"`` for a symbol): a link's ``inertia`` (kg m^2, about its own axis; of one planet),
+  a planet's ``mass`` (kg, of one planet) and a main-axis link's ``stiffness`` (N m/rad, a
+  shaft to the frame);
 - a state: ``description``;
 - ``[base]``: the base (the frame) moving in space, expressions in t: ``x``, ``y``, ``z``
   of the main axis point O and ``yaw``, ``pitch``, ``roll`` of the frame (the motion the
@@ -79,9 +84,9 @@ MAX_FILE_BYTES = 1_000_000
 #: Keys each table may hold.
 _TOP = {"name", "description", "module", "meshes", "links", "states", "base"}
 _BASE = {"x", "y", "z", "yaw", "pitch", "roll"}
-_LINK = {"gears", "carrier", "angle", "arm", "count", "axis"}
+_LINK = {"gears", "carrier", "angle", "arm", "count", "axis", "inertia", "mass", "stiffness"}
 _GEAR = {"teeth", "internal", "module", "radius", "bevel", "side"}
-_MESH = {"gears", "centre_distance", "efficiency"}
+_MESH = {"gears", "centre_distance", "efficiency", "stiffness"}
 _STATE = {"input", "output", "brakes", "clutches", "description"}
 _SYMBOL = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
 #: Names a symbolic tooth number may not take: they print as (or parse to) something else.
@@ -193,6 +198,20 @@ class _Reader:
             raise self.fail(where, f"must be positive, got {_show(value)}")
         return expr
 
+    def mass_properties(self, table: Mapping[str, Any], where: str) -> dict[str, sp.Expr]:
+        """``inertia``, ``mass``, ``stiffness`` of a link (or mesh): a number >= 0, or a name (a symbol)."""
+        out = {}
+        for key in ("inertia", "mass", "stiffness"):
+            if key in table:
+                value = table[key]
+                if isinstance(value, str) and _SYMBOL.match(value) and value not in _RESERVED:
+                    out[key] = sp.Symbol(value, positive=True)
+                else:
+                    out[key] = self.number(value, f"{where} {key}", positive=False)
+                    if out[key].is_negative:
+                        raise self.fail(f"{where} {key}", f"must be 0 or more, got {_show(value)}")
+        return out
+
     def angle(self, value: Any, where: str) -> sp.Expr:
         return self.number(value, where, positive=False)
 
@@ -275,6 +294,7 @@ class _Reader:
             where = f"[links.{link_name}]"
             gears = [self.gear(g, spec, module, f"{where} gears.{g}") for g, spec in table.get("gears", {}).items()]
             try:
+                props = self.mass_properties(table, where)
                 if link_name in (FRAME_TABLE, FRAME):
                     extra = sorted(set(table) - {"gears"})
                     if extra:
@@ -286,6 +306,9 @@ class _Reader:
                     count = table.get("count", 1)
                     if isinstance(count, bool) or not isinstance(count, int):
                         raise self.fail(f"{where} count", f"must be a whole number of planets, got {_show(count)}")
+                    if "stiffness" in props:
+                        raise self.fail(f"{where} stiffness", "a planet takes no shaft stiffness: a stiffness holds a "
+                                                              "link about the main axis to the frame")
                     axis = table.get("axis", "parallel")
                     if axis not in ("parallel", "radial"):
                         raise self.fail(f"{where} axis", f"is \"parallel\" (a planet) or \"radial\" (a bevel pinion), got {_show(axis)}")
@@ -294,13 +317,16 @@ class _Reader:
                         arm=(sp.Integer(0) if table.get("arm") == 0 else self.number(table["arm"], f"{where} arm"))
                         if "arm" in table else None,
                         position_angle=self.angle(table["angle"], f"{where} angle") if "angle" in table else None,
-                        count=count,
+                        count=count, **props,
                     ))
                 else:
                     extra = sorted(set(table) & {"angle", "arm", "count", "axis"})
                     if extra:
                         raise self.fail(f"{where} {extra[0]}", "only a planet (a link with a carrier) takes this key")
-                    links.append(Link.central(link_name, *gears))
+                    if "mass" in props:
+                        raise self.fail(f"{where} mass", "only a planet takes a mass (its centre moves); give a link "
+                                                         "about the main axis its inertia")
+                    links.append(Link.central(link_name, *gears, **props))
             except TrainFileError:
                 raise
             except ModelError as err:
@@ -409,8 +435,10 @@ class _Reader:
         for k, item in enumerate(items, 1):
             where = f"meshes[{k}]"
             distance = efficiency = None
+            props: dict[str, sp.Expr] = {}
             if isinstance(item, Mapping):
                 item = self.keys(item, _MESH, where)
+                props = self.mass_properties(item, where)
                 if "centre_distance" in item:
                     distance = self.number(item["centre_distance"], f"{where} centre_distance")
                 if "efficiency" in item:
@@ -424,7 +452,7 @@ class _Reader:
                 if g not in owner:
                     raise self.fail(where, f"names no gear {g!r}; the gears are {', '.join(owner)}")
             try:
-                mesh = Mesh(item[0], item[1], centre_distance=distance, efficiency=efficiency)
+                mesh = Mesh(item[0], item[1], centre_distance=distance, efficiency=efficiency, **props)
             except ModelError as err:
                 raise self.fail(where, str(err)) from None
             out.append(mesh)
