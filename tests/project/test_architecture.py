@@ -36,7 +36,7 @@ LAYERS: list[tuple[str, ...]] = [
     ("symkin.model",),
     ("symkin.kinematics", "symkin.particles", "symkin.drives", "symkin.vectorloop"),
     ("symkin.schemes", "symkin.trains"),
-    ("symkin.study", "symkin.statics"),
+    ("symkin.study", "symkin.statics", "symkin.geometry"),
     ("symkin.synthesis",),
     ("symkin.mechanisms",),
     ("symkin.viz",),

@@ -181,6 +181,7 @@ COMMANDS: dict[str, Command] = {
                                  "--json")),
     "states": Command(("states", "--train", "simple", "--state", "low", "--json")),
     "trains": Command(("trains", "--json")),
+    "geometry": Command(("geometry", "--train", "simple", "--min-contact-ratio", "1.2", "--out", "g.svg", "--json")),
     "trajectory": Command(("trajectory", *_AI1, "--point", "2:10,0", "--module", "1", "--turns", "1", "--out", "t.png", "--json")),
     "trajectory-space": Command(("trajectory", *_AI1, "--point", "2:10,0,1", "--base-z", "5*t", "--base-pitch", "t/10",
                                  "--turns", "1", "--out", "t.png", "--json")),
