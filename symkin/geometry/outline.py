@@ -25,6 +25,7 @@ Angles are in radians, lengths in mm; the first tooth of an external gear is cen
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 
@@ -33,7 +34,7 @@ from symkin.geometry.gear import GearGeometry
 __all__ = ["tooth_outline"]
 
 
-def _inv(a: np.ndarray) -> np.ndarray:
+def _inv(a: Any) -> Any:
     return np.tan(a) - a
 
 

@@ -100,11 +100,11 @@ def _spur_gears(train: Any, shifts: Mapping[str, Any] | None) -> tuple[dict[str,
 def _gear_problems(g: GearGeometry) -> tuple[str, ...]:
     out = []
     if g.undercut:
-        out.append(f"undercut: shift {g.shift} is below {float(g.minimum_shift):.4f}, the least that cuts none")
+        out.append(f"undercut: shift {g.shift} is below {float(g.minimum_shift or 0):.4f}, the least that cuts none")
     if g.pointed:
         out.append("pointed tip: the flanks meet below the tip circle (lower the shift or turn the tip down)")
     elif g.thin_tip:
-        out.append(f"thin tip: {float(g.tip_thickness):.3f} mm, below 0.2 m")
+        out.append(f"thin tip: {float(g.tip_thickness or 0):.3f} mm, below 0.2 m")
     if g.tip_inside_base:
         out.append("the tip circle lies inside the base circle: no involute at the tip (raise the shift)")
     return tuple(out)
@@ -155,7 +155,10 @@ def train_geometry(train: Any, *, shifts: Mapping[str, Any] | None = None,
 def _placement(train: Any, gears: Mapping[str, GearGeometry], meshes: list[MeshReport]) -> dict[str, tuple[float, float, float]]:
     """Axis positions at t = 0 and turns that put a tooth of one gear of each mesh in a space of the other."""
     owner = {g.name: link.name for link in train.links for g in link.gears}
-    centre = {name: tuple(float(v) for v in train.axis_position(owner[name])) for name in gears}
+    centre: dict[str, tuple[float, float]] = {}
+    for name in gears:
+        x, y = train.axis_position(owner[name])
+        centre[name] = (float(x), float(y))
     phase: dict[str, float] = {}
     for start in gears:
         if start in phase:
@@ -172,7 +175,7 @@ def _placement(train: Any, gears: Mapping[str, GearGeometry], meshes: list[MeshR
                     continue
                 phase[there] = _partner_phase(gears[here], centre[here], phase[here], gears[there], centre[there])
                 queue.append(there)
-    return {name: (*centre[name], phase[name]) for name in gears}
+    return {name: (centre[name][0], centre[name][1], phase[name]) for name in gears}
 
 
 def _partner_phase(ga: GearGeometry, ca: tuple[float, float], pa: float, gb: GearGeometry,
@@ -216,6 +219,7 @@ def coaxial_shifts(train: Any, *, digits: int = 5) -> dict[str, sp.Rational]:
             continue
         component = [start]
         affine[start] = (sp.Integer(0), 1)
+        fixed: list[float] = []  # t where a loop of meshes fixes it
         queue = [start]
         while queue:
             here = queue.pop()
@@ -227,27 +231,36 @@ def coaxial_shifts(train: Any, *, digits: int = 5) -> dict[str, sp.Rational]:
                 else:  # x_a = sign * (x_b - value)
                     there, c, k = a, sign * (affine[b][0] - value), sign * affine[b][1]
                 if there in affine:
-                    if abs(sp.N(affine[there][0] - c, DIGITS)) > SHIFT_TOLERANCE or affine[there][1] != k:
+                    gap = float(sp.N(affine[there][0] - c, DIGITS))
+                    if affine[there][1] != k:
+                        fixed.append(gap / (k - affine[there][1]))
+                    elif abs(gap) > SHIFT_TOLERANCE:
                         raise InputError(f"the meshes of gear {there} ask for two different shifts: its centre distances "
                                          "cannot all be met by profile shift; change a centre distance or a tooth number")
                     continue
                 affine[there] = (c, k)
                 component.append(there)
                 queue.append(there)
-        t = _least_shifts([(float(sp.N(affine[g][0], DIGITS)), affine[g][1],
-                            None if gears[g].internal else float(gears[g].minimum_shift)) for g in component])
+        if fixed and max(fixed) - min(fixed) > SHIFT_TOLERANCE:
+            raise InputError(f"the meshes around gear {start} ask for two different shifts: their centre distances "
+                             "cannot all be met by profile shift; change a centre distance or a tooth number")
+        t = fixed[0] if fixed else _least_shifts(
+            [(float(sp.N(affine[g][0], DIGITS)), affine[g][1], None if gears[g].internal else float(gears[g].minimum_shift or 0))
+             for g in component], margin=10.0**-digits)
         for g in component:
             c, k = affine[g]
             chosen[g] = sp.Rational(f"{float(sp.N(c, DIGITS)) + k * t:.{digits}f}")
     return chosen
 
 
-def _least_shifts(lines: list[tuple[float, int, float | None]]) -> float:
+def _least_shifts(lines: list[tuple[float, int, float | None]], margin: float = 0.0) -> float:
     """The free shift t of x = c + k t (k = +-1) that makes the largest |x| least with every
     external gear free of undercut (x >= x_min); when no t keeps them all free, the middle
-    of the two limits."""
+    of the two limits.  ``margin`` keeps t that far inside its limits (for the rounding of the shifts)."""
     low = max((xm - c for c, k, xm in lines if xm is not None and k == 1), default=-math.inf)
     high = min((c - xm for c, k, xm in lines if xm is not None and k == -1), default=math.inf)
+    if high - low > 2 * margin:
+        low, high = low + margin, high - margin
     if low > high:
         return (low + high) / 2
     candidates = {-c * k for c, k, _ in lines}
