@@ -100,7 +100,7 @@ def _spur_gears(train: Any, shifts: Mapping[str, Any] | None) -> tuple[dict[str,
 def _gear_problems(g: GearGeometry) -> tuple[str, ...]:
     out = []
     if g.undercut:
-        out.append(f"undercut: shift {g.shift} is below {float(g.minimum_shift or 0):.4f}, the least that cuts none")
+        out.append(f"undercut: shift {float(g.shift):.4f} is below {float(g.minimum_shift or 0):.4f}, the least that cuts none")
     if g.pointed:
         out.append("pointed tip: the flanks meet below the tip circle (lower the shift or turn the tip down)")
     elif g.thin_tip:

@@ -22,7 +22,7 @@ def test_the_table_lists_gears_meshes_and_problems(capsys):
     code, out, err = run(capsys, "--train", "wolfrom")
     assert code == 0 and err == ""
     assert "gear " in out and "eps_alpha" in out
-    assert "problem: gear s: undercut: shift 0 is below 0.2981" in out
+    assert "problem: gear s: undercut: shift 0.0000 is below 0.2981" in out
     assert "problem: mesh s-p1: involute interference" in out
 
 
