@@ -20,7 +20,7 @@ profile away from the axis, as for an external gear)::
 
     >>> g = gear_geometry(12, 3)
     >>> g.tip_diameter, g.root_diameter
-    (42, 28.5)
+    (42, 57/2)
 """
 
 from __future__ import annotations

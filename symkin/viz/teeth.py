@@ -3,7 +3,8 @@
 A gear with a tooth number is drawn with standard involute teeth (pressure angle 20
 degrees, addendum one module, dedendum 1.25 modules) cut on its working pitch circle:
 the module is ``2 r / z``, so the pitch circle the kinematics uses is the one the teeth
-roll on.  :func:`mesh_phases` turns each gear at t = 0 so that a tooth of one gear of every
+roll on.  The outline is :func:`symkin.geometry.tooth_outline`'s, the one ``symkin geometry``
+exports to CAD: involute flanks, and the root fillet the ISO 53 rack cuts.  :func:`mesh_phases` turns each gear at t = 0 so that a tooth of one gear of every
 mesh sits in a space of the other; as the derived motion turns the links, they stay meshed.
 
     >>> x, y = involute_outline(10, 20)
@@ -72,33 +73,12 @@ def involute_outline(
     z = int(teeth)
     if z < 3 or not np.isfinite(radius) or radius <= 0:
         raise InputError(f"cannot draw {teeth} teeth on a pitch radius {radius}: give at least 3 teeth and a positive radius")
-    m = 2 * radius / z
-    rb = radius * np.cos(pressure_angle)
-    inner, outer = (radius - m, radius + 1.25 * m) if internal else (radius - 1.25 * m, radius + m)
-    inner = max(inner, 1e-9)
-    lo = max(inner, rb)
-    rho = np.linspace(lo, outer, points)
-    alpha_rho = np.arccos(np.clip(rb / rho, -1, 1))
-    # half the angular width of an external gear's tooth at radius rho; for a ring, of its space
-    half = np.pi / (2 * z) + _inv(pressure_angle) - _inv(alpha_rho)
-    if internal:
-        half = np.pi / z - half  # the ring's tooth is the space of the external gear
-    pitch = 2 * np.pi / z
-    ang: list[np.ndarray] = []
-    rad: list[np.ndarray] = []
-    for k in range(z):
-        c = phase + k * pitch
-        # tooth k: one flank up (root to tip for an external gear, tip to root for a ring), across, the other down
-        flank_r = np.concatenate([[inner], rho]) if lo > inner else rho
-        flank_h = np.concatenate([[half[0]], half]) if lo > inner else half
-        if internal:
-            flank_r, flank_h = flank_r[::-1], flank_h[::-1]
-        ang += [c - flank_h, c + flank_h[::-1]]
-        rad += [flank_r, flank_r[::-1]]
-    a, r = np.concatenate(ang), np.concatenate(rad)
-    a, r = np.append(a, a[0] + 2 * np.pi), np.append(r, r[0])
-    # the arcs between the points of neighbouring flanks are short for any practical tooth number
-    return r * np.cos(a), r * np.sin(a)
+    from symkin.geometry import ToothForm, gear_geometry, tooth_outline
+
+    module = sp.Rational(repr(float(2 * radius / z)))
+    degrees = sp.Rational(repr(round(float(np.degrees(pressure_angle)), 9)))
+    gear = gear_geometry(z, module, ToothForm(pressure_angle=degrees), internal=internal)
+    return tooth_outline(gear, phase=phase, points=points)
 
 
 def mesh_phases(mech: Any, values: Mapping[Any, Any] | None = None) -> dict[str, float]:
