@@ -23,7 +23,7 @@ import sympy as sp
 from symkin.errors import InputError
 from symkin.values import as_values, substitute
 
-__all__ = ["involute_outline", "mesh_phases", "PRESSURE_ANGLE"]
+__all__ = ["involute_outline", "mesh_phases", "outline_figure", "PRESSURE_ANGLE"]
 
 #: Pressure angle of the drawn teeth, in radians (20 degrees).
 PRESSURE_ANGLE = float(np.radians(20))
@@ -143,3 +143,41 @@ def mesh_phases(mech: Any, values: Mapping[Any, Any] | None = None) -> dict[str,
                 phases[b] = seen_b + (offset_a - 0.5) * 2 * np.pi / zb * (1 if ga.internal or gb.internal else -1)
                 queue.append(b)
     return phases
+
+
+def outline_figure(geometry: Any, *, title: str | None = None, zoom: tuple[float, float, float] | None = None) -> Any:
+    """The tooth outlines of a :class:`~symkin.geometry.TrainGeometry`, placed as the train puts them
+    (the ones ``symkin geometry --out`` writes to DXF and SVG), each gear named, in mm.
+
+    ``zoom = (x, y, half_width)`` adds a second panel around a point (a mesh's pitch point).
+
+    >>> from symkin.geometry import train_geometry
+    >>> from symkin.trains import load_train
+    >>> fig = outline_figure(train_geometry(load_train("simple")))
+    >>> len(fig.axes)
+    1
+    """
+    from symkin.geometry.export import placed_outlines
+    from symkin.viz.style import PALETTE, new_figure, style_axes
+
+    shapes = placed_outlines(geometry, points=16)
+    panels = 2 if zoom else 1
+    fig = new_figure(width=3.4 * panels, height=3.4)
+    axes = [fig.add_subplot(1, panels, k + 1) for k in range(panels)]
+    for ax in axes:
+        style_axes(ax)
+    for k, (name, (x, y)) in enumerate(shapes.items()):
+        for ax in axes:
+            ax.plot(x, y, lw=0.7, color=PALETTE[k % len(PALETTE)], linestyle="-", label=name)
+    for ax in axes:
+        ax.set_aspect("equal")
+        ax.set_xlabel("x, mm")
+    axes[0].set_ylabel("y, mm")
+    axes[0].legend(loc="upper left", fontsize="small", frameon=False)
+    if zoom:
+        cx, cy, half = zoom
+        axes[1].set_xlim(cx - half, cx + half)
+        axes[1].set_ylim(cy - half, cy + half)
+    if title:
+        axes[0].set_title(title)
+    return fig

@@ -141,3 +141,33 @@ def test_a_train_without_numbers_is_refused():
     text = PLANETARY.format(xs=0, xp=0, xr=0, distance="").replace("teeth = 12", 'teeth = "z1"')
     with pytest.raises(InputError, match="gear s has no tooth number"):
         train_geometry(read_train(text))
+
+
+AA_2009 = """
+name = "AA 100/99/100/101"
+module = 1
+meshes = [{ gears = ["g1", "g2"], centre_distance = 100 }, { gears = ["g3", "g4"], centre_distance = 100 }]
+[links.L1]
+gears = { g1 = 100 }
+[links.H]
+[links.P]
+carrier = "H"
+gears = { g2 = 99, g3 = 100 }
+[links.L4]
+gears = { g4 = 101 }
+"""
+
+
+def test_the_2009_papers_aa_set_is_built_by_shifting_both_meshes_to_one_arm():
+    # 100 + 99 and 100 + 101 teeth want arms of 99.5 and 100.5; at 100 each external mesh needs a shift sum,
+    # split equally (the least largest shift), and the involute equation typed here gives 100 mm back
+    train = read_train(AA_2009)
+    shifts = coaxial_shifts(train)
+    assert shifts["g1"] == shifts["g2"] > 0 > shifts["g3"] == shifts["g4"]
+    inv = lambda t: math.tan(t) - t  # noqa: E731
+    alpha = math.pi / 9
+    for a, b, teeth in (("g1", "g2", 199), ("g3", "g4", 201)):
+        x = float(shifts[a] + shifts[b])
+        aw = brentq(lambda t: inv(t) - inv(alpha) - 2 * math.tan(alpha) * x / teeth, 0.01, 1.2)
+        assert teeth / 2 * math.cos(alpha) / math.cos(aw) == pytest.approx(100, abs=1e-4)
+    assert train_geometry(train, shifts=shifts).problems == []
