@@ -25,13 +25,14 @@ Angles are in radians, lengths in mm; the first tooth of an external gear is cen
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable, Mapping
 from typing import Any
 
 import numpy as np
 
 from symkin.geometry.gear import GearGeometry
 
-__all__ = ["tooth_outline"]
+__all__ = ["tooth_outline", "mesh_phases"]
 
 
 def _inv(a: Any) -> Any:
@@ -122,3 +123,52 @@ def tooth_outline(gear: GearGeometry, *, phase: float = 0.0, points: int = 16) -
     x, y = r_all * np.cos(polar), r_all * np.sin(polar)
     x, y = x[::-1], y[::-1]  # the angle above runs clockwise
     return np.append(x, x[0]), np.append(y, y[0])
+
+
+def mesh_phases(gears: Mapping[str, tuple[int, bool, tuple[float, float]]],
+                pairs: Iterable[tuple[str, str]]) -> dict[str, float]:
+    """The turn (rad) of each gear's outline (:func:`tooth_outline`'s ``phase``) that puts a tooth of one
+    gear of every mesh in a space of the other, on their line of centres.
+
+    ``gears`` maps a name to (teeth, internal, axis position); ``pairs`` are the meshes.  Gears are
+    visited along the meshes from the first of each connected set (phase 0); across a mesh the second
+    gear's space stands where the first one's nearest tooth is, turned as rolling carries it.
+
+    >>> phases = mesh_phases({"s": (20, False, (0.0, 0.0)), "p": (30, False, (25.0, 0.0))}, [("s", "p")])
+    >>> phases["s"], round(phases["p"], 6) == round(math.pi - math.pi / 30, 6)
+    (0.0, True)
+    """
+    links: dict[str, list[str]] = {name: [] for name in gears}
+    for a, b in pairs:
+        if a in gears and b in gears:
+            links[a].append(b)
+            links[b].append(a)
+    phase: dict[str, float] = {}
+    for start in gears:
+        if start in phase:
+            continue
+        phase[start] = 0.0
+        queue = [start]
+        while queue:
+            here = queue.pop(0)
+            for there in links[here]:
+                if there not in phase:
+                    phase[there] = _partner_phase(gears[here], phase[here], gears[there])
+                    queue.append(there)
+    return phase
+
+
+def _partner_phase(a: tuple[int, bool, tuple[float, float]], pa: float, b: tuple[int, bool, tuple[float, float]]) -> float:
+    (za, ia, ca), (zb, ib, cb) = a, b
+    dx, dy = cb[0] - ca[0], cb[1] - ca[1]
+    if math.hypot(dx, dy) < 1e-12:  # (on one axis: no line of centres)
+        return 0.0
+    beta = math.atan2(dy, dx)  # from a's axis to b's
+    # the pitch point seen from each axis: towards the other axis, or away for a ring holding the other gear
+    da = beta + (math.pi if ib else 0.0)
+    db = beta + (0.0 if ia else math.pi)
+    sense = 1.0 if ia or ib else -1.0  # an internal mesh turns both gears the same way
+    pitch_a = 2 * math.pi / za
+    off = da - pa
+    e_a = off - round(off / pitch_a) * pitch_a  # a's nearest tooth is turned by -e_a from the pitch point
+    return db - sense * e_a * za / zb - math.pi / zb  # b's space there, turned as rolling carries it

@@ -37,6 +37,7 @@ import sympy as sp
 from symkin.errors import InputError
 from symkin.geometry.gear import GearGeometry, ToothForm, gear_geometry
 from symkin.geometry.mesh import DIGITS, MIN_CONTACT_RATIO, PairGeometry, pair_geometry, shift_sum_for
+from symkin.geometry.outline import mesh_phases
 
 __all__ = ["TrainGeometry", "MeshReport", "train_geometry", "coaxial_shifts", "SHIFT_TOLERANCE"]
 
@@ -160,41 +161,8 @@ def _placement(train: Any, gears: Mapping[str, GearGeometry], meshes: list[MeshR
     for name in gears:
         x, y = train.axis_position(owner[name])
         centre[name] = (float(x), float(y))
-    phase: dict[str, float] = {}
-    for start in gears:
-        if start in phase:
-            continue
-        phase[start] = 0.0
-        queue = [start]
-        while queue:
-            here = queue.pop()
-            for m in meshes:
-                if here not in m.gears:
-                    continue
-                there = m.gears[1] if m.gears[0] == here else m.gears[0]
-                if there in phase:
-                    continue
-                phase[there] = _partner_phase(gears[here], centre[here], phase[here], gears[there], centre[there])
-                queue.append(there)
+    phase = mesh_phases({n: (int(g.teeth), g.internal, centre[n]) for n, g in gears.items()}, [m.gears for m in meshes])
     return {name: (centre[name][0], centre[name][1], phase[name]) for name in gears}
-
-
-def _partner_phase(ga: GearGeometry, ca: tuple[float, float], pa: float, gb: GearGeometry,
-                   cb: tuple[float, float]) -> float:
-    za, zb = int(ga.teeth), int(gb.teeth)
-    if ga.internal or gb.internal:  # the pitch point lies beyond the small gear, seen from the ring
-        ring, small = (ca, cb) if ga.internal else (cb, ca)
-        direction = math.atan2(small[1] - ring[1], small[0] - ring[0])
-        da = db = direction
-        sense = 1.0
-    else:
-        da = math.atan2(cb[1] - ca[1], cb[0] - ca[0])
-        db, sense = da + math.pi, -1.0
-    pitch_a = 2 * math.pi / za
-    off = da - pa
-    e_a = off - round(off / pitch_a) * pitch_a  # a's nearest tooth is turned by -e_a from the pitch point
-    e_b = -sense * e_a * za / zb  # b's space turned as rolling carries it (the other way for an external mesh)
-    return db + e_b - math.pi / zb  # a space of b at the pitch point, turned as a's tooth is
 
 
 def coaxial_shifts(train: Any, *, digits: int = 5) -> dict[str, sp.Rational]:

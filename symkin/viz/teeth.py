@@ -109,40 +109,10 @@ def mesh_phases(mech: Any, values: Mapping[Any, Any] | None = None) -> dict[str,
         for g in link.gears:
             if g.teeth is not None and not g.bevel and sp.sympify(g.teeth).is_Integer:
                 toothed[g.name] = (g, link)
-    phases: dict[str, float] = {}
-    edges: dict[str, list[str]] = {name: [] for name in toothed}
-    for mesh in mech.meshes:
-        if mesh.a in toothed and mesh.b in toothed:
-            edges[mesh.a].append(mesh.b)
-            edges[mesh.b].append(mesh.a)
-    for start in toothed:
-        if start in phases:
-            continue
-        phases[start] = 0.0
-        queue = [start]
-        while queue:
-            a = queue.pop(0)
-            ga, la = toothed[a]
-            for b in edges[a]:
-                if b in phases:
-                    continue
-                gb, lb = toothed[b]
-                ca, cb = centre(la), centre(lb)
-                d = cb - ca
-                if float(np.hypot(*d)) < 1e-12:
-                    continue
-                beta = float(np.arctan2(d[1], d[0]))  # direction from a's axis to b's axis
-                za, zb = int(ga.teeth), int(gb.teeth)
-                # the contact point seen from each axis: towards the other axis, or away for a ring
-                # that holds the other gear inside
-                seen_a = beta + (np.pi if gb.internal else 0.0)
-                seen_b = beta + (0.0 if ga.internal else np.pi)
-                # a's tooth offset at its contact direction, in a's pitches
-                offset_a = ((seen_a - phases[a]) / (2 * np.pi / za)) % 1.0
-                # b shows a space (a half pitch off a tooth) where a shows a tooth, mirrored by the rolling
-                phases[b] = seen_b + (offset_a - 0.5) * 2 * np.pi / zb * (1 if ga.internal or gb.internal else -1)
-                queue.append(b)
-    return phases
+    from symkin.geometry.outline import mesh_phases as phases_of
+
+    gears = {name: (int(g.teeth), g.internal, tuple(float(c) for c in centre(link))) for name, (g, link) in toothed.items()}
+    return phases_of(gears, [(m.a, m.b) for m in mech.meshes])  # type: ignore[arg-type]
 
 
 def outline_figure(geometry: Any, *, title: str | None = None, zoom: tuple[float, float, float] | None = None) -> Any:
