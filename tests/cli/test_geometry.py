@@ -86,3 +86,29 @@ def test_an_earlier_file_of_another_kind_is_kept(capsys, tmp_path):
     notes.write_text("my notes\n")
     code, _, err = run(capsys, "--train", "simple", "--out", str(notes))
     assert code == 2 and "is not a DXF drawing" in err and notes.read_text() == "my notes\n"
+
+
+def test_a_train_file_with_shifts_and_a_centre_distance(capsys, tmp_path):
+    # the KHK pair (z 12/24, m 3, x 0.6/0.36) as a train: its shifts ask for 56.4999 mm; given that distance
+    # (to 4 decimals) the shifts give it within the stated 1e-4, and the table says no distance problem
+    text = """
+module = 3
+meshes = [{ gears = ["a", "b"]DISTANCE }]
+[links.A]
+gears = { a = { teeth = 12, shift = 0.6 } }
+[links.C]
+[links.B]
+carrier = "C"
+gears = { b = { teeth = 24, shift = 0.36 } }
+"""
+    path = tmp_path / "pair.toml"
+    path.write_text(text.replace("DISTANCE", ""))
+    code, out, _ = run(capsys, "--train", str(path), "--json")
+    data = json.loads(out)
+    assert code == 0 and round(data["meshes"][0]["working_pressure_angle_deg"], 4) == 26.0886
+    assert "add centre_distance = 56.4999 to this mesh" in data["meshes"][0]["problems"][0]
+    path.write_text(text.replace("DISTANCE", ", centre_distance = 56.4999"))
+    code, out, _ = run(capsys, "--train", str(path), "--json")
+    data = json.loads(out)
+    assert code == 0 and data["meshes"][0]["centre_distance"] == 56.4999
+    assert not any("centre distance" in p for p in data["problems"])
