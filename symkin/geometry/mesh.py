@@ -137,21 +137,21 @@ class PairGeometry:
         # involute interference: a tip beyond the partner's interference point on the line of action
         if self.internal:
             if g2.tip_inside_base or not self._involute_ok():
-                out.append("involute interference: the ring's tip reaches below the pinion's base circle "
-                           "(raise the ring's shift or its tip diameter)")
+                out.append("involute interference: the ring's tip reaches past the pinion's interference point (where "
+                           "the line of action touches its base circle); raise the ring's shift or its tip diameter")
             if not self._trochoid_ok():
-                out.append("tip interference (trochoid): the pinion's tip strikes the ring's tip leaving mesh "
-                           "(more teeth difference or a larger ring shift)")
+                out.append("tip interference (trochoid): the pinion's tip strikes the ring's teeth as it leaves the "
+                           "mesh; give a larger tooth difference or ring shift")
             if not self._trimming_ok():
                 out.append("trimming interference: the pinion cannot be taken out radially (assemble it axially; a "
                            "pinion cutter of these teeth cannot cut the ring)")
         else:
             if sp.N(r1 - line, DIGITS) > 0:
-                out.append(f"involute interference: the tip of the {g1.teeth}-tooth gear reaches below the base circle "
-                           f"of the {g2.teeth}-tooth gear")
+                out.append(f"involute interference: the tip of the {g1.teeth}-tooth gear reaches past the interference "
+                           f"point (on the base circle) of the {g2.teeth}-tooth gear")
             if sp.N(r2 - line, DIGITS) > 0:
-                out.append(f"involute interference: the tip of the {g2.teeth}-tooth gear reaches below the base circle "
-                           f"of the {g1.teeth}-tooth gear")
+                out.append(f"involute interference: the tip of the {g2.teeth}-tooth gear reaches past the interference "
+                           f"point (on the base circle) of the {g1.teeth}-tooth gear")
         return out
 
     # ---- internal meshes (KHK / SDP-SI eqs. 5-5 to 5-10)
