@@ -57,9 +57,9 @@ def run_geometry(args: Any) -> Any:
     train = load_train(args.train)
     shifts = coaxial_shifts(train) if args.choose_shifts else None
     geo = train_geometry(train, shifts=shifts, min_contact_ratio=eps_min)
-    if not geo.gears:
-        raise InputError(f"{args.train}: the train has no spur gears (bevel gears are not covered)")
     written = []
+    if out is not None and not geo.gears:
+        raise InputError(f"--out {args.out}: the train has no spur gears to draw (bevel gears are not covered)")
     if out is not None:
         from symkin._io.atomic import replacing
         from symkin.geometry.export import dxf_text, svg_text

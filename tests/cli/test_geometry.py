@@ -72,13 +72,20 @@ def test_dxf_and_svg_are_written(capsys, tmp_path):
     (("--train", "simple", "--out", "g.png"), "give a file ending in .dxf or .svg"),
     (("--train", "simple", "--min-contact-ratio", "-1"), "must be positive"),
     (("--train", "nosuch"), "no such file"),
-    (("--train", "bevel-differential"), "no spur gears"),
+    (("--train", "bevel-differential", "--out", "b.svg"), "no spur gears to draw"),
 ])
 def test_bad_input_is_one_line_and_exit_2(capsys, argv, message, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     code, _, err = run(capsys, *argv)
     assert code == 2 and message in err and err.count("\n") == 1
     assert list(tmp_path.iterdir()) == []
+
+
+def test_a_bevel_train_reports_that_its_gears_are_not_covered(capsys):
+    code, out, _ = run(capsys, "--train", "bevel-differential", "--json")
+    data = json.loads(out)
+    assert code == 0 and data["gears"] == {} and data["meshes"] == []
+    assert len(data["notes"]) == 3 and all("bevel gear" in n for n in data["notes"])
 
 
 def test_an_earlier_file_of_another_kind_is_kept(capsys, tmp_path):
