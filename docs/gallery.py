@@ -106,6 +106,15 @@ def _stage_model(path: Path) -> Path:
     return _save(stage_model_figure(enumerate_stages(180, 3, zmin=18, zmax=180), models, module=1), path)
 
 
+def _geometry(path: Path) -> Path:
+    from symkin.geometry import train_geometry
+    from symkin.trains import load_train
+    from symkin.viz.teeth import outline_figure
+
+    geo = train_geometry(load_train("simple"))
+    return _save(outline_figure(geo, title="simple planetary, module 1", zoom=(36.0, 0.0, 3.0)), path)
+
+
 GALLERY: tuple[Entry, ...] = (
     Entry("trajectory", ("symkin.viz.figures.trajectory_figure", "symkin.viz.figures.draw_pitch_circles",
                          "symkin.viz.figures.draw_trajectories"), _trajectory),
@@ -115,6 +124,7 @@ GALLERY: tuple[Entry, ...] = (
     Entry("animation", ("symkin.viz.animation.animate",), _animation),
     Entry("split", ("symkin.viz.split.split_figure",), _split),
     Entry("stage_model", ("symkin.viz.split.stage_model_figure",), _stage_model),
+    Entry("geometry", ("symkin.viz.teeth.outline_figure",), _geometry),
 )
 
 

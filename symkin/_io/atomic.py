@@ -106,7 +106,7 @@ _SIGNATURES = {
     ".png": ("a PNG image", 0, (b"\x89PNG",)), ".gif": ("a GIF image", 0, (b"GIF8",)),
     ".pdf": ("a PDF file", 0, (b"%PDF",)), ".eps": ("an EPS file", 0, (b"%!PS",)),
     ".svg": ("an SVG image", 0, (b"<?xml", b"<svg")), ".html": ("an HTML page", 0, (b"<",)),
-    ".mp4": ("an MP4 video", 4, (b"ftyp",)),
+    ".mp4": ("an MP4 video", 4, (b"ftyp",)), ".dxf": ("a DXF drawing", 0, (b"0", b"999")),
 }
 
 

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 from typing import Any
 
 from symkin.cli.common import Progress, add_command, add_quiet_flag, add_train_argument, emit
@@ -65,6 +66,12 @@ def register(sub: Any) -> None:
                         "separated by commas; the rest of error,size,teeth follow (default error,size,teeth). "
                         "Ranking by efficiency evaluates the train's efficiency law exactly at every design, with the "
                         "mesh efficiencies of --efficiency")
+    p.add_argument("--min-contact-ratio", metavar="EPS",
+                   help="leave out designs with a mesh whose transverse contact ratio is below EPS (each listed design's "
+                        "gear geometry is worked out as symkin geometry does, with the shifts its centre distances need)")
+    p.add_argument("--allow-undercut", action="store_true",
+                   help="keep designs with a gear the rack undercuts even with the shifts chosen for it (left out by "
+                        "default; a --zmin below the undercut-free minimum lists small gears only where a shift saves them)")
     p.add_argument("--latex", action="store_true", help="also print the derived conditions in LaTeX")
     add_quiet_flag(p)
 
@@ -98,6 +105,14 @@ def run_synthesize(args: Any) -> Any:
     mesh = "default"
     if args.efficiency is not None and args.efficiency != "default":
         mesh = parse_number(args.efficiency, what="--efficiency")
+    eps_min = None if args.min_contact_ratio is None else parse_number(args.min_contact_ratio, what="--min-contact-ratio")
+    if eps_min is not None and not eps_min > 0:
+        raise InputError(f"--min-contact-ratio must be positive, got {args.min_contact_ratio}")
+    # designs the geometry may leave out: ask the search for more, so that --top are left (4 times as many)
+    filtering = eps_min is not None or (not args.allow_undercut and args.zmin is not None)
+    wanted = top
+    if filtering and top is not None:
+        top = 4 * top
     bar = Progress(enabled=not args.quiet)
     try:
         result = synthesize(
@@ -123,9 +138,20 @@ def run_synthesize(args: Any) -> Any:
         )
     finally:
         bar.close()
+    data = result.to_json()
+    geometry = [_design_geometry(d) for d in result.designs]
+    examined = len(geometry)
+    keep = [i for i, g in enumerate(geometry) if g is None or (
+        (args.allow_undercut or not g["undercut"]) and (eps_min is None or g["contact_ratio_min"] >= eps_min))]
+    left_out = len(geometry) - len(keep)
+    keep = keep[:wanted]
+    result = dataclasses.replace(result, designs=tuple(result.designs[i] for i in keep))
+    data["designs"] = [{**data["designs"][i], "geometry": _geometry_json(geometry[i])} for i in keep]
+    geometry = [geometry[i] for i in keep]
+    notes = _geometry_notes(result, geometry, (left_out, examined), eps_min, args.allow_undercut)
+    data["notes"] = [*data.get("notes", []), *notes]
     checks = [d.check() for d in result.designs]
     etas = None  # a column of efficiencies that do not rank (ranked ones are in the table and each check)
-    data = result.to_json()
     meshes = dict(result.mesh_efficiency)
     if args.efficiency is not None and "efficiency" not in result.rank:
         from symkin.statics.power import mesh_efficiencies
@@ -139,7 +165,59 @@ def run_synthesize(args: Any) -> Any:
         if etas is not None:
             design["efficiency"] = exact_json(etas[i])
             design["locks"] = locks(etas[i])
-    return emit(_text(result, checks, args.latex, etas, meshes), data, 0 if all(c.passed for c in checks) else 1)
+    text = _text(result, checks, args.latex, etas, meshes, geometry)
+    text += "".join(f"\nnote: {n}" for n in notes)
+    return emit(text, data, 0 if all(c.passed for c in checks) else 1)
+
+
+def _design_geometry(design: Any) -> dict[str, Any] | None:
+    """A design's gear geometry with the shifts its centre distances need (symkin geometry --choose-shifts):
+    the least contact ratio, the shifts, whether a gear is undercut, the problems; None without one
+    (a train without a module in mm, a bevel train)."""
+    from symkin.geometry import coaxial_shifts, train_geometry
+
+    try:
+        train = design.train()
+        shifts = coaxial_shifts(train)
+        geo = train_geometry(train, shifts=shifts)
+    except SymkinError:
+        return None
+    if not geo.meshes:
+        return None
+    return {"shifts": {g: shifts[g] for g in geo.gears if g in shifts and shifts[g] != 0},
+            "contact_ratio_min": min(float(m.pair.contact_ratio) for m in geo.meshes),
+            "undercut": any(g.undercut for g in geo.gears.values()), "problems": geo.problems}
+
+
+def _geometry_json(geometry: dict[str, Any] | None) -> dict[str, Any] | None:
+    if geometry is None:
+        return None
+    return {**geometry, "shifts": {g: float(x) for g, x in geometry["shifts"].items()}}
+
+
+def _geometry_notes(result: Any, geometry: list[Any], counts: tuple[int, int], eps_min: Any,
+                    allow_undercut: bool) -> list[str]:
+    from symkin.synthesis import undercut_minimum
+
+    o = result.problem.options
+    notes = []
+    limit = undercut_minimum(o.pressure_angle, o.addendum)
+    if o.zmin < limit:
+        notes.append(f"gears of fewer than {limit} teeth are undercut unshifted (alpha = {o.pressure_angle} deg, h_a* = "
+                     f"{o.addendum}); each design is given the shifts its centre distances allow that keep its gears "
+                     "free of undercut" + ("" if allow_undercut else "; designs still undercut are left out "
+                                           "(--allow-undercut keeps them)"))
+    left_out, examined = counts
+    if left_out:
+        why = " or ".join(w for w, on in (("undercut", not allow_undercut),
+                                            (f"a contact ratio below {eps_min}", eps_min is not None)) if on)
+        notes.append(f"{left_out} of the best {examined} designs {'was' if left_out == 1 else 'were'} left out for {why} "
+                     "(a larger --top or --zmin lists others)")
+    flagged = [f"design {i}: {p}" for i, g in enumerate(geometry, 1) if g for p in g["problems"]]
+    notes += flagged[:20]
+    if len(flagged) > 20:
+        notes.append(f"... and {len(flagged) - 20} more geometry problems (symkin geometry on a design's train lists them)")
+    return notes
 
 
 def _efficiency(design: Any, mesh: Any) -> Any:
@@ -151,7 +229,7 @@ def _efficiency(design: Any, mesh: Any) -> Any:
 
 
 def _text(result: Any, checks: list[Any], latex: bool, etas: list[Any] | None = None,
-          meshes: dict[str, Any] | None = None) -> str:
+          meshes: dict[str, Any] | None = None, geometry: list[Any] | None = None) -> str:
     from symkin._util.jsonout import float_text
     from symkin.synthesis.result import describe_designs, efficiency_text
 
@@ -180,6 +258,10 @@ def _text(result: Any, checks: list[Any], latex: bool, etas: list[Any] | None = 
         if etas is not None:
             row += "  efficiency" if i == 0 else f"  {efficiency_text(etas[i - 1]):>10}"
         lines.append(f"  {row}  {mark}")
+        g = None if geometry is None or i == 0 else geometry[i - 1]
+        if g is not None:
+            lines.append(f"      least contact ratio {g['contact_ratio_min']:.3f}" + ("; profile shifts " + ", ".join(
+                f"{n} {float(x):+.4f}" for n, x in g["shifts"].items()) if g["shifts"] else ""))
     lines.append("check: each train built with its teeth; ratio derived again, coaxiality and planet positions from "
                  "the model, the least gap between planet copies measured" +
                  ("; efficiency from each train's statics (basic-train method), not a ranking key" if etas else "") +

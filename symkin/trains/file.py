@@ -27,6 +27,9 @@ Beyond it (all optional):
 - a gear as a table: ``teeth``, ``internal``, ``module`` (its own), ``radius`` (a pitch
   radius given directly, e.g. a working one), ``bevel = true`` (a bevel gear) and, for a
   bevel side gear, ``side = 1`` or ``-1`` (it meets the pinions above or below their axes);
+  its tooth form for ``symkin geometry``: ``shift`` (the profile shift coefficient x, 0),
+  ``addendum`` (h_a*, 1), ``dedendum`` (h_f*, 1.25), ``pressure_angle`` (degrees, 20),
+  ``fillet`` (the rack's tip radius rho_f*, 0.38) and ``tip_diameter`` (mm, a tip turned down);
 - a planet: ``angle`` (its position on the carrier at t = 0, radians; text such as
   ``"pi/3"`` is exact), ``arm`` (its distance from its carrier's axis; ``0``: it turns
   about its carrier's own axis), ``count`` (equal planets of this kind, equally spaced);
@@ -86,6 +89,8 @@ _TOP = {"name", "description", "module", "meshes", "links", "states", "base"}
 _BASE = {"x", "y", "z", "yaw", "pitch", "roll"}
 _LINK = {"gears", "carrier", "angle", "arm", "count", "axis", "inertia", "mass", "stiffness"}
 _GEAR = {"teeth", "internal", "module", "radius", "bevel", "side"}
+#: The tooth form keys of a gear table (symkin.geometry): profile shift, h_a*, h_f*, degrees, rho_f*, mm.
+_FORM = {"shift", "addendum", "dedendum", "pressure_angle", "fillet", "tip_diameter"}
 _MESH = {"gears", "centre_distance", "efficiency", "stiffness"}
 _STATE = {"input", "output", "brakes", "clutches", "description"}
 _SYMBOL = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
@@ -167,6 +172,7 @@ def read_train(text: str, path: str = "<train>") -> Train:
 class _Reader:
     def __init__(self, path: str, data: Mapping[str, Any]):
         self.path, self.data = path, data
+        self.forms: dict[str, tuple[tuple[str, Any], ...]] = {}
 
     def fail(self, where: str, problem: str) -> TrainFileError:
         return TrainFileError(self.path, where, problem)
@@ -234,11 +240,26 @@ class _Reader:
             raise self.fail(where, f"must be a name (a string), got {_show(value)}")
         return value
 
+    def form(self, spec: Mapping[str, Any], where: str) -> tuple[tuple[str, Any], ...]:
+        """A gear's tooth form keys, exact (their ranges are checked by symkin.geometry.ToothForm)."""
+        out = []
+        for key in sorted(_FORM & set(spec)):
+            value = self.number(spec[key], f"{where} {key}", positive=key != "shift")
+            if not value.is_Rational:
+                raise self.fail(f"{where} {key}", f"must be a plain number such as 0.25, got {_show(spec[key])}")
+            if key == "pressure_angle" and not 5 <= value <= 45:
+                raise self.fail(f"{where} {key}", f"is in degrees, from 5 to 45 (usually 20), got {_show(spec[key])}")
+            if key in ("shift", "fillet") and abs(value) > 5:  # (a positive fillet; 0 is refused: rho_f* > 0)
+                raise self.fail(f"{where} {key}", f"is a coefficient times the module, within -5 and 5, got {_show(spec[key])}")
+            out.append((key, value))
+        return tuple(out)
+
     # ---- tables
     def gear(self, name: str, spec: Any, module: sp.Expr, where: str) -> Gear:
         try:
             if isinstance(spec, Mapping):
-                spec = self.keys(spec, _GEAR, where)
+                spec = self.keys(spec, _GEAR | _FORM, where)
+                self.forms[name] = self.form(spec, where)
                 internal = spec.get("internal", False)
                 bevel = spec.get("bevel", False)
                 side = spec.get("side", 0)
@@ -336,7 +357,7 @@ class _Reader:
         base = self.base(data["base"]) if "base" in data else None
         try:
             train = Train(tuple(links), tuple(meshes), name=name, states=tuple(states), description=description,
-                          source=self.path, base=base)
+                          source=self.path, base=base, tooth_forms=tuple((g, f) for g, f in self.forms.items() if f))
         except TrainFileError:
             raise
         except ModelError as err:

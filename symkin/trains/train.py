@@ -139,12 +139,16 @@ class Train(Mechanism):
         Where it was read from (a file, or a ready-made train's name).
     base : SpaceFrame, optional
         The base's motion in space the file gives ([base]): the drawing commands use it.
+    tooth_forms : tuple of (gear name, ((key, value), ...))
+        The tooth form keys a gear's table gives (``shift``, ``addendum``, ``dedendum``,
+        ``pressure_angle``, ``fillet``, ``tip_diameter``), exact; :mod:`symkin.geometry` reads them.
     """
 
     states: tuple[State, ...] = ()
     description: str = ""
     source: str = ""
     base: Any = None
+    tooth_forms: tuple[tuple[str, tuple[tuple[str, Any], ...]], ...] = ()
 
     def __post_init__(self) -> None:
         super().__post_init__()

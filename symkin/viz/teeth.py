@@ -3,7 +3,8 @@
 A gear with a tooth number is drawn with standard involute teeth (pressure angle 20
 degrees, addendum one module, dedendum 1.25 modules) cut on its working pitch circle:
 the module is ``2 r / z``, so the pitch circle the kinematics uses is the one the teeth
-roll on.  :func:`mesh_phases` turns each gear at t = 0 so that a tooth of one gear of every
+roll on.  The outline is :func:`symkin.geometry.tooth_outline`'s, the one ``symkin geometry``
+exports to CAD: involute flanks, and the root fillet the ISO 53 rack cuts.  :func:`mesh_phases` turns each gear at t = 0 so that a tooth of one gear of every
 mesh sits in a space of the other; as the derived motion turns the links, they stay meshed.
 
     >>> x, y = involute_outline(10, 20)
@@ -22,7 +23,7 @@ import sympy as sp
 from symkin.errors import InputError
 from symkin.values import as_values, substitute
 
-__all__ = ["involute_outline", "mesh_phases", "PRESSURE_ANGLE"]
+__all__ = ["involute_outline", "mesh_phases", "outline_figure", "PRESSURE_ANGLE"]
 
 #: Pressure angle of the drawn teeth, in radians (20 degrees).
 PRESSURE_ANGLE = float(np.radians(20))
@@ -72,33 +73,12 @@ def involute_outline(
     z = int(teeth)
     if z < 3 or not np.isfinite(radius) or radius <= 0:
         raise InputError(f"cannot draw {teeth} teeth on a pitch radius {radius}: give at least 3 teeth and a positive radius")
-    m = 2 * radius / z
-    rb = radius * np.cos(pressure_angle)
-    inner, outer = (radius - m, radius + 1.25 * m) if internal else (radius - 1.25 * m, radius + m)
-    inner = max(inner, 1e-9)
-    lo = max(inner, rb)
-    rho = np.linspace(lo, outer, points)
-    alpha_rho = np.arccos(np.clip(rb / rho, -1, 1))
-    # half the angular width of an external gear's tooth at radius rho; for a ring, of its space
-    half = np.pi / (2 * z) + _inv(pressure_angle) - _inv(alpha_rho)
-    if internal:
-        half = np.pi / z - half  # the ring's tooth is the space of the external gear
-    pitch = 2 * np.pi / z
-    ang: list[np.ndarray] = []
-    rad: list[np.ndarray] = []
-    for k in range(z):
-        c = phase + k * pitch
-        # tooth k: one flank up (root to tip for an external gear, tip to root for a ring), across, the other down
-        flank_r = np.concatenate([[inner], rho]) if lo > inner else rho
-        flank_h = np.concatenate([[half[0]], half]) if lo > inner else half
-        if internal:
-            flank_r, flank_h = flank_r[::-1], flank_h[::-1]
-        ang += [c - flank_h, c + flank_h[::-1]]
-        rad += [flank_r, flank_r[::-1]]
-    a, r = np.concatenate(ang), np.concatenate(rad)
-    a, r = np.append(a, a[0] + 2 * np.pi), np.append(r, r[0])
-    # the arcs between the points of neighbouring flanks are short for any practical tooth number
-    return r * np.cos(a), r * np.sin(a)
+    from symkin.geometry import ToothForm, gear_geometry, tooth_outline
+
+    module = sp.Rational(repr(float(2 * radius / z)))
+    degrees = sp.Rational(repr(round(float(np.degrees(pressure_angle)), 9)))
+    gear = gear_geometry(z, module, ToothForm(pressure_angle=degrees), internal=internal)
+    return tooth_outline(gear, phase=phase, points=points)
 
 
 def mesh_phases(mech: Any, values: Mapping[Any, Any] | None = None) -> dict[str, float]:
@@ -129,37 +109,45 @@ def mesh_phases(mech: Any, values: Mapping[Any, Any] | None = None) -> dict[str,
         for g in link.gears:
             if g.teeth is not None and not g.bevel and sp.sympify(g.teeth).is_Integer:
                 toothed[g.name] = (g, link)
-    phases: dict[str, float] = {}
-    edges: dict[str, list[str]] = {name: [] for name in toothed}
-    for mesh in mech.meshes:
-        if mesh.a in toothed and mesh.b in toothed:
-            edges[mesh.a].append(mesh.b)
-            edges[mesh.b].append(mesh.a)
-    for start in toothed:
-        if start in phases:
-            continue
-        phases[start] = 0.0
-        queue = [start]
-        while queue:
-            a = queue.pop(0)
-            ga, la = toothed[a]
-            for b in edges[a]:
-                if b in phases:
-                    continue
-                gb, lb = toothed[b]
-                ca, cb = centre(la), centre(lb)
-                d = cb - ca
-                if float(np.hypot(*d)) < 1e-12:
-                    continue
-                beta = float(np.arctan2(d[1], d[0]))  # direction from a's axis to b's axis
-                za, zb = int(ga.teeth), int(gb.teeth)
-                # the contact point seen from each axis: towards the other axis, or away for a ring
-                # that holds the other gear inside
-                seen_a = beta + (np.pi if gb.internal else 0.0)
-                seen_b = beta + (0.0 if ga.internal else np.pi)
-                # a's tooth offset at its contact direction, in a's pitches
-                offset_a = ((seen_a - phases[a]) / (2 * np.pi / za)) % 1.0
-                # b shows a space (a half pitch off a tooth) where a shows a tooth, mirrored by the rolling
-                phases[b] = seen_b + (offset_a - 0.5) * 2 * np.pi / zb * (1 if ga.internal or gb.internal else -1)
-                queue.append(b)
-    return phases
+    from symkin.geometry.outline import mesh_phases as phases_of
+
+    gears = {name: (int(g.teeth), g.internal, tuple(float(c) for c in centre(link))) for name, (g, link) in toothed.items()}
+    return phases_of(gears, [(m.a, m.b) for m in mech.meshes])  # type: ignore[arg-type]
+
+
+def outline_figure(geometry: Any, *, title: str | None = None, zoom: tuple[float, float, float] | None = None) -> Any:
+    """The tooth outlines of a :class:`~symkin.geometry.TrainGeometry`, placed as the train puts them
+    (the ones ``symkin geometry --out`` writes to DXF and SVG), each gear named, in mm.
+
+    ``zoom = (x, y, half_width)`` adds a second panel around a point (a mesh's pitch point).
+
+    >>> from symkin.geometry import train_geometry
+    >>> from symkin.trains import load_train
+    >>> fig = outline_figure(train_geometry(load_train("simple")))
+    >>> len(fig.axes)
+    1
+    """
+    from symkin.geometry.export import placed_outlines
+    from symkin.viz.style import PALETTE, new_figure, style_axes
+
+    shapes = placed_outlines(geometry, points=16)
+    panels = 2 if zoom else 1
+    fig = new_figure(width=3.4 * panels, height=3.4)
+    axes = [fig.add_subplot(1, panels, k + 1) for k in range(panels)]
+    for ax in axes:
+        style_axes(ax)
+    for k, (name, (x, y)) in enumerate(shapes.items()):
+        for ax in axes:
+            ax.plot(x, y, lw=0.7, color=PALETTE[k % len(PALETTE)], linestyle="-", label=name)
+    for ax in axes:
+        ax.set_aspect("equal")
+        ax.set_xlabel("x, mm")
+    axes[0].set_ylabel("y, mm")
+    axes[0].legend(loc="upper left", fontsize="small", frameon=False)
+    if zoom:
+        cx, cy, half = zoom
+        axes[1].set_xlim(cx - half, cx + half)
+        axes[1].set_ylim(cy - half, cy + half)
+    if title:
+        axes[0].set_title(title)
+    return fig

@@ -36,7 +36,7 @@ LAYERS: list[tuple[str, ...]] = [
     ("symkin.model",),
     ("symkin.kinematics", "symkin.particles", "symkin.drives", "symkin.vectorloop"),
     ("symkin.schemes", "symkin.trains"),
-    ("symkin.study", "symkin.statics", "symkin.dynamics"),
+    ("symkin.study", "symkin.statics", "symkin.dynamics", "symkin.geometry"),
     ("symkin.synthesis",),
     ("symkin.mechanisms",),
     ("symkin.viz",),

@@ -184,6 +184,7 @@ COMMANDS: dict[str, Command] = {
     "dynamics": Command(("dynamics", "--train", "simple", "--state", "low", "--coordinates", "S", "--torque", "S=2",
                          "--json")),
     "modes": Command(("modes", "--train", "simple", "--state", "low", "--value", "J_S=0.01", "--json")),
+    "geometry": Command(("geometry", "--train", "simple", "--min-contact-ratio", "1.2", "--out", "g.svg", "--json")),
     "trajectory": Command(("trajectory", *_AI1, "--point", "2:10,0", "--module", "1", "--turns", "1", "--out", "t.png", "--json")),
     "trajectory-space": Command(("trajectory", *_AI1, "--point", "2:10,0,1", "--base-z", "5*t", "--base-pitch", "t/10",
                                  "--turns", "1", "--out", "t.png", "--json")),

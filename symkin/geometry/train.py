@@ -1,0 +1,239 @@
+"""The geometry of every spur gear and mesh of a train, the problems found, and the shifts a coaxial set needs.
+
+A train file gives each gear's tooth form (``{ teeth = 20, shift = 0.25 }``, see
+:class:`~symkin.geometry.ToothForm`) and each mesh its working centre distance where the
+pitch circles do not give it.  :func:`train_geometry` puts them together:
+
+- a mesh with a working centre distance (``centre_distance``, or pitch radii given in the
+  file) works at it, ``cos(alpha_w) = a cos(alpha) / a_w`` exactly, and its gears' shifts
+  must give it (the involute equation): when they do not (within :data:`SHIFT_TOLERANCE`),
+  the problem names the shift sum the distance needs;
+- a mesh without one works where its shifts put it: a shift sum other than 0 moves the gears
+  apart, and the problem asks for that ``centre_distance`` in the file (the kinematics and
+  the drawings place the gears where the file says).
+
+:func:`coaxial_shifts` chooses shifts that give every mesh the centre distance the train
+puts it at (every planet mesh of a coaxial set shares its planet's arm): each mesh fixes
+the sum ``x1 + x2`` (internal: ``x2 - x1``), which leaves one free shift per connected set
+of gears; it is chosen to make the largest shift of the set least while every external gear
+stays free of undercut (``x >= x_min``): the smallest shifts that build the set.  Bevel
+gears are left out (spur geometry only).
+
+    >>> from symkin.trains import load_train
+    >>> geo = train_geometry(load_train("simple"))
+    >>> [round(float(m.pair.contact_ratio), 3) for m in geo.meshes]
+    [1.602, 1.931]
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+import sympy as sp
+
+from symkin.errors import InputError
+from symkin.geometry.gear import GearGeometry, ToothForm, gear_geometry
+from symkin.geometry.mesh import DIGITS, MIN_CONTACT_RATIO, PairGeometry, pair_geometry, shift_sum_for
+from symkin.geometry.outline import mesh_phases
+
+__all__ = ["TrainGeometry", "MeshReport", "train_geometry", "coaxial_shifts", "SHIFT_TOLERANCE"]
+
+#: Shifts whose sum is this close to the one a centre distance needs give that distance.
+SHIFT_TOLERANCE = sp.Rational(1, 10**4)
+
+
+@dataclass(frozen=True)
+class MeshReport:
+    """One mesh: its gears by name (the internal one second), its geometry and its problems."""
+
+    gears: tuple[str, str]
+    pair: PairGeometry
+    problems: tuple[str, ...]
+
+
+@dataclass(frozen=True)
+class TrainGeometry:
+    """Every spur gear and mesh of a train (lengths in mm), with what keeps it from being made or run."""
+
+    gears: dict[str, GearGeometry]
+    meshes: tuple[MeshReport, ...]
+    #: Where each gear's axis is at t = 0 (mm) and the turn (rad) that meshes its teeth with its partners'.
+    placement: dict[str, tuple[float, float, float]]
+    notes: tuple[str, ...] = ()
+    gear_problems: dict[str, tuple[str, ...]] = field(default_factory=dict)
+
+    @property
+    def problems(self) -> list[str]:
+        """Every problem, each naming its gear or mesh."""
+        out = [f"gear {g}: {p}" for g, ps in self.gear_problems.items() for p in ps]
+        out += [f"mesh {m.gears[0]}-{m.gears[1]}: {p}" for m in self.meshes for p in m.problems]
+        return out
+
+
+def _forms(train: Any) -> dict[str, dict[str, Any]]:
+    return {g: dict(keys) for g, keys in getattr(train, "tooth_forms", ())}
+
+
+def _spur_gears(train: Any, shifts: Mapping[str, Any] | None) -> tuple[dict[str, GearGeometry], list[str]]:
+    forms = _forms(train)
+    gears: dict[str, GearGeometry] = {}
+    notes = []
+    for link in train.links:
+        for gear in link.gears:
+            if gear.bevel or link.axis == "radial":
+                notes.append(f"gear {gear.name} is a bevel gear; its geometry is not covered (spur gears only)")
+                continue
+            if gear.teeth is None or not gear.teeth.is_Integer:
+                raise InputError(f"gear {gear.name} has no tooth number ({gear.teeth}); give it one in the train file")
+            if gear.module is None or not gear.module.is_number:
+                raise InputError(f"gear {gear.name} has no module in mm; give the train a module (module = 2)")
+            keys = dict(forms.get(gear.name, {}))
+            tip = keys.pop("tip_diameter", None)
+            if shifts is not None and gear.name in shifts:
+                keys["shift"] = shifts[gear.name]
+            gears[gear.name] = gear_geometry(gear.teeth, gear.module, ToothForm(**keys), internal=gear.internal,
+                                             tip_diameter=tip)
+    return gears, notes
+
+
+def _gear_problems(g: GearGeometry) -> tuple[str, ...]:
+    out = []
+    if g.undercut:
+        out.append(f"undercut: shift {float(g.shift):.4f} is below {float(g.minimum_shift or 0):.4f}, the least that cuts none")
+    if g.pointed:
+        out.append("pointed tip: the flanks meet below the tip circle (lower the shift or turn the tip down)")
+    elif g.thin_tip:
+        out.append(f"thin tip: {float(g.tip_thickness or 0):.3f} mm, below 0.2 m")
+    if g.tip_inside_base:
+        out.append("the tip circle lies inside the base circle: no involute at the tip (raise the shift)")
+    return tuple(out)
+
+
+def _ordered(train: Any, a: str, b: str) -> tuple[str, str]:
+    return (b, a) if train.gear(a).internal else (a, b)
+
+
+def train_geometry(train: Any, *, shifts: Mapping[str, Any] | None = None,
+                   min_contact_ratio: Any = MIN_CONTACT_RATIO) -> TrainGeometry:
+    """The geometry of ``train``'s spur gears and meshes (see the module docstring).
+
+    ``shifts`` (gear name -> x) replaces the file's shifts (e.g. :func:`coaxial_shifts`'s choice).
+    """
+    gears, notes = _spur_gears(train, shifts)
+    meshes = []
+    for mesh in train.meshes:
+        if mesh.a not in gears or mesh.b not in gears:
+            continue
+        a, b = _ordered(train, mesh.a, mesh.b)
+        g1, g2 = gears[a], gears[b]
+        placed = sp.nsimplify(train.mesh_geometry(mesh).centre_distance)
+        problems = []
+        x_sum = (g2.shift - g1.shift) if g2.internal else (g1.shift + g2.shift)
+        try:
+            reference = pair_geometry(g1, g2)
+            if placed != reference.reference_centre_distance:
+                pair = pair_geometry(g1, g2, placed)
+                needed = shift_sum_for(g1, g2, placed)
+                if abs(sp.N(needed - x_sum, DIGITS)) > SHIFT_TOLERANCE:
+                    which = f"x_{b} - x_{a}" if g2.internal else f"x_{a} + x_{b}"
+                    problems.append(f"the centre distance {placed} mm needs {which} = {float(needed):.4f}, the shifts give "
+                                    f"{float(x_sum):.4f} (symkin geometry --choose-shifts picks them)")
+            else:
+                pair = reference
+                if x_sum != 0:
+                    problems.append(f"the shifts move the gears to {float(pair.centre_distance):.4f} mm apart; add "
+                                    f"centre_distance = {float(pair.centre_distance):.4f} to this mesh in the train file")
+        except InputError as err:
+            raise InputError(f"mesh {a}-{b}: {err}") from None
+        problems += pair.problems(min_contact_ratio)
+        meshes.append(MeshReport((a, b), pair, tuple(problems)))
+    geo_problems = {name: p for name, g in gears.items() if (p := _gear_problems(g))}
+    return TrainGeometry(gears, tuple(meshes), _placement(train, gears, meshes), tuple(notes), geo_problems)
+
+
+def _placement(train: Any, gears: Mapping[str, GearGeometry], meshes: list[MeshReport]) -> dict[str, tuple[float, float, float]]:
+    """Axis positions at t = 0 and turns that put a tooth of one gear of each mesh in a space of the other."""
+    owner = {g.name: link.name for link in train.links for g in link.gears}
+    centre: dict[str, tuple[float, float]] = {}
+    for name in gears:
+        x, y = train.axis_position(owner[name])
+        centre[name] = (float(x), float(y))
+    phase = mesh_phases({n: (int(g.teeth), g.internal, centre[n]) for n, g in gears.items()}, [m.gears for m in meshes])
+    return {name: (centre[name][0], centre[name][1], phase[name]) for name in gears}
+
+
+def coaxial_shifts(train: Any, *, digits: int = 5) -> dict[str, sp.Rational]:
+    """Shift coefficients that give every spur mesh of ``train`` the centre distance the train places it at.
+
+    Each mesh fixes a sum (external) or a difference (internal); one shift per connected set of
+    gears is free, chosen to make the largest shift least with no external gear undercut (see the
+    module docstring).  The shifts are rounded to ``digits`` decimals (exact Rationals); gears in no spur
+    mesh are not in the result.
+    """
+    gears, _ = _spur_gears(train, None)
+    rules: list[tuple[str, str, int, sp.Expr]] = []  # x_b = sign * x_a + value
+    for mesh in train.meshes:
+        if mesh.a not in gears or mesh.b not in gears:
+            continue
+        a, b = _ordered(train, mesh.a, mesh.b)
+        needed = shift_sum_for(gears[a], gears[b], sp.nsimplify(train.mesh_geometry(mesh).centre_distance))
+        rules.append((a, b, 1, needed) if gears[b].internal else (a, b, -1, needed))
+    affine: dict[str, tuple[sp.Expr, int]] = {}  # x = c + k t
+    chosen: dict[str, sp.Expr] = {}
+    for start in gears:
+        if start in affine or not any(start in r[:2] for r in rules):
+            continue
+        component = [start]
+        affine[start] = (sp.Integer(0), 1)
+        fixed: list[float] = []  # t where a loop of meshes fixes it
+        queue = [start]
+        while queue:
+            here = queue.pop()
+            for a, b, sign, value in rules:
+                if here not in (a, b):
+                    continue
+                if here == a:
+                    there, c, k = b, sign * affine[a][0] + value, sign * affine[a][1]
+                else:  # x_a = sign * (x_b - value)
+                    there, c, k = a, sign * (affine[b][0] - value), sign * affine[b][1]
+                if there in affine:
+                    gap = float(sp.N(affine[there][0] - c, DIGITS))
+                    if affine[there][1] != k:
+                        fixed.append(gap / (k - affine[there][1]))
+                    elif abs(gap) > SHIFT_TOLERANCE:
+                        raise InputError(f"the meshes of gear {there} ask for two different shifts: its centre distances "
+                                         "cannot all be met by profile shift; change a centre distance or a tooth number")
+                    continue
+                affine[there] = (c, k)
+                component.append(there)
+                queue.append(there)
+        if fixed and max(fixed) - min(fixed) > SHIFT_TOLERANCE:
+            raise InputError(f"the meshes around gear {start} ask for two different shifts: their centre distances "
+                             "cannot all be met by profile shift; change a centre distance or a tooth number")
+        t = fixed[0] if fixed else _least_shifts(
+            [(float(sp.N(affine[g][0], DIGITS)), affine[g][1], None if gears[g].internal else float(gears[g].minimum_shift or 0))
+             for g in component], margin=10.0**-digits)
+        for g in component:
+            c, k = affine[g]
+            chosen[g] = sp.Rational(f"{float(sp.N(c, DIGITS)) + k * t:.{digits}f}")
+    return chosen
+
+
+def _least_shifts(lines: list[tuple[float, int, float | None]], margin: float = 0.0) -> float:
+    """The free shift t of x = c + k t (k = +-1) that makes the largest |x| least with every
+    external gear free of undercut (x >= x_min); when no t keeps them all free, the middle
+    of the two limits.  ``margin`` keeps t that far inside its limits (for the rounding of the shifts)."""
+    low = max((xm - c for c, k, xm in lines if xm is not None and k == 1), default=-math.inf)
+    high = min((c - xm for c, k, xm in lines if xm is not None and k == -1), default=math.inf)
+    if high - low > 2 * margin:
+        low, high = low + margin, high - margin
+    if low > high:
+        return (low + high) / 2
+    candidates = {-c * k for c, k, _ in lines}
+    candidates |= {-(c1 + c2) / (k1 + k2) for c1, k1, _ in lines for c2, k2, _ in lines if k1 + k2}
+    candidates |= {(c2 - c1) / 2 * k1 for c1, k1, _ in lines for c2, k2, _ in lines if k1 == -k2}
+    feasible = [min(max(t, low), high) for t in candidates]
+    return min(feasible, key=lambda t: (max(abs(c + k * t) for c, k, _ in lines), abs(t)))
