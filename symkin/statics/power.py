@@ -115,7 +115,10 @@ class MeshPower:
         Power out of gear a into the mesh in the frame of the link holding both axes
         (what the mesh loses a share of): positive when gear a drives.
     power : sympy expression
-        Power through the mesh in the frame of the ground (``F c_a omega_a``).
+        Power through the contact: the tooth force times the pitch point's velocity relative
+        to the link holding both axes, counted from the driving gear (non-negative; ``Abs``
+        where the driver depends on the teeth).  It depends on neither the order of the
+        meshes nor the order of a mesh's gears.
     driver : str or None
         The gear that drives in the relative motion (None where it depends on the teeth).
     """
@@ -160,7 +163,11 @@ class Statics:
     efficiencies : dict
         Each mesh's efficiency as used (a symbol or a number).
     circulating : sympy expression
-        The largest power through a mesh per unit input power: above 1, power circulates.
+        The largest power through a mesh (relative to its carrier, :attr:`MeshPower.power`)
+        per unit input power: above 1, the meshes roll more power than the train transmits.
+    housing, housing_with_losses : sympy expression
+        The torque the housing (the frame, through the brakes and the gears fixed to it)
+        puts on the train per unit input torque, ideal and with losses: ``-(T_in + T_out)``.
     """
 
     mechanism: Mechanism
@@ -175,6 +182,8 @@ class Statics:
     lossy_torques: dict[str, sp.Expr]
     efficiencies: dict[str, sp.Expr]
     circulating: sp.Expr
+    housing: sp.Expr = sp.Integer(0)
+    housing_with_losses: sp.Expr = sp.Integer(0)
     _cache: dict = field(default_factory=dict, init=False, repr=False, compare=False, hash=False)
 
     @property
@@ -210,6 +219,9 @@ class Statics:
             "mesh_efficiencies": {k: exact_json(v) if v.is_number else str(v) for k, v in self.efficiencies.items()},
             "torques": {k: exact_json(v) for k, v in self.torques.items()},
             "torques_with_losses": {k: exact_json(v) if v.is_number else str(v) for k, v in self.lossy_torques.items()},
+            "housing_torque": exact_json(self.housing),
+            "housing_torque_with_losses": exact_json(self.housing_with_losses) if self.housing_with_losses.is_number
+            else str(self.housing_with_losses),
             "meshes": [m.to_json() for m in self.meshes],
         }
 
@@ -254,8 +266,10 @@ class Statics:
             other = f"; {self.output} can drive {self.input}" if back.is_number and back > 0 else ""
             lines.append(f"this way it locks: {self.input} cannot drive {self.output} (efficiency zero or below){other}")
         if self.circulating.is_number and self.circulating > 1:
-            lines.append(f"circulating power: a mesh carries {float_text(self.circulating)} times the input power")
-        lines.append("torques (ideal): " + ", ".join(f"{k} {v}" for k, v in self.torques.items() if v != 0))
+            lines.append(f"circulating power: a mesh carries {float_text(self.circulating)} times the input power "
+                         "(relative to its carrier)")
+        lines.append("torques (ideal): " + ", ".join(f"{k} {v}" for k, v in self.torques.items() if v != 0)
+                     + f"; housing {self.housing}")
         lines.append("mesh           tangential    per planet    power      driver")
         for m in self.meshes:
             lines.append(f"{m.mesh.a}-{m.mesh.b:<10}  {_short(m.tangential):<12}  {_short(m.per_planet):<12}  {_short(m.power):<9}  "
@@ -382,9 +396,13 @@ def statics(
         count = _count(mech, s)
         meshes.append(MeshPower(
             s.mesh, F, sp.cancel(F / count), sp.Abs(F) * tan_alpha / count if not F.is_number else abs(F) * tan_alpha / count,
-            pa, sp.cancel(F * s.c_a * speeds[s.a]), None if sign is None else (s.mesh.a if sign > 0 else s.mesh.b)))
+            pa, sp.Abs(pa) if sign is None else sign * pa, None if sign is None else (s.mesh.a if sign > 0 else s.mesh.b)))
     circulating = max((sp.Abs(m.power) for m in meshes), key=lambda v: float(v) if v.is_number else math.inf, default=sp.Integer(0))
-    return Statics(mech, inp, out, held, pairs, speeds, torques, tuple(meshes), law, lossy_torques, etas, circulating)
+    housing = sp.cancel(-(torques[inp] + torques[out]))
+    lossy_out = lossy_torques[out]
+    housing_lossy = sp.piecewise_fold(-1 - lossy_out) if isinstance(lossy_out, sp.Piecewise) else sp.cancel(-1 - lossy_out)
+    return Statics(mech, inp, out, held, pairs, speeds, torques, tuple(meshes), law, lossy_torques, etas, circulating,
+                   housing, housing_lossy)
 
 
 def _unit_speeds(mech: Mechanism, inp: str, out: str, held: tuple[str, ...],
