@@ -275,7 +275,7 @@ class _Reader:
             where = f"[links.{link_name}]"
             gears = [self.gear(g, spec, module, f"{where} gears.{g}") for g, spec in table.get("gears", {}).items()]
             try:
-                if link_name in (FRAME_TABLE, FRAME):
+                if link_name == FRAME_TABLE:
                     extra = sorted(set(table) - {"gears"})
                     if extra:
                         raise self.fail(f"{where} {extra[0]}", "the frame holds fixed gears only")
