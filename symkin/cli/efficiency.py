@@ -49,7 +49,8 @@ def run_efficiency(args: Any) -> Any:
         if not hasattr(mech, "state"):
             raise InputError("--state belongs to a train file (--train FILE)")
         st = mech.state(args.state)
-        inp, out, fixed, joined = st.input, st.output, st.brakes, st.clutches
+        inp, out = st.input, st.output
+        fixed, joined = mech.engaged(st)  # its brakes and clutches, and the one-way clutches that hold it
     else:
         if not args.driver or not args.driven:
             raise InputError("name the input and the output: --driver LINK --driven LINK (and --fixed LINK), or --state")
@@ -78,6 +79,13 @@ def run_efficiency(args: Any) -> Any:
     result = statics(mech, input=inp, output=out, fixed=fixed, joined=joined, efficiency=efficiency)
     data = {**about, **result.to_json()}
     text = f"{title}\n{result.text()}"
+    if args.state is not None and getattr(mech, "one_ways", ()):
+        shift = mech.shift(args.state)
+        assert shift.drive is not None and shift.coast is not None  # a train with one-way clutches says both
+        data.update(one_way=shift.drive.to_json()["one_way"], coast=shift.coast.to_json())
+        text += f"\none-way clutches: {shift.drive.text()}; coast (the output driving): {shift.coast.text()}"
+        if shift.coast.free:
+            text += " - the output cannot drive the input back in this state (the efficiency driven back is the held train's)"
     if args.latex:
         symbolic = statics(mech, input=inp, output=out, fixed=fixed, joined=joined)
         data["latex"] = latex(symbolic.efficiency)
