@@ -334,15 +334,22 @@ def _decide(value: sp.Expr) -> int | None:
 def statics(
     mech: Mechanism,
     *,
-    input: str,
-    output: str,
+    input: str | None = None,
+    output: str | None = None,
     fixed: Sequence[str] = (),
     joined: Sequence[tuple[str, str]] = (),
     efficiency: Any = None,
     pressure_angle: Any = DEFAULT_PRESSURE_ANGLE,
-) -> Statics:
+    speeds: Mapping[str, Any] | None = None,
+    torques: Mapping[str, Any] | None = None,
+) -> Any:
     """Torques, tooth forces, power flow and efficiency of ``mech`` with ``input`` driving
     ``output`` while the ``fixed`` links are held and the ``joined`` pairs turn together.
+
+    With ``speeds`` and ``torques`` instead of ``input`` and ``output``: the train at an
+    operating point, an :class:`~symkin.statics.operating.OperatingPoint` (every link's speed,
+    torque and power, ideal and with losses, the loss; see
+    :func:`~symkin.statics.operating.operating_point`).
 
     Parameters
     ----------
@@ -375,6 +382,16 @@ def statics(
     >>> st.self_locking                         # gear 1 cannot drive the carrier: it locks
     True
     """
+    if speeds is not None or torques is not None:
+        if input is not None or output is not None:
+            raise InputError("give either input= and output= (per unit input torque), or speeds= and torques= (an "
+                             "operating point), not both")
+        from symkin.statics.operating import operating_point
+
+        return operating_point(mech, speeds or {}, torques or {}, fixed=fixed, joined=joined, efficiency=efficiency,
+                               pressure_angle=pressure_angle)
+    if input is None or output is None:
+        raise InputError("name the input and the output links (input=, output=), or give speeds= and torques=")
     inp, out = mech.link(input).name, mech.link(output).name
     held = tuple(dict.fromkeys(mech.link(f).name for f in fixed if mech.link(f).name != FRAME))
     pairs = tuple((mech.link(a).name, mech.link(b).name) for a, b in joined)
@@ -382,27 +399,35 @@ def statics(
     sides = _sides(mech)
     etas = _efficiencies(mech, sides, efficiency)
     forces, torques = _solve(mech, sides, [sp.Integer(1)] * len(sides), [0] * len(sides), inp, out, held, pairs)
+    meshes = _mesh_powers(mech, sides, forces, speeds, pressure_angle)
     # which gear drives each mesh (relative power out of gear a for a positive input power)
-    powers_a = [sp.cancel(-F * s.c_a * (speeds[s.a] - (0 if s.relative_a else speeds[s.holder])))
-                for s, F in zip(sides, forces)]
+    powers_a = [m.relative_power for m in meshes]
     signs = [_decide(p) for p in powers_a]
     eta_law, lossy_torques = _with_losses(mech, sides, etas, powers_a, signs, speeds, inp, out, held, pairs)
     held_text = ", ".join(held) or "nothing"
     law = Law(sp.Symbol(f"eta_{inp}{out}" + (f"^({','.join(held)})" if held else ""), positive=True), eta_law,
               f"efficiency, {inp} driving {out}, {held_text} held")
-    tan_alpha = sp.tan(as_real(pressure_angle, what="the pressure angle"))
-    meshes = []
-    for s, F, pa, sign in zip(sides, forces, powers_a, signs):
-        count = _count(mech, s)
-        meshes.append(MeshPower(
-            s.mesh, F, sp.cancel(F / count), sp.Abs(F) * tan_alpha / count if not F.is_number else abs(F) * tan_alpha / count,
-            pa, sp.Abs(pa) if sign is None else sign * pa, None if sign is None else (s.mesh.a if sign > 0 else s.mesh.b)))
     circulating = max((sp.Abs(m.power) for m in meshes), key=lambda v: float(v) if v.is_number else math.inf, default=sp.Integer(0))
     housing = sp.cancel(-(torques[inp] + torques[out]))
     lossy_out = lossy_torques[out]
     housing_lossy = sp.piecewise_fold(-1 - lossy_out) if isinstance(lossy_out, sp.Piecewise) else sp.cancel(-1 - lossy_out)
     return Statics(mech, inp, out, held, pairs, speeds, torques, tuple(meshes), law, lossy_torques, etas, circulating,
                    housing, housing_lossy)
+
+
+def _mesh_powers(mech: Mechanism, sides: Sequence[_Side], forces: Sequence[sp.Expr], speeds: Mapping[str, sp.Expr],
+                 pressure_angle: Any) -> list[MeshPower]:
+    """Each mesh's forces and the power through it (relative to the link holding both axes)."""
+    tan_alpha = sp.tan(as_real(pressure_angle, what="the pressure angle"))
+    meshes = []
+    for s, F in zip(sides, forces):
+        pa = sp.cancel(-F * s.c_a * (speeds[s.a] - (0 if s.relative_a else speeds[s.holder])))
+        sign = _decide(pa)
+        count = _count(mech, s)
+        meshes.append(MeshPower(
+            s.mesh, F, sp.cancel(F / count), sp.Abs(F) * tan_alpha / count if not F.is_number else abs(F) * tan_alpha / count,
+            pa, sp.Abs(pa) if sign is None else sign * pa, None if sign is None else (s.mesh.a if sign > 0 else s.mesh.b)))
+    return meshes
 
 
 def _unit_speeds(mech: Mechanism, inp: str, out: str, held: tuple[str, ...],
@@ -464,11 +489,22 @@ def _solve(
 ) -> tuple[list[sp.Expr], dict[str, sp.Expr]]:
     """Tooth forces (on the driving side) and external torques from the equilibrium of every
     moving link; ``drivers[k]`` is +1 when gear a drives mesh k, -1 when gear b does, 0 ideal."""
+    forces, found = _balance(mech, sides, eta, drivers, {inp: sp.Integer(1)}, [out, *held], pairs)
+    torques = {n: sp.Integer(0) for n in mech.link_names}
+    torques.update(found)
+    return forces, torques  # a clutch's torque is internal: not an external torque on its links
+
+
+def _balance(
+    mech: Mechanism, sides: Sequence[_Side], eta: Sequence[sp.Expr], drivers: Sequence[int], given: Mapping[str, Any],
+    unknown: Sequence[str], pairs: Sequence[tuple[str, str]],
+) -> tuple[list[sp.Expr], dict[str, sp.Expr]]:
+    """Tooth forces and the external torques on the ``given`` and ``unknown`` links from the
+    equilibrium of every moving link (``drivers`` as for :func:`_solve`)."""
     links = list(mech.link_names)
     row = {n: i for i, n in enumerate(links)}
     F = sp.symbols(f"F_0:{len(sides)}")
-    T_out = sp.Symbol("T_out")
-    reactions = {h: sp.Symbol(f"T_{h}") for h in held}
+    ports = {n: sp.Symbol(f"T_{n}") for n in unknown}
     clutch = [sp.Symbol(f"tau_{k}") for k in range(len(pairs))]
     sums = [sp.Integer(0)] * len(links)
 
@@ -485,29 +521,29 @@ def _solve(
         add(s.b, f_b * s.c_b)
         on_holder = (0 if s.relative_a else f_a * s.c_a) + (0 if s.relative_b else f_b * s.c_b)
         add(s.holder, -on_holder)
-    add(inp, sp.Integer(1))
-    add(out, T_out)
-    for h, r in reactions.items():
-        add(h, r)
+    for n, value in given.items():
+        add(n, value)
+    for n, r in ports.items():
+        add(n, r)
     for (a, b), tau in zip(pairs, clutch):
         add(a, tau)
         add(b, -tau)
-    unknowns = [*F, T_out, *reactions.values(), *clutch]
+    unknowns = [*F, *ports.values(), *clutch]
     # a linear system: solved as one (Gauss-Jordan over the fraction field) rather than through
     # sp.solve's general machinery, about 3x faster; the values are cancelled below either way
     solution = sp.linsolve(sums, unknowns)
     if solution == sp.S.EmptySet:
-        raise ModelError("the links cannot all be in equilibrium in this configuration (a locked or free train)")
+        raise ModelError("the links cannot all be in equilibrium in this configuration (a locked or free train, or "
+                         "more torques given than the balance leaves free)")
     (values,) = solution
     sol = {u: v for u, v in zip(unknowns, values) if v != u}  # an unknown left free stands for itself
     free = [u for u in unknowns if u not in sol]
+    loose = [n for n, r in ports.items() if r in free or sol[r].free_symbols & set(free)]
+    if loose:
+        raise ModelError(f"the balance leaves the torques on {', '.join(loose)} free: give more torques (torques=, "
+                         "--torque LINK=VALUE; 0 for a link without a shaft of its own)")
     if free:
         raise ModelError(f"the tooth forces are statically indeterminate here ({', '.join(map(str, free))} free): "
                          "redundant meshes share the load in a way the rigid model cannot decide")
-    forces = [sp.cancel(sol[f]) for f in F]
-    torques = {n: sp.Integer(0) for n in links}
-    torques[inp] = sp.Integer(1)
-    torques[out] = sp.cancel(sol[T_out])
-    for h, r in reactions.items():
-        torques[h] = sp.cancel(sol[r])
-    return forces, torques  # a clutch's torque is internal: not an external torque on its links
+    return [sp.cancel(sol[f]) for f in F], {**{n: sp.sympify(v) for n, v in given.items()},
+                                             **{n: sp.cancel(sol[r]) for n, r in ports.items()}}
