@@ -103,7 +103,7 @@ def ready_made() -> dict[str, str]:
     """The ready-made train files shipped with symkin: name -> description.
 
     >>> sorted(ready_made())[:4]
-    ['bevel-differential', 'bevel-epicyclic', 'double-pinion', 'ferguson']
+    ['bevel-differential', 'bevel-epicyclic', 'double-pinion', 'eight-speed']
     """
     out = {}
     for entry in sorted(_library().iterdir(), key=lambda e: e.name):
