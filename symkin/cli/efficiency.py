@@ -66,7 +66,7 @@ def run_efficiency(args: Any) -> Any:
     result = statics(mech, input=inp, output=out, fixed=fixed, joined=joined, efficiency=efficiency)
     data = {**about, **result.to_json()}
     text = f"{title}\n{result.text()}"
-    if args.state is not None and getattr(mech, "one_ways", ()):
+    if args.state is not None and getattr(mech, "one_ways", None):
         shift = mech.shift(args.state)
         assert shift.drive is not None and shift.coast is not None  # a train with one-way clutches says both
         data.update(one_way=shift.drive.to_json()["one_way"], coast=shift.coast.to_json())

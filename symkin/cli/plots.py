@@ -146,14 +146,15 @@ def _setup(args: Any) -> tuple[Any, Any, list, float, list[str], dict[str, Any],
 def _fastest(speed: Any, t_end: float) -> float:
     """The largest |speed| over 0 ... t_end (a speed in t sampled at 257 times), in rad/s."""
     import numpy as np
-    import sympy as sp
 
     from symkin import symbols as S
+    from symkin.numeric import compile as compile_law
 
     if not speed.has(S.t):
         return abs(float(speed)) if speed.is_number else 0.0
+    f = compile_law(speed, [S.t], backend="numpy", on_pole="return")
     with np.errstate(all="ignore"):
-        values = np.abs(np.asarray(sp.lambdify(S.t, speed, "numpy")(np.linspace(0.0, t_end, 257)), dtype=float))
+        values = np.abs(np.asarray(f(np.linspace(0.0, t_end, 257)), dtype=float)) * np.ones(257)
     if not np.all(np.isfinite(values)):
         raise InputError(f"a speed {speed} is not finite on 0 ... {t_end:.3g} s; give --omega a speed finite over the span")
     return float(values.max())

@@ -19,7 +19,7 @@ independent numeric computation of the 3-D tooth forces (:func:`planet_forces`).
 
 from __future__ import annotations
 
-from symkin.statics.operating import OperatingPoint, operating_point
+from symkin.statics.operating import OperatingPoint, operating_point, statics
 from symkin.statics.planet import (
     PlanetForces,
     PlanetStatics,
@@ -28,6 +28,6 @@ from symkin.statics.planet import (
     planet_forces,
     planet_statics,
 )
-from symkin.statics.power import DEFAULT_EFFICIENCY, MeshPower, Statics, efficiency_symbol, mesh_efficiencies, statics
+from symkin.statics.power import DEFAULT_EFFICIENCY, MeshPower, Statics, efficiency_symbol, mesh_efficiencies
 
 __all__ = ["statics", "Statics", "operating_point", "OperatingPoint", "MeshPower", "efficiency_symbol", "mesh_efficiencies", "DEFAULT_EFFICIENCY", "PlanetStatics", "planet_statics", "mesh_hand_relation", "balancing_hands", "PlanetForces", "planet_forces"]

@@ -33,10 +33,11 @@ from symkin._util.jsonout import exact_json, float_text
 from symkin.errors import InputError, ModelError
 from symkin.kinematics import solve_speeds
 from symkin.model import FRAME, LinkKind, Mechanism
+from symkin.statics import power
 from symkin.statics.power import DEFAULT_PRESSURE_ANGLE, MeshPower, _balance, _efficiencies, _mesh_powers, _sides
 from symkin.values import as_real
 
-__all__ = ["OperatingPoint", "operating_point"]
+__all__ = ["OperatingPoint", "operating_point", "statics"]
 
 #: The tooth forces are torques over pitch radii in millimetres: this makes them newtons.
 _PER_MM = 1000
@@ -189,3 +190,26 @@ def operating_point(
         mech, held, pairs, {n: w[n] for n in mech.link_names}, torques_ideal, torques_lossy, powers, powers_lossy,
         sp.cancel(sum(powers_lossy.values())), sp.cancel(-sum(torques_ideal.values())),
         sp.cancel(-sum(torques_lossy.values())), tuple(meshes), etas)
+
+
+def statics(mech: Mechanism, *, input: str | None = None, output: str | None = None, speeds: Mapping[str, Any] | None = None,
+            torques: Mapping[str, Any] | None = None, **keywords: Any) -> Any:
+    """``symkin.statics.statics``: per unit input torque with ``input`` and ``output``
+    (:func:`symkin.statics.power.statics`, a :class:`~symkin.statics.power.Statics`), or at an
+    operating point with ``speeds`` and ``torques`` (:func:`operating_point`, an
+    :class:`OperatingPoint`); ``fixed``, ``joined``, ``efficiency``, ``pressure_angle`` for both.
+
+    >>> from symkin.trains import load_train
+    >>> statics(load_train("simple"), input="S", output="C", fixed=("R",)).torques["C"]
+    -4
+    >>> statics(load_train("simple"), speeds={"S": 4}, torques={"S": 1}, fixed=("R",)).torques
+    {'S': 1, 'C': -4, 'R': 3}
+    """
+    if speeds is not None or torques is not None:
+        if input is not None or output is not None:
+            raise InputError("give either input= and output= (per unit input torque), or speeds= and torques= (an "
+                             "operating point), not both")
+        return operating_point(mech, speeds or {}, torques or {}, **keywords)
+    if input is None or output is None:
+        raise InputError("name the input and the output links (input=, output=), or give speeds= and torques=")
+    return power.statics(mech, input=input, output=output, **keywords)

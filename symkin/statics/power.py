@@ -334,22 +334,18 @@ def _decide(value: sp.Expr) -> int | None:
 def statics(
     mech: Mechanism,
     *,
-    input: str | None = None,
-    output: str | None = None,
+    input: str,
+    output: str,
     fixed: Sequence[str] = (),
     joined: Sequence[tuple[str, str]] = (),
     efficiency: Any = None,
     pressure_angle: Any = DEFAULT_PRESSURE_ANGLE,
-    speeds: Mapping[str, Any] | None = None,
-    torques: Mapping[str, Any] | None = None,
-) -> Any:
+) -> Statics:
     """Torques, tooth forces, power flow and efficiency of ``mech`` with ``input`` driving
     ``output`` while the ``fixed`` links are held and the ``joined`` pairs turn together.
 
-    With ``speeds`` and ``torques`` instead of ``input`` and ``output``: the train at an
-    operating point, an :class:`~symkin.statics.operating.OperatingPoint` (every link's speed,
-    torque and power, ideal and with losses, the loss; see
-    :func:`~symkin.statics.operating.operating_point`).
+    ``symkin.statics.statics`` (:func:`symkin.statics.operating.statics`) also takes
+    ``speeds=`` and ``torques=`` instead of ``input`` and ``output``: an operating point.
 
     Parameters
     ----------
@@ -382,16 +378,6 @@ def statics(
     >>> st.self_locking                         # gear 1 cannot drive the carrier: it locks
     True
     """
-    if speeds is not None or torques is not None:
-        if input is not None or output is not None:
-            raise InputError("give either input= and output= (per unit input torque), or speeds= and torques= (an "
-                             "operating point), not both")
-        from symkin.statics.operating import operating_point
-
-        return operating_point(mech, speeds or {}, torques or {}, fixed=fixed, joined=joined, efficiency=efficiency,
-                               pressure_angle=pressure_angle)
-    if input is None or output is None:
-        raise InputError("name the input and the output links (input=, output=), or give speeds= and torques=")
     inp, out = mech.link(input).name, mech.link(output).name
     held = tuple(dict.fromkeys(mech.link(f).name for f in fixed if mech.link(f).name != FRAME))
     pairs = tuple((mech.link(a).name, mech.link(b).name) for a, b in joined)

@@ -484,7 +484,8 @@ class _Reader:
                 raise self.fail(f"{where} blocks", f"is \"negative\" (the first link may not turn backwards relative to "
                                 f"the second) or \"positive\", got {_show(blocks)}")
             try:
-                out.append(OneWay(ow_name, *(FRAME if n == FRAME_TABLE else n for n in pair), blocks=blocks))
+                link, other = (FRAME if n == FRAME_TABLE else n for n in pair)
+                out.append(OneWay(ow_name, link, other, blocks=blocks))
             except ModelError as err:
                 raise self.fail(where, str(err)) from None
         return tuple(out)

@@ -77,7 +77,7 @@ class Shift:
 
     def to_json(self) -> dict[str, Any]:
         """The gear state as JSON: input, output, brakes, clutches and the exact ratio (null when free)."""
-        out = {
+        out: dict[str, Any] = {
             "state": self.state.name,
             "input": self.state.input,
             "output": self.state.output,
