@@ -34,7 +34,17 @@ from symkin.errors import InputError, ModelError
 from symkin.kinematics import solve_speeds
 from symkin.model import FRAME, LinkKind, Mechanism
 from symkin.statics import power
-from symkin.statics.power import DEFAULT_PRESSURE_ANGLE, MeshPower, _balance, _efficiencies, _mesh_powers, _sides
+from symkin.statics.power import (
+    DEFAULT_PRESSURE_ANGLE,
+    MeshPower,
+    _balance,
+    _efficiencies,
+    _mesh_powers,
+    _pin_loads,
+    _pins_json,
+    _sides,
+    pins_text,
+)
 from symkin.values import as_real
 
 __all__ = ["OperatingPoint", "operating_point", "statics"]
@@ -67,6 +77,8 @@ class OperatingPoint:
         gear that drives.
     efficiencies : dict
         Each mesh's efficiency as used.
+    pins : dict
+        Planet -> ``(x, y)``: the force on one planet's pin, N, in its carrier's frame at t = 0.
     """
 
     mechanism: Mechanism
@@ -82,6 +94,7 @@ class OperatingPoint:
     housing_with_losses: sp.Expr
     meshes: tuple[MeshPower, ...]
     efficiencies: dict[str, sp.Expr]
+    pins: dict[str, tuple[sp.Expr, sp.Expr]]
 
     def flow(self) -> list[str]:
         """The power flow, port by port: which put power in and which take it out (with losses)."""
@@ -104,6 +117,7 @@ class OperatingPoint:
         lines.append("mesh           tangential N  power W       driver")
         for m in self.meshes:
             lines.append(f"{m.mesh.a}-{m.mesh.b:<10}  {_num(m.tangential):<12}  {_num(m.power):<12}  {m.driver or '-'}")
+        lines += pins_text(self.pins, " (N)")
         return "\n".join(lines)
 
     def to_json(self) -> dict[str, Any]:
@@ -119,7 +133,7 @@ class OperatingPoint:
             "powers_with_losses": values(self.powers_with_losses), "loss": _json(self.loss),
             "housing_torque": _json(self.housing), "housing_torque_with_losses": _json(self.housing_with_losses),
             "mesh_efficiencies": values(self.efficiencies), "flow": self.flow(),
-            "meshes": [m.to_json() for m in self.meshes],
+            "meshes": [m.to_json() for m in self.meshes], "pin_loads": _pins_json(self.pins),
         }
 
 
@@ -189,7 +203,8 @@ def operating_point(
     return OperatingPoint(
         mech, held, pairs, {n: w[n] for n in mech.link_names}, torques_ideal, torques_lossy, powers, powers_lossy,
         sp.cancel(sum(powers_lossy.values())), sp.cancel(-sum(torques_ideal.values())),
-        sp.cancel(-sum(torques_lossy.values())), tuple(meshes), etas)
+        sp.cancel(-sum(torques_lossy.values())), tuple(meshes), etas,
+        _pin_loads(mech, sides, [f * _PER_MM for f in forces], pressure_angle))
 
 
 def statics(mech: Mechanism, *, input: str | None = None, output: str | None = None, speeds: Mapping[str, Any] | None = None,

@@ -168,6 +168,9 @@ class Statics:
     housing, housing_with_losses : sympy expression
         The torque the housing (the frame, through the brakes and the gears fixed to it)
         puts on the train per unit input torque, ideal and with losses: ``-(T_in + T_out)``.
+    pins : dict
+        Planet -> ``(x, y)``: the force one planet's tooth forces put on its pin (bearing),
+        ideal, per unit input torque over the radii's unit, in its carrier's frame at t = 0.
     """
 
     mechanism: Mechanism
@@ -184,6 +187,7 @@ class Statics:
     circulating: sp.Expr
     housing: sp.Expr = sp.Integer(0)
     housing_with_losses: sp.Expr = sp.Integer(0)
+    pins: dict[str, tuple[sp.Expr, sp.Expr]] = field(default_factory=dict)
     _cache: dict = field(default_factory=dict, init=False, repr=False, compare=False, hash=False)
 
     @property
@@ -220,6 +224,7 @@ class Statics:
             "torques": {k: exact_json(v) for k, v in self.torques.items()},
             "torques_with_losses": {k: exact_json(v) if v.is_number else str(v) for k, v in self.lossy_torques.items()},
             "housing_torque": exact_json(self.housing),
+            "pin_loads": _pins_json(self.pins),
             "housing_torque_with_losses": exact_json(self.housing_with_losses) if self.housing_with_losses.is_number
             else str(self.housing_with_losses),
             "meshes": [m.to_json() for m in self.meshes],
@@ -274,7 +279,18 @@ class Statics:
         for m in self.meshes:
             lines.append(f"{m.mesh.a}-{m.mesh.b:<10}  {_short(m.tangential):<12}  {_short(m.per_planet):<12}  {_short(m.power):<9}  "
                          f"{m.driver or '(depends)'}")
+        lines += pins_text(self.pins)
         return "\n".join(lines)
+
+
+def pins_text(pins: Mapping[str, tuple[sp.Expr, sp.Expr]], unit: str = "") -> list[str]:
+    """One line per planet: the force on its pin, x and y in its carrier's frame, and its size."""
+    return [f"pin load on {n}{unit}: x {_short(x)}, y {_short(y)}, size {_short(sp.sqrt(x**2 + y**2))}"
+            for n, (x, y) in pins.items()]
+
+
+def _pins_json(pins: Mapping[str, tuple[sp.Expr, sp.Expr]]) -> dict[str, Any]:
+    return {n: {k: exact_json(v) if v.is_number else str(v) for k, v in (("x", x), ("y", y))} for n, (x, y) in pins.items()}
 
 
 def _short(value: sp.Expr) -> str:
@@ -398,7 +414,7 @@ def statics(
     lossy_out = lossy_torques[out]
     housing_lossy = sp.piecewise_fold(-1 - lossy_out) if isinstance(lossy_out, sp.Piecewise) else sp.cancel(-1 - lossy_out)
     return Statics(mech, inp, out, held, pairs, speeds, torques, tuple(meshes), law, lossy_torques, etas, circulating,
-                   housing, housing_lossy)
+                   housing, housing_lossy, _pin_loads(mech, sides, forces, pressure_angle))
 
 
 def _mesh_powers(mech: Mechanism, sides: Sequence[_Side], forces: Sequence[sp.Expr], speeds: Mapping[str, sp.Expr],
@@ -414,6 +430,33 @@ def _mesh_powers(mech: Mechanism, sides: Sequence[_Side], forces: Sequence[sp.Ex
             s.mesh, F, sp.cancel(F / count), sp.Abs(F) * tan_alpha / count if not F.is_number else abs(F) * tan_alpha / count,
             pa, sp.Abs(pa) if sign is None else sign * pa, None if sign is None else (s.mesh.a if sign > 0 else s.mesh.b)))
     return meshes
+
+
+def _pin_loads(mech: Mechanism, sides: Sequence[_Side], forces: Sequence[sp.Expr],
+               pressure_angle: Any) -> dict[str, tuple[sp.Expr, sp.Expr]]:
+    """The force each planet's tooth forces put on its pin (on one copy), ``(x, y)`` in its carrier's
+    frame at t = 0: each mesh's tangential force across the line of centres (its torque on the
+    planet over the lever) and its separating force ``|F| tan(alpha)`` along it."""
+    tan_alpha = sp.tan(as_real(pressure_angle, what="the pressure angle"))
+    out: dict[str, list[sp.Expr]] = {}
+    for s, F in zip(sides, forces):
+        if s.relative_a or s.relative_b:  # a bevel mesh: not in the plane
+            continue
+        geo = mech.mesh_geometry(s.mesh)
+        ax, ay = mech.axis_position(s.a)
+        bx, by = mech.axis_position(s.b)
+        d = sp.sqrt((bx - ax) ** 2 + (by - ay) ** 2)
+        uy = ((bx - ax) / d, (by - ay) / d)  # along the line of centres, a to b
+        ux = (uy[1], -uy[0])                 # across it: the tangential force on gear a is +F along ux
+        for link, gear, sign, to_centre in ((s.a, geo.gear_a, 1, -geo.pitch_y), (s.b, geo.gear_b, -1, geo.centre_distance - geo.pitch_y)):
+            if mech.link(link).kind is not LinkKind.PLANET:
+                continue
+            f = F / _count(mech, s)
+            radial = sp.Abs(f) * tan_alpha * sp.sign(to_centre) * (-1 if gear.internal else 1)
+            acc = out.setdefault(link, [sp.Integer(0), sp.Integer(0)])
+            acc[0] += sign * f * ux[0] + radial * uy[0]
+            acc[1] += sign * f * ux[1] + radial * uy[1]
+    return {n: (sp.simplify(x), sp.simplify(y)) for n, (x, y) in out.items()}
 
 
 def _unit_speeds(mech: Mechanism, inp: str, out: str, held: tuple[str, ...],
