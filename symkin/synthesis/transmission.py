@@ -274,7 +274,8 @@ def _within(law: sp.Expr, target: sp.Rational, tol: sp.Rational, absolute: bool,
 def _design(values: dict[sp.Symbol, int], laws: dict[str, sp.Expr], targets: dict[str, sp.Rational], tol: sp.Rational,
             absolute: bool) -> TransmissionDesign | None:
     """The design with exact ratios, or None when one misses the tolerance exactly."""
-    ratios = {s: sp.Rational(law.subs(values)) for s, law in laws.items()}
+    exact = {z: sp.Integer(v) for z, v in values.items()}
+    ratios = {s: sp.Rational(sp.cancel(law.xreplace(exact))) for s, law in laws.items()}  # xreplace: no re-derivation
     errors = [abs(ratios[s] - t) if absolute else abs(ratios[s] - t) / abs(t) for s, t in targets.items()]
     if max(errors) > tol:
         return None
