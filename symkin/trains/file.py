@@ -36,7 +36,7 @@ Beyond it (all optional):
   distance other than the pitch circles give, i.e. a profile-shifted mesh (the working
   circles keep the tooth ratio, so the ratio is exact and the planet axis coaxial);
   ``efficiency = 0.985``: the mesh's efficiency for the statics (symkin efficiency);
-- a state: ``description``;
+- a state: ``description``, ``released`` (one-way clutches held out of engagement in it);
 - ``[one_way.NAME]``: a one-way clutch (freewheel, sprag, pawls), ``links = ["C2", "frame"]``
   and ``blocks = "negative"`` (the first link may not turn backwards relative to the second;
   the default) or ``"positive"``: each state engages it when it can carry the torque;
@@ -87,7 +87,7 @@ _BASE = {"x", "y", "z", "yaw", "pitch", "roll"}
 _LINK = {"gears", "carrier", "angle", "arm", "count", "axis"}
 _GEAR = {"teeth", "internal", "module", "radius", "bevel", "side"}
 _MESH = {"gears", "centre_distance", "efficiency"}
-_STATE = {"input", "output", "brakes", "clutches", "description"}
+_STATE = {"input", "output", "brakes", "clutches", "description", "released"}
 _SYMBOL = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
 #: Names a symbolic tooth number may not take: they print as (or parse to) something else.
 _RESERVED = frozenset({*CONSTANTS, *FUNCTIONS, "I", "oo", "zoo", "nan", "inf", "infinity", "t"})
@@ -460,9 +460,12 @@ class _Reader:
             description = spec.get("description", "")
             if not isinstance(description, str):
                 raise self.fail(f"{where} description", f"must be a string, got {_show(description)}")
+            released = spec.get("released", [])
+            if not isinstance(released, list) or not all(isinstance(r, str) for r in released):
+                raise self.fail(f"{where} released", f"must be a list of one-way clutch names, got {_show(released)}")
             frame = lambda n: FRAME if n == FRAME_TABLE else n  # noqa: E731
             out.append(State(state_name, spec["input"], spec["output"], tuple(frame(b) for b in brakes),
-                             tuple((frame(a), frame(b)) for a, b in clutches), description))
+                             tuple((frame(a), frame(b)) for a, b in clutches), description, tuple(released)))
         return out
 
     def one_ways(self, table: Any, names: set[str]) -> tuple[OneWay, ...]:

@@ -83,8 +83,9 @@ class Engagement:
     Attributes
     ----------
     status : tuple of (name, str)
-        Each one-way clutch's part: "holds", "overruns" or "idle" (its links turn
-        together, held by a brake or clutch of the state).
+        Each one-way clutch's part: "holds", "overruns", "idle" (its links turn
+        together, held by a brake or clutch of the state) or "released" (the state holds
+        it out of engagement).
     free : bool
         No set of one-way clutches holds the state: it has no ratio this way.
     speeds : Speeds or None
@@ -146,14 +147,14 @@ def engage(train: Any, state: Any, sense: int, *, inp: str, out: str, known: Map
     """The one-way clutches of ``train`` in ``state``: driving (``sense`` +1, the input's torque
     along its speed) or coasting (-1, the output drives); ``known`` and ``joined`` are the
     state's own brakes (and the input's speed) and clutches."""
-    one_ways: tuple[OneWay, ...] = train.one_ways
+    one_ways = tuple(ow for ow in train.one_ways if ow.name not in state.released)
     where = f"state {state.name!r}"
     try:
         speeds = solve_speeds(train, known, joined=joined)
     except DeterminacyError as err:
         if not one_ways or not isinstance(err, UnderdeterminedError):
             raise
-        return _search(train, state, sense, inp, out, known, joined)
+        return _released(train, state, _search(one_ways, train, state, sense, inp, out, known, joined))
     status = []
     for ow in one_ways:
         rel = _sign(_relative(speeds, ow) / speeds[inp], f"{where}: whether one-way clutch {ow.name} overruns")
@@ -162,12 +163,17 @@ def engage(train: Any, state: Any, sense: int, *, inp: str, out: str, known: Map
                              f"{ow.other if ow.other != FRAME else 'the frame'}, which it blocks: it locks the train; "
                              "release a brake or clutch, or turn the one-way clutch round")
         status.append((ow.name, "idle" if rel == 0 else "overruns"))
-    return Engagement(tuple(status), False, speeds)
+    return _released(train, state, Engagement(tuple(status), False, speeds))
 
 
-def _search(train: Any, state: Any, sense: int, inp: str, out: str, known: Mapping[str, Any],
-            joined: Sequence[tuple[str, str]]) -> Engagement:
-    one_ways: tuple[OneWay, ...] = train.one_ways
+def _released(train: Any, state: Any, found: Engagement) -> Engagement:
+    """``found`` with the state's released one-way clutches in the train's order."""
+    status = dict(found.status)
+    return Engagement(tuple((ow.name, status.get(ow.name, "released")) for ow in train.one_ways), found.free, found.speeds)
+
+
+def _search(one_ways: tuple[OneWay, ...], train: Any, state: Any, sense: int, inp: str, out: str,
+            known: Mapping[str, Any], joined: Sequence[tuple[str, str]]) -> Engagement:
     where = f"state {state.name!r}"
     for size in range(1, len(one_ways) + 1):
         for combo in itertools.combinations(one_ways, size):

@@ -45,6 +45,8 @@ class State:
     clutches : tuple of (str, str)
         Pairs of links made to turn together.
     description : str
+    released : tuple of str
+        One-way clutches held out of engagement in this state (a hub's pawls lifted).
     """
 
     name: str
@@ -53,6 +55,7 @@ class State:
     brakes: tuple[str, ...] = ()
     clutches: tuple[tuple[str, str], ...] = ()
     description: str = ""
+    released: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -146,6 +149,18 @@ class ShiftTable:
                           caption=f"{self.train.name or 'train'}: ratio = omega_input/omega_output", raw_columns=(5,))
 
 
+def _named(items: Any, kind: type, what: str) -> tuple[Any, ...]:
+    """``items`` as a tuple, each a ``kind`` with a name of its own."""
+    seen: set[str] = set()
+    for item in items:
+        if not isinstance(item, kind):
+            raise ModelError(f"{item!r} is not a {kind.__name__}")
+        if item.name in seen:
+            raise ModelError(f"two {what} are called {item.name!r}; give each its own name")
+        seen.add(item.name)
+    return tuple(items)
+
+
 @dataclass(frozen=True)
 class Train(Mechanism):
     """A mechanism with named gear states (see the module docstring).
@@ -172,23 +187,16 @@ class Train(Mechanism):
 
     def __post_init__(self) -> None:
         super().__post_init__()
-        object.__setattr__(self, "states", tuple(self.states))
-        seen: set[str] = set()
+        object.__setattr__(self, "states", _named(self.states, State, "states"))
         for st in self.states:
-            if not isinstance(st, State):
-                raise ModelError(f"{st!r} is not a State")
-            if st.name in seen:
-                raise ModelError(f"two states are called {st.name!r}; give every state its own name")
-            seen.add(st.name)
             self._check_state(st)
-        object.__setattr__(self, "one_ways", tuple(self.one_ways))
-        names: set[str] = set()
+        object.__setattr__(self, "one_ways", _named(self.one_ways, OneWay, "one-way clutches"))
+        for st in self.states:
+            unknown = sorted(set(st.released) - {ow.name for ow in self.one_ways})
+            if unknown:
+                raise ModelError(f"state {st.name!r}: releases no one-way clutch {unknown[0]!r}; the one-way clutches are "
+                                 f"{', '.join(ow.name for ow in self.one_ways) or '(none)'}")
         for ow in self.one_ways:
-            if not isinstance(ow, OneWay):
-                raise ModelError(f"{ow!r} is not a OneWay")
-            if ow.name in names:
-                raise ModelError(f"two one-way clutches are called {ow.name!r}; give each its own name")
-            names.add(ow.name)
             for n in (ow.link, ow.other):
                 if n != FRAME:
                     try:

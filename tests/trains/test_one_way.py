@@ -66,11 +66,19 @@ def test_turned_round_the_clutch_leaves_first_free_and_locks_second():
 
 def test_a_hub_gear_drives_through_pawls_and_freewheels():
     train = load_train("hub-3speed")
-    normal, top = train.shift("normal"), train.shift("top")
-    assert normal.ratio.rhs == 1 and top.ratio.rhs == sp.Rational(3, 4)   # top: 1 + 18/54 = 4/3 faster
+    normal, top, low = train.shift("normal"), train.shift("top"), train.shift("low")
+    # the AW's published steps: top 4/3 faster (1 + 18/54), low 3/4 as fast (the cage at 54/(18 + 54) of the ring)
+    assert normal.ratio.rhs == 1 and top.ratio.rhs == sp.Rational(3, 4) and low.ratio.rhs == sp.Rational(4, 3)
     for shift in (normal, top):
         assert dict(shift.drive.status) == {"ring_pawls": "holds", "cage_pawls": "overruns"}
         assert shift.coast.free  # the hub freewheels when the rider stops pedalling
+    assert dict(low.drive.status) == {"ring_pawls": "released", "cage_pawls": "holds"} and low.coast.free
+    assert train.engaged("low") == ((), (("D", "R"), ("H", "C")))
+    text = (importlib.resources.files("symkin.trains") / "library" / "hub-3speed.toml").read_text()
+    with pytest.raises(TrainFileError, match="releases no one-way clutch 'pawls'"):
+        read_train(text.replace('released = ["ring_pawls"]', 'released = ["pawls"]'))
+    with pytest.raises(TrainFileError, match="released: must be a list"):
+        read_train(text.replace('released = ["ring_pawls"]', 'released = "ring_pawls"'))
 
 
 def test_states_prints_the_one_way_clutches_and_json(capsys):
