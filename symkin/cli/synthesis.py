@@ -159,9 +159,8 @@ def _transmission(args: Any) -> Any:
     if args.ratio is not None or args.ratio_range is not None or args.state or args.driver or args.driven or args.fixed:
         raise InputError("--ratios names the states and their ratios: give no --ratio, --ratio-range, --state, "
                          "--driver, --driven or --fixed with it")
-    if args.scheduler is not None or args.workers is not None or args.rank is not None or args.efficiency is not None:
-        raise InputError("--ratios runs in this process and ranks by ratio error, steps and size: give no --scheduler, "
-                         "--workers, --rank or --efficiency with it")
+    if args.rank is not None or args.efficiency is not None:
+        raise InputError("--ratios ranks by ratio error, steps and size: give no --rank or --efficiency with it")
     ratios = {}
     for item in args.ratios.split(","):
         state, sep, value = item.partition("=")
@@ -179,7 +178,8 @@ def _transmission(args: Any) -> Any:
         zmin=None if args.zmin is None else int(parse_integer(args.zmin, what="--zmin")),
         zmax=int(parse_integer(args.zmax, what="--zmax")),
         top=None if args.top.strip().lower() == "all" else int(parse_integer(args.top, what="--top")),
-        time_limit=float(parse_number(args.time_limit, what="--time-limit")),
+        time_limit=float(parse_number(args.time_limit, what="--time-limit")), scheduler=args.scheduler,
+        workers=None if args.workers is None else int(parse_integer(args.workers, what="--workers")),
         pressure_angle=parse_number(args.pressure_angle, what="--pressure-angle"),
         addendum=parse_number(args.addendum, what="--addendum"), clearance=parse_number(args.clearance, what="--clearance"),
         shift=parse_number(args.shift, what="--shift"),

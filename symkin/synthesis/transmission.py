@@ -77,6 +77,7 @@ class TransmissionResult:
     candidates: tuple[int, ...]
     kept: tuple[int, ...]
     seconds: float
+    where: str = "this process"
 
     def text(self) -> str:
         """The search and the designs as ``symkin synthesize --ratios`` prints them."""
@@ -86,7 +87,7 @@ class TransmissionResult:
         lines.append("groups of tooth numbers (tuples meeting their sets' conditions): " + "; ".join(
             f"{', '.join(g)} ({n})" for g, n in zip(self.groups, self.candidates)))
         lines.append("pruned state by state: " + ", ".join(f"{s} {n}" for s, n in zip(self.order, self.kept)))
-        lines.append(f"{self.found} design{'s' * (self.found != 1)} in {self.seconds:.2f} s (this process; no Dask)")
+        lines.append(f"{self.found} design{'s' * (self.found != 1)} in {self.seconds:.2f} s (exact ratios: {self.where})")
         for d in self.designs:
             lines.append("  " + " ".join(f"{k}={v}" for k, v in d.teeth.items()))
             lines.append("    " + ", ".join(f"{k} {float_text(v)}" for k, v in d.ratios.items())
@@ -98,12 +99,13 @@ class TransmissionResult:
         return {"targets": {k: exact_json(v) for k, v in self.targets.items()}, "tolerance": exact_json(self.tolerance),
                 "absolute": self.absolute, "found": self.found, "order": list(self.order),
                 "groups": [list(g) for g in self.groups], "candidates": list(self.candidates), "kept": list(self.kept),
-                "seconds": self.seconds, "designs": [d.to_json() for d in self.designs]}
+                "seconds": self.seconds, "where": self.where, "designs": [d.to_json() for d in self.designs]}
 
 
 def synthesize_transmission(train: Mechanism, ratios: Mapping[str, Any], *, tolerance: Any = DEFAULT_TOLERANCE,
                             absolute: bool = False, planets: int | None = 3, zmin: int | None = None, zmax: int = 150,
-                            top: int | None = 10, time_limit: float = 600.0, **options: Any) -> TransmissionResult:
+                            top: int | None = 10, time_limit: float = 600.0, scheduler: str | None = None,
+                            workers: int | None = None, **options: Any) -> TransmissionResult:
     """Tooth numbers that give every named state of ``train`` its target ratio at once.
 
     Parameters
@@ -119,6 +121,10 @@ def synthesize_transmission(train: Mechanism, ratios: Mapping[str, Any], *, tole
         How many designs to keep (None: all).
     time_limit : float
         Seconds; a longer search raises :class:`~symkin.errors.TimeLimitError`.
+    scheduler, workers : optional
+        Evaluate the designs that pass the floating-point pruning exactly, in chunks, on Dask
+        (``"local"``: a local cluster of ``workers`` processes, or a scheduler's address); the
+        result is the same as without.
     """
     began = time.perf_counter()
     if not ratios:
@@ -162,23 +168,22 @@ def synthesize_transmission(train: Mechanism, ratios: Mapping[str, Any], *, tole
             raise TimeLimitError(f"the search ran past {time_limit:.0f} s after state {s} ({len(partial)} partial "
                                  "designs); narrow the limits or the tolerance")
     free = [i for i in range(len(groups)) if i not in assigned]  # groups no ratio names: their least tuple
-    designs: list[TransmissionDesign] = []
+    rows: list[dict[sp.Symbol, int]] = []
     for row in partial:
         values: dict[sp.Symbol, int] = {}
         for col, i in enumerate(assigned):
             values.update(zip(groups[i], (int(x) for x in tables[i][row[col]])))
         for i in free:
             values.update(zip(groups[i], (int(x) for x in tables[i][0])))
-        design = _design(values, laws, targets, tol, absolute)
-        if design is not None:
-            designs.append(design)
+        rows.append(values)
+    designs, where = _exact(rows, laws, targets, tol, absolute, scheduler, workers)
     designs.sort(key=lambda d: (d.error, d.step_error, max(d.teeth.values()), sum(d.teeth.values())))
     kept_designs = tuple(designs if top is None else designs[:top])
     for d in kept_designs:
         _recheck(train, problem, d)
     return TransmissionResult(problem, targets, tol, absolute, kept_designs, len(designs), tuple(order),
                               tuple(tuple(map(str, g)) for g in groups), tuple(len(t) for t in tables), tuple(kept),
-                              time.perf_counter() - began)
+                              time.perf_counter() - began, where)
 
 
 def _groups(problem: Problem) -> list[tuple[sp.Symbol, ...]]:
@@ -269,6 +274,33 @@ def _within(law: sp.Expr, target: sp.Rational, tol: sp.Rational, absolute: bool,
     value = _evaluate(law, symbols, columns, len(partial))
     bound = float(tol) if absolute else float(tol) * abs(float(target))
     return np.abs(value - float(target)) <= bound * (1 + 1e-9) + 1e-12
+
+
+#: Designs evaluated exactly per Dask task.
+CHUNK = 256
+
+
+def _exact(rows: list[dict[sp.Symbol, int]], laws: dict[str, sp.Expr], targets: dict[str, sp.Rational], tol: sp.Rational,
+           absolute: bool, scheduler: str | None, workers: int | None) -> tuple[list[TransmissionDesign], str]:
+    """The designs of ``rows`` that meet every ratio exactly: here, or in chunks on Dask (merged in order)."""
+    if scheduler is None:
+        return _exact_chunk(rows, laws, targets, tol, absolute), "this process"
+    from symkin.synthesis.runner import _client
+
+    client, cluster, where, _ = _client(scheduler, workers)
+    try:
+        chunks = [rows[k:k + CHUNK] for k in range(0, len(rows), CHUNK)]
+        futures = client.map(_exact_chunk, chunks, laws=laws, targets=targets, tol=tol, absolute=absolute, pure=False)
+        return [d for part in client.gather(futures) for d in part], f"{where}, {len(chunks)} chunks"
+    finally:
+        client.close()
+        if cluster is not None:
+            cluster.close()
+
+
+def _exact_chunk(rows: list[dict[sp.Symbol, int]], laws: dict[str, sp.Expr], targets: dict[str, sp.Rational],
+                 tol: sp.Rational, absolute: bool) -> list[TransmissionDesign]:
+    return [d for d in (_design(v, laws, targets, tol, absolute) for v in rows) if d is not None]
 
 
 def _design(values: dict[sp.Symbol, int], laws: dict[str, sp.Expr], targets: dict[str, sp.Rational], tol: sp.Rational,

@@ -155,9 +155,10 @@ def _named(items: Any, kind: type, what: str) -> tuple[Any, ...]:
     for item in items:
         if not isinstance(item, kind):
             raise ModelError(f"{item!r} is not a {kind.__name__}")
-        if item.name in seen:
-            raise ModelError(f"two {what} are called {item.name!r}; give each its own name")
-        seen.add(item.name)
+        name: str = getattr(item, "name")  # noqa: B009 - State and OneWay both have one
+        if name in seen:
+            raise ModelError(f"two {what} are called {name!r}; give each its own name")
+        seen.add(name)
     return tuple(items)
 
 

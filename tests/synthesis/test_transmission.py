@@ -62,3 +62,14 @@ def test_the_cli_synthesises_a_transmission(capsys):
                  "--tolerance", "0", "--absolute", "--planets", "3", "--zmax", "80", "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
     assert data["found"] == 1 and data["designs"][0]["teeth"]["z_r2"] == 72 and data["absolute"] is True
+
+
+def test_dask_on_a_local_cluster_gives_the_same_designs():
+    pytest.importorskip("distributed")
+    from symkin.synthesis.runner import local_cluster
+
+    kw = dict(tolerance=sp.Rational(1, 100), zmax=80, top=None)
+    here = synthesize_transmission(load_train("simpson"), TARGETS, **kw)
+    with local_cluster(1) as cluster:
+        there = synthesize_transmission(load_train("simpson"), TARGETS, scheduler=cluster.scheduler_address, **kw)
+    assert there.designs == here.designs and "Dask scheduler" in there.where and here.where == "this process"
