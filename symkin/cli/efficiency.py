@@ -19,8 +19,11 @@ def register(sub: Any) -> None:
         "(and clutches joined), by the basic-train method: each mesh's efficiency applies to the power it carries "
         "relative to the carrier, in the direction the kinematics and the load give. Prints the efficiency both "
         "ways (exact and as a float), whether the train locks itself when driven from the output, every link's "
-        "torque and every tooth force per unit input torque, and the power through each mesh; --latex adds the "
-        "law with the mesh efficiencies as symbols.",
+        "torque and every tooth force per unit input torque, the power through each mesh (relative to its carrier), "
+        "the housing's torque and each planet's pin load; --latex adds the law with the mesh efficiencies as symbols. "
+        "With --omega and --torque instead of --driver/--driven: an operating point (as many speeds as degrees of "
+        "freedom, the torques the balance leaves free): every link's speed, torque and power, ideal and with losses, "
+        "the loss and the power flow.",
         run=run_efficiency,
     )
     add_scheme_argument(p, train=True)

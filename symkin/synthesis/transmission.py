@@ -96,7 +96,8 @@ class TransmissionResult:
 
     def to_json(self) -> dict[str, Any]:
         """The result as JSON."""
-        return {"targets": {k: exact_json(v) for k, v in self.targets.items()}, "tolerance": exact_json(self.tolerance),
+        return {"train": self.problem.train.name, "targets": {k: exact_json(v) for k, v in self.targets.items()},
+                "tolerance": exact_json(self.tolerance),
                 "absolute": self.absolute, "found": self.found, "order": list(self.order),
                 "groups": [list(g) for g in self.groups], "candidates": list(self.candidates), "kept": list(self.kept),
                 "seconds": self.seconds, "where": self.where, "designs": [d.to_json() for d in self.designs]}
