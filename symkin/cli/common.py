@@ -221,9 +221,11 @@ def teeth_list(text: str, counts: tuple[int, ...], what: str = "--teeth") -> lis
     return values
 
 
-def link_value(text: str, what: str = "--omega") -> tuple[str, Any]:
+def link_value(text: str, what: str = "--omega", names: Sequence[str] = (), unit: str = "rad/s") -> tuple[str, Any]:
     """``LINK=VALUE``; VALUE is a number or a constant expression such as 2*pi (rad/s), or a
-    speed with a unit such as 300rpm (converted to rad/s, exactly).
+    speed with a unit such as 300rpm (converted to rad/s, exactly); ``names`` are the
+    symbols it may hold (``("t",)``: a speed that varies in time, such as 10*t); ``unit``
+    the unit of a bare number (``"N*m"`` for ``--torque``).
 
     >>> link_value("1=300rpm")
     ('1', 10*pi)
@@ -234,10 +236,11 @@ def link_value(text: str, what: str = "--omega") -> tuple[str, Any]:
     link = link.strip()
     if not link:
         raise InputError(f"{what} {text!r} names no link; write LINK=VALUE, for example 1=100")
-    return link, parse_quantity(value, "rad/s", what=f"{what} value for link {link}")
+    return link, parse_quantity(value, unit, what=f"{what} value for link {link}", names=names)
 
 
-def link_values(items: Sequence[str], what: str = "--omega") -> dict[str, Any]:
+def link_values(items: Sequence[str], what: str = "--omega", names: Sequence[str] = (),
+                unit: str = "rad/s") -> dict[str, Any]:
     """``{link: value}`` from repeated ``LINK=VALUE`` options (:func:`link_value`); a link given
     twice under one name is an error (the engine refuses one given under two names).
 
@@ -251,7 +254,7 @@ def link_values(items: Sequence[str], what: str = "--omega") -> dict[str, Any]:
     known: dict[str, Any] = {}
     texts: dict[str, str] = {}
     for item in items:
-        link, value = link_value(item, what)
+        link, value = link_value(item, what, names, unit)
         if link in known:
             raise InputError(f"{what} gives link {link} twice ({texts[link]} and {item.strip()}); give each link once")
         known[link], texts[link] = value, item.strip()

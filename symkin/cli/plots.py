@@ -39,7 +39,7 @@ def _common(p: Any, out_help: str) -> None:
     add_scheme_argument(p, train=True)
     add_teeth_argument(p, "20,30,20,70", required=False)
     add_omega_argument(p, "a known angular velocity LINK=VALUE in rad/s (repeat; as many as the scheme's degrees of "
-                       "freedom, 0 fixes a link)")
+                       "freedom, 0 fixes a link); VALUE may vary in time t (s), such as 1=10*t (then give --t-end)")
     p.add_argument("--point", action="append", default=[], metavar="LINK:a,b",
                    help="a particle of LINK at (a, b) from the link's axis at t = 0, or (a, b, c) with a height c "
                    "(repeat); default: planet particles on the pitch circle of its first rim and at half its radius")
@@ -109,10 +109,7 @@ def _point(text: str, mech: Any) -> tuple[str, tuple[Any, ...]]:
 
 
 def _setup(args: Any) -> tuple[Any, Any, list, float, list[str], dict[str, Any], str]:
-    known = link_values(args.omega)
-    for item, value in zip(args.omega, known.values()):
-        if not value.is_number:
-            raise InputError(f"--omega {item!r}: give a number (rad/s)")
+    known = link_values(args.omega, names=("t",))  # a number (rad/s), or an expression in t (s) such as 10*t
     module: Any = None if getattr(args, "train", None) is not None else 1
     if args.module is not None:
         module = parse_number(args.module, what="--module")
@@ -136,7 +133,7 @@ def _setup(args: Any) -> tuple[Any, Any, list, float, list[str], dict[str, Any],
         t_end = motion.turn_time(_turns(args))
     # the paths are drawn from a few thousand samples: a span of more turns than MAX_TURNS (of the fastest link),
     # or beyond MAX_TIME, would be noise between them (and overflows the reduction of the phases)
-    fastest = max((abs(float(w)) for w in mech.speeds(known).values() if w.is_number), default=0.0)
+    fastest = max((_fastest(w, t_end) for w in mech.speeds(known).values()), default=0.0)
     turns = fastest * t_end / (2 * math.pi)
     if turns > MAX_TURNS or t_end > MAX_TIME:
         raise InputError(f"the time span 0 ... {t_end:.3g} s covers {turns:.3g} turns of the fastest link; at most "
@@ -144,6 +141,23 @@ def _setup(args: Any) -> tuple[Any, Any, list, float, list[str], dict[str, Any],
                          "between its samples): shorten --t-end or --turns")
     labels = [f"link {mech.link(name).name} at ({', '.join(_fmt(c) for c in xy)}) from its axis" for name, xy in points]
     return mech, motion, points, t_end, labels, about, title
+
+
+def _fastest(speed: Any, t_end: float) -> float:
+    """The largest |speed| over 0 ... t_end (a speed in t sampled at 257 times), in rad/s."""
+    import numpy as np
+
+    from symkin import symbols as S
+    from symkin.numeric import compile as compile_law
+
+    if not speed.has(S.t):
+        return abs(float(speed)) if speed.is_number else 0.0
+    f = compile_law(speed, [S.t], backend="numpy", on_pole="return")
+    with np.errstate(all="ignore"):
+        values = np.abs(np.asarray(f(np.linspace(0.0, t_end, 257)), dtype=float)) * np.ones(257)
+    if not np.all(np.isfinite(values)):
+        raise InputError(f"a speed {speed} is not finite on 0 ... {t_end:.3g} s; give --omega a speed finite over the span")
+    return float(values.max())
 
 
 def _base(args: Any, mech: Any) -> Any:

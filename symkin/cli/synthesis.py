@@ -37,6 +37,10 @@ def register(sub: Any) -> None:
                    help="a link held still (repeat, or LINK,LINK); the frame's gears are held already")
     p.add_argument("--state", help="instead of --driver/--driven/--fixed: a gear state of the train file")
     p.add_argument("--ratio", help="target ratio omega_driver/omega_driven, exact (2.4, 12/5, -3)")
+    p.add_argument("--ratios", metavar="STATE=R,...",
+                   help="a whole transmission: a target ratio for each named state of the train file, searched at once "
+                   "(first=4.696,second=3.130,...); every set's conditions, pruned state by state")
+    p.add_argument("--absolute", action="store_true", help="with --ratios: --tolerance is absolute, not relative")
     p.add_argument("--tolerance", default="0.01", help="relative ratio tolerance (default 0.01 = 1 %%)")
     p.add_argument("--ratio-range", metavar="LO,HI", help="instead of --ratio: every ratio from LO to HI (-120,-30 for a negative range)")
     p.add_argument("--planets", "-k", required=True,
@@ -91,8 +95,12 @@ def run_synthesize(args: Any) -> Any:
     from symkin.parsing import parse_integer, parse_number
     from symkin.synthesis import synthesize
 
+    if args.ratios is not None:
+        return _transmission(args)
+    if args.absolute:
+        raise InputError("--absolute belongs to --ratios (a whole transmission)")
     if args.ratio is None and args.ratio_range is None:
-        raise InputError("give --ratio R (with --tolerance) or --ratio-range LO,HI")
+        raise InputError("give --ratio R (with --tolerance), --ratio-range LO,HI or --ratios STATE=R,...")
     if args.ratio is not None and args.ratio_range is not None:
         raise InputError("give either --ratio or --ratio-range, not both")
     if args.state is None and (args.driver is None or args.driven is None):
@@ -218,6 +226,47 @@ def _geometry_notes(result: Any, geometry: list[Any], counts: tuple[int, int], e
     if len(flagged) > 20:
         notes.append(f"... and {len(flagged) - 20} more geometry problems (symkin geometry on a design's train lists them)")
     return notes
+
+
+def _transmission(args: Any) -> Any:
+    """symkin synthesize --ratios STATE=R,...: every state's ratio at once."""
+    from symkin.parsing import parse_integer, parse_number
+    from symkin.synthesis.transmission import synthesize_transmission
+    from symkin.trains import load_train
+
+    if args.ratio is not None or args.ratio_range is not None or args.state or args.driver or args.driven or args.fixed:
+        raise InputError("--ratios names the states and their ratios: give no --ratio, --ratio-range, --state, "
+                         "--driver, --driven or --fixed with it")
+    if args.rank is not None or args.efficiency is not None:
+        raise InputError("--ratios ranks by ratio error, steps and size: give no --rank or --efficiency with it")
+    ratios = {}
+    for item in args.ratios.split(","):
+        state, sep, value = item.partition("=")
+        if not sep or not state.strip():
+            raise InputError(f"--ratios takes STATE=RATIO,... (first=4.696,second=3.130), got {item!r}")
+        if state.strip() in ratios:
+            raise InputError(f"--ratios names state {state.strip()} twice")
+        ratios[state.strip()] = parse_number(value, what=f"--ratios {state.strip()}")
+    train = load_train(args.train)
+    for state in ratios:
+        train.state(state)  # raises with the states' names
+    result = synthesize_transmission(
+        train, ratios, tolerance=parse_number(args.tolerance, what="--tolerance"), absolute=args.absolute,
+        planets=None if args.planets.strip().lower() == "file" else int(parse_integer(args.planets, what="--planets")),
+        zmin=None if args.zmin is None else int(parse_integer(args.zmin, what="--zmin")),
+        zmax=int(parse_integer(args.zmax, what="--zmax")),
+        top=None if args.top.strip().lower() == "all" else int(parse_integer(args.top, what="--top")),
+        time_limit=float(parse_number(args.time_limit, what="--time-limit")), scheduler=args.scheduler,
+        workers=None if args.workers is None else int(parse_integer(args.workers, what="--workers")),
+        pressure_angle=parse_number(args.pressure_angle, what="--pressure-angle"),
+        addendum=parse_number(args.addendum, what="--addendum"), clearance=parse_number(args.clearance, what="--clearance"),
+        shift=parse_number(args.shift, what="--shift"),
+        ring_difference=int(parse_integer(args.ring_difference, what="--ring-difference")))
+    if not result.designs:
+        raise InputError(f"no design gives every state its ratio within the tolerance (kept after each state: "
+                         f"{', '.join(f'{s} {n}' for s, n in zip(result.order, result.kept))}); widen the tolerance or "
+                         "the limits")
+    return emit(result.text(), result.to_json())
 
 
 def _efficiency(design: Any, mesh: Any) -> Any:

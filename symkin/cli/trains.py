@@ -16,7 +16,9 @@ def register(sub: Any) -> None:
         help="the shift table of a train: every gear state's exact ratio",
         description="Solve every gear state of a train file ([states.NAME]: input, output, brakes, clutches): the "
         "ratio omega_input/omega_output, exact and as a float, and with --json every link's speed per unit input "
-        "speed. A state that leaves a link free or locks the train is an error naming the state and the links.",
+        "speed. A state that leaves a link free or locks the train is an error naming the state and the links. With "
+        "one-way clutches ([one_way.NAME]) it shows which hold, overrun or stand idle in each state, driving and on "
+        "coast (the output driving); a state no one-way clutch can hold is free (no ratio).",
         run=run_states,
     )
     add_train_argument(p, required=True)

@@ -114,6 +114,8 @@ class Mechanism:
                 return self._links_by_name[name]
             if name in self._gears:
                 return self._gears[name][1]
+            if name == "frame" and FRAME in self._links_by_name:  # train files name the frame [links.frame]
+                return self._links_by_name[FRAME]
         valid = sorted(set(self.link_names) | set(self._gears))  # not the frame: it is no driver, driven or moving link
         raise ModelError(f"no link {name!r} in this mechanism; name one of {', '.join(valid)}")
 
@@ -123,6 +125,9 @@ class Mechanism:
         for L in self.links:
             if not isinstance(L, Link):
                 raise ModelError(f"{L!r} is not a Link; build links with Link.central, Link.planet or Link.frame")
+            if (L.name == FRAME and L.kind is not LinkKind.FRAME) or L.name == MAIN_AXIS:
+                raise ModelError(f"the link name {L.name!r} is reserved (symkin's name for the "
+                                 f"{'frame' if L.name == FRAME else 'main axis'}); give the link another name")
             if L.name in seen:
                 raise ModelError(f"two links are called {L.name!r}; give every link its own name")
             seen.add(L.name)

@@ -4,6 +4,8 @@
 and every tooth force from the equilibrium of the links (virtual power on the contact
 conditions), the power through each mesh, and the efficiency in closed form by the
 basic-train method, both ways, with self-locking and circulating power (:func:`statics`).
+:mod:`.operating` holds a train at an operating point: given speeds and torques, every
+link's torque and power, ideal and with losses, and the loss (:func:`operating_point`).
 
 :mod:`.planet` holds the statics of a stepped planet: its torque balance and helical
 axial forces derived from the mesh geometry (:func:`planet_statics`), the hands that
@@ -17,6 +19,7 @@ independent numeric computation of the 3-D tooth forces (:func:`planet_forces`).
 
 from __future__ import annotations
 
+from symkin.statics.operating import OperatingPoint, operating_point, statics
 from symkin.statics.planet import (
     PlanetForces,
     PlanetStatics,
@@ -25,6 +28,6 @@ from symkin.statics.planet import (
     planet_forces,
     planet_statics,
 )
-from symkin.statics.power import DEFAULT_EFFICIENCY, MeshPower, Statics, efficiency_symbol, mesh_efficiencies, statics
+from symkin.statics.power import DEFAULT_EFFICIENCY, MeshPower, Statics, efficiency_symbol, mesh_efficiencies
 
-__all__ = ["statics", "Statics", "MeshPower", "efficiency_symbol", "mesh_efficiencies", "DEFAULT_EFFICIENCY", "PlanetStatics", "planet_statics", "mesh_hand_relation", "balancing_hands", "PlanetForces", "planet_forces"]
+__all__ = ["statics", "Statics", "operating_point", "OperatingPoint", "MeshPower", "efficiency_symbol", "mesh_efficiencies", "DEFAULT_EFFICIENCY", "PlanetStatics", "planet_statics", "mesh_hand_relation", "balancing_hands", "PlanetForces", "planet_forces"]

@@ -115,7 +115,10 @@ class MeshPower:
         Power out of gear a into the mesh in the frame of the link holding both axes
         (what the mesh loses a share of): positive when gear a drives.
     power : sympy expression
-        Power through the mesh in the frame of the ground (``F c_a omega_a``).
+        Power through the contact: the tooth force times the pitch point's velocity relative
+        to the link holding both axes, counted from the driving gear (non-negative; ``Abs``
+        where the driver depends on the teeth).  It depends on neither the order of the
+        meshes nor the order of a mesh's gears.
     driver : str or None
         The gear that drives in the relative motion (None where it depends on the teeth).
     """
@@ -160,7 +163,14 @@ class Statics:
     efficiencies : dict
         Each mesh's efficiency as used (a symbol or a number).
     circulating : sympy expression
-        The largest power through a mesh per unit input power: above 1, power circulates.
+        The largest power through a mesh (relative to its carrier, :attr:`MeshPower.power`)
+        per unit input power: above 1, the meshes roll more power than the train transmits.
+    housing, housing_with_losses : sympy expression
+        The torque the housing (the frame, through the brakes and the gears fixed to it)
+        puts on the train per unit input torque, ideal and with losses: ``-(T_in + T_out)``.
+    pins : dict
+        Planet -> ``(x, y)``: the force one planet's tooth forces put on its pin (bearing),
+        ideal, per unit input torque over the radii's unit, in its carrier's frame at t = 0.
     """
 
     mechanism: Mechanism
@@ -175,6 +185,9 @@ class Statics:
     lossy_torques: dict[str, sp.Expr]
     efficiencies: dict[str, sp.Expr]
     circulating: sp.Expr
+    housing: sp.Expr = sp.Integer(0)
+    housing_with_losses: sp.Expr = sp.Integer(0)
+    pins: dict[str, tuple[sp.Expr, sp.Expr]] = field(default_factory=dict)
     _cache: dict = field(default_factory=dict, init=False, repr=False, compare=False, hash=False)
 
     @property
@@ -210,6 +223,10 @@ class Statics:
             "mesh_efficiencies": {k: exact_json(v) if v.is_number else str(v) for k, v in self.efficiencies.items()},
             "torques": {k: exact_json(v) for k, v in self.torques.items()},
             "torques_with_losses": {k: exact_json(v) if v.is_number else str(v) for k, v in self.lossy_torques.items()},
+            "housing_torque": exact_json(self.housing),
+            "pin_loads": _pins_json(self.pins),
+            "housing_torque_with_losses": exact_json(self.housing_with_losses) if self.housing_with_losses.is_number
+            else str(self.housing_with_losses),
             "meshes": [m.to_json() for m in self.meshes],
         }
 
@@ -254,13 +271,26 @@ class Statics:
             other = f"; {self.output} can drive {self.input}" if back.is_number and back > 0 else ""
             lines.append(f"this way it locks: {self.input} cannot drive {self.output} (efficiency zero or below){other}")
         if self.circulating.is_number and self.circulating > 1:
-            lines.append(f"circulating power: a mesh carries {float_text(self.circulating)} times the input power")
-        lines.append("torques (ideal): " + ", ".join(f"{k} {v}" for k, v in self.torques.items() if v != 0))
+            lines.append(f"circulating power: a mesh carries {float_text(self.circulating)} times the input power "
+                         "(relative to its carrier)")
+        lines.append("torques (ideal): " + ", ".join(f"{k} {v}" for k, v in self.torques.items() if v != 0)
+                     + f"; housing {self.housing}")
         lines.append("mesh           tangential    per planet    power      driver")
         for m in self.meshes:
             lines.append(f"{m.mesh.a}-{m.mesh.b:<10}  {_short(m.tangential):<12}  {_short(m.per_planet):<12}  {_short(m.power):<9}  "
                          f"{m.driver or '(depends)'}")
+        lines += pins_text(self.pins)
         return "\n".join(lines)
+
+
+def pins_text(pins: Mapping[str, tuple[sp.Expr, sp.Expr]], unit: str = "") -> list[str]:
+    """One line per planet: the force on its pin, x and y in its carrier's frame, and its size."""
+    return [f"pin load on {n}{unit}: x {_short(x)}, y {_short(y)}, size {_short(sp.sqrt(x**2 + y**2))}"
+            for n, (x, y) in pins.items()]
+
+
+def _pins_json(pins: Mapping[str, tuple[sp.Expr, sp.Expr]]) -> dict[str, Any]:
+    return {n: {k: exact_json(v) if v.is_number else str(v) for k, v in (("x", x), ("y", y))} for n, (x, y) in pins.items()}
 
 
 def _short(value: sp.Expr) -> str:
@@ -330,6 +360,9 @@ def statics(
     """Torques, tooth forces, power flow and efficiency of ``mech`` with ``input`` driving
     ``output`` while the ``fixed`` links are held and the ``joined`` pairs turn together.
 
+    ``symkin.statics.statics`` (:func:`symkin.statics.operating.statics`) also takes
+    ``speeds=`` and ``torques=`` instead of ``input`` and ``output``: an operating point.
+
     Parameters
     ----------
     mech : Mechanism
@@ -368,23 +401,62 @@ def statics(
     sides = _sides(mech)
     etas = _efficiencies(mech, sides, efficiency)
     forces, torques = _solve(mech, sides, [sp.Integer(1)] * len(sides), [0] * len(sides), inp, out, held, pairs)
+    meshes = _mesh_powers(mech, sides, forces, speeds, pressure_angle)
     # which gear drives each mesh (relative power out of gear a for a positive input power)
-    powers_a = [sp.cancel(-F * s.c_a * (speeds[s.a] - (0 if s.relative_a else speeds[s.holder])))
-                for s, F in zip(sides, forces)]
+    powers_a = [m.relative_power for m in meshes]
     signs = [_decide(p) for p in powers_a]
     eta_law, lossy_torques = _with_losses(mech, sides, etas, powers_a, signs, speeds, inp, out, held, pairs)
     held_text = ", ".join(held) or "nothing"
     law = Law(sp.Symbol(f"eta_{inp}{out}" + (f"^({','.join(held)})" if held else ""), positive=True), eta_law,
               f"efficiency, {inp} driving {out}, {held_text} held")
+    circulating = max((sp.Abs(m.power) for m in meshes), key=lambda v: float(v) if v.is_number else math.inf, default=sp.Integer(0))
+    housing = sp.cancel(-(torques[inp] + torques[out]))
+    lossy_out = lossy_torques[out]
+    housing_lossy = sp.piecewise_fold(-1 - lossy_out) if isinstance(lossy_out, sp.Piecewise) else sp.cancel(-1 - lossy_out)
+    return Statics(mech, inp, out, held, pairs, speeds, torques, tuple(meshes), law, lossy_torques, etas, circulating,
+                   housing, housing_lossy, _pin_loads(mech, sides, forces, pressure_angle))
+
+
+def _mesh_powers(mech: Mechanism, sides: Sequence[_Side], forces: Sequence[sp.Expr], speeds: Mapping[str, sp.Expr],
+                 pressure_angle: Any) -> list[MeshPower]:
+    """Each mesh's forces and the power through it (relative to the link holding both axes)."""
     tan_alpha = sp.tan(as_real(pressure_angle, what="the pressure angle"))
     meshes = []
-    for s, F, pa, sign in zip(sides, forces, powers_a, signs):
+    for s, F in zip(sides, forces):
+        pa = sp.cancel(-F * s.c_a * (speeds[s.a] - (0 if s.relative_a else speeds[s.holder])))
+        sign = _decide(pa)
         count = _count(mech, s)
         meshes.append(MeshPower(
             s.mesh, F, sp.cancel(F / count), sp.Abs(F) * tan_alpha / count if not F.is_number else abs(F) * tan_alpha / count,
-            pa, sp.cancel(F * s.c_a * speeds[s.a]), None if sign is None else (s.mesh.a if sign > 0 else s.mesh.b)))
-    circulating = max((sp.Abs(m.power) for m in meshes), key=lambda v: float(v) if v.is_number else math.inf, default=sp.Integer(0))
-    return Statics(mech, inp, out, held, pairs, speeds, torques, tuple(meshes), law, lossy_torques, etas, circulating)
+            pa, sp.Abs(pa) if sign is None else sign * pa, None if sign is None else (s.mesh.a if sign > 0 else s.mesh.b)))
+    return meshes
+
+
+def _pin_loads(mech: Mechanism, sides: Sequence[_Side], forces: Sequence[sp.Expr],
+               pressure_angle: Any) -> dict[str, tuple[sp.Expr, sp.Expr]]:
+    """The force each planet's tooth forces put on its pin (on one copy), ``(x, y)`` in its carrier's
+    frame at t = 0: each mesh's tangential force across the line of centres (its torque on the
+    planet over the lever) and its separating force ``|F| tan(alpha)`` along it."""
+    tan_alpha = sp.tan(as_real(pressure_angle, what="the pressure angle"))
+    out: dict[str, list[sp.Expr]] = {}
+    for s, F in zip(sides, forces):
+        if s.relative_a or s.relative_b:  # a bevel mesh: not in the plane
+            continue
+        geo = mech.mesh_geometry(s.mesh)
+        ax, ay = mech.axis_position(s.a)
+        bx, by = mech.axis_position(s.b)
+        d = sp.sqrt((bx - ax) ** 2 + (by - ay) ** 2)
+        uy = ((bx - ax) / d, (by - ay) / d)  # along the line of centres, a to b
+        ux = (uy[1], -uy[0])                 # across it: the tangential force on gear a is +F along ux
+        for link, gear, sign, to_centre in ((s.a, geo.gear_a, 1, -geo.pitch_y), (s.b, geo.gear_b, -1, geo.centre_distance - geo.pitch_y)):
+            if mech.link(link).kind is not LinkKind.PLANET:
+                continue
+            f = F / _count(mech, s)
+            radial = sp.Abs(f) * tan_alpha * sp.sign(to_centre) * (-1 if gear.internal else 1)
+            acc = out.setdefault(link, [sp.Integer(0), sp.Integer(0)])
+            acc[0] += sign * f * ux[0] + radial * uy[0]
+            acc[1] += sign * f * ux[1] + radial * uy[1]
+    return {n: (sp.simplify(x), sp.simplify(y)) for n, (x, y) in out.items()}
 
 
 def _unit_speeds(mech: Mechanism, inp: str, out: str, held: tuple[str, ...],
@@ -446,11 +518,22 @@ def _solve(
 ) -> tuple[list[sp.Expr], dict[str, sp.Expr]]:
     """Tooth forces (on the driving side) and external torques from the equilibrium of every
     moving link; ``drivers[k]`` is +1 when gear a drives mesh k, -1 when gear b does, 0 ideal."""
+    forces, found = _balance(mech, sides, eta, drivers, {inp: sp.Integer(1)}, [out, *held], pairs)
+    torques = {n: sp.Integer(0) for n in mech.link_names}
+    torques.update(found)
+    return forces, torques  # a clutch's torque is internal: not an external torque on its links
+
+
+def _balance(
+    mech: Mechanism, sides: Sequence[_Side], eta: Sequence[sp.Expr], drivers: Sequence[int], given: Mapping[str, Any],
+    unknown: Sequence[str], pairs: Sequence[tuple[str, str]],
+) -> tuple[list[sp.Expr], dict[str, sp.Expr]]:
+    """Tooth forces and the external torques on the ``given`` and ``unknown`` links from the
+    equilibrium of every moving link (``drivers`` as for :func:`_solve`)."""
     links = list(mech.link_names)
     row = {n: i for i, n in enumerate(links)}
     F = sp.symbols(f"F_0:{len(sides)}")
-    T_out = sp.Symbol("T_out")
-    reactions = {h: sp.Symbol(f"T_{h}") for h in held}
+    ports = {n: sp.Symbol(f"T_{n}") for n in unknown}
     clutch = [sp.Symbol(f"tau_{k}") for k in range(len(pairs))]
     sums = [sp.Integer(0)] * len(links)
 
@@ -467,29 +550,29 @@ def _solve(
         add(s.b, f_b * s.c_b)
         on_holder = (0 if s.relative_a else f_a * s.c_a) + (0 if s.relative_b else f_b * s.c_b)
         add(s.holder, -on_holder)
-    add(inp, sp.Integer(1))
-    add(out, T_out)
-    for h, r in reactions.items():
-        add(h, r)
+    for n, value in given.items():
+        add(n, value)
+    for n, r in ports.items():
+        add(n, r)
     for (a, b), tau in zip(pairs, clutch):
         add(a, tau)
         add(b, -tau)
-    unknowns = [*F, T_out, *reactions.values(), *clutch]
+    unknowns = [*F, *ports.values(), *clutch]
     # a linear system: solved as one (Gauss-Jordan over the fraction field) rather than through
     # sp.solve's general machinery, about 3x faster; the values are cancelled below either way
     solution = sp.linsolve(sums, unknowns)
     if solution == sp.S.EmptySet:
-        raise ModelError("the links cannot all be in equilibrium in this configuration (a locked or free train)")
+        raise ModelError("the links cannot all be in equilibrium in this configuration (a locked or free train, or "
+                         "more torques given than the balance leaves free)")
     (values,) = solution
     sol = {u: v for u, v in zip(unknowns, values) if v != u}  # an unknown left free stands for itself
     free = [u for u in unknowns if u not in sol]
+    loose = [n for n, r in ports.items() if r in free or sol[r].free_symbols & set(free)]
+    if loose:
+        raise ModelError(f"the balance leaves the torques on {', '.join(loose)} free: give more torques (torques=, "
+                         "--torque LINK=VALUE; 0 for a link without a shaft of its own)")
     if free:
         raise ModelError(f"the tooth forces are statically indeterminate here ({', '.join(map(str, free))} free): "
                          "redundant meshes share the load in a way the rigid model cannot decide")
-    forces = [sp.cancel(sol[f]) for f in F]
-    torques = {n: sp.Integer(0) for n in links}
-    torques[inp] = sp.Integer(1)
-    torques[out] = sp.cancel(sol[T_out])
-    for h, r in reactions.items():
-        torques[h] = sp.cancel(sol[r])
-    return forces, torques  # a clutch's torque is internal: not an external torque on its links
+    return [sp.cancel(sol[f]) for f in F], {**{n: sp.sympify(v) for n, v in given.items()},
+                                             **{n: sp.cancel(sol[r]) for n, r in ports.items()}}

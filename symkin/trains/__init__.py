@@ -3,7 +3,9 @@
 - :mod:`.file`: the TOML train file (its format is in the module's docstring and in
   ``docs/trains.md``), :func:`load_train`, and the ready-made files shipped with symkin
   (:func:`ready_made`: ``simple``, ``wolfrom``, ``simpson``, ``ravigneaux``,
-  ``double-pinion``, ``ferguson``);
+  ``double-pinion``, ``ferguson``, the transmissions ``simpson-oneway``, ``hub-3speed``,
+  ``power-split``, ``eight-speed``, ...);
+- :mod:`.one_way`: one-way clutches (:class:`OneWay`) and which hold in each state;
 - :mod:`.train`: :class:`Train` (a :class:`~symkin.model.Mechanism` with named states),
   :class:`State`, and the solved :class:`Shift` and :class:`ShiftTable`.
 
@@ -21,6 +23,8 @@
 from __future__ import annotations
 
 from symkin.trains.file import READY_MADE, load_train, read_train, ready_made
+from symkin.trains.one_way import Engagement, OneWay
 from symkin.trains.train import Shift, ShiftTable, State, Train
 
-__all__ = ["load_train", "read_train", "ready_made", "READY_MADE", "Train", "State", "Shift", "ShiftTable"]
+__all__ = ["load_train", "read_train", "ready_made", "READY_MADE", "Train", "State", "Shift", "ShiftTable", "OneWay",
+           "Engagement"]

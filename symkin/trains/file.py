@@ -44,7 +44,10 @@ Beyond it (all optional):
   ``"J_S"`` for a symbol): a link's ``inertia`` (kg m^2, about its own axis; of one planet),
   a planet's ``mass`` (kg, of one planet) and a main-axis link's ``stiffness`` (N m/rad, a
   shaft to the frame);
-- a state: ``description``;
+- a state: ``description``, ``released`` (one-way clutches held out of engagement in it);
+- ``[one_way.NAME]``: a one-way clutch (freewheel, sprag, pawls), ``links = ["C2", "frame"]``
+  and ``blocks = "negative"`` (the first link may not turn backwards relative to the second;
+  the default) or ``"positive"``: each state engages it when it can carry the torque;
 - ``[base]``: the base (the frame) moving in space, expressions in t: ``x``, ``y``, ``z``
   of the main axis point O and ``yaw``, ``pitch``, ``roll`` of the frame (the motion the
   drawing commands use; a drill head on a manipulator).
@@ -72,6 +75,7 @@ import sympy as sp
 from symkin.errors import ModelError, SymkinError, TrainFileError
 from symkin.model import FRAME, Gear, Link, Mesh
 from symkin.parsing import CONSTANTS, FUNCTIONS, parse_expression
+from symkin.trains.one_way import OneWay
 from symkin.trains.train import State, Train
 from symkin.values import as_rational
 
@@ -85,14 +89,15 @@ __all__ = ["load_train", "read_train", "ready_made", "READY_MADE", "MAX_FILE_BYT
 #: The largest train file read (a train of hundreds of links is a few kB).
 MAX_FILE_BYTES = 1_000_000
 #: Keys each table may hold.
-_TOP = {"name", "description", "module", "meshes", "links", "states", "base"}
+_TOP = {"name", "description", "module", "meshes", "links", "states", "base", "one_way"}
+_ONE_WAY = {"links", "blocks"}
 _BASE = {"x", "y", "z", "yaw", "pitch", "roll"}
 _LINK = {"gears", "carrier", "angle", "arm", "count", "axis", "inertia", "mass", "stiffness"}
 _GEAR = {"teeth", "internal", "module", "radius", "bevel", "side"}
 #: The tooth form keys of a gear table (symkin.geometry): profile shift, h_a*, h_f*, degrees, rho_f*, mm.
 _FORM = {"shift", "addendum", "dedendum", "pressure_angle", "fillet", "tip_diameter"}
 _MESH = {"gears", "centre_distance", "efficiency", "stiffness"}
-_STATE = {"input", "output", "brakes", "clutches", "description"}
+_STATE = {"input", "output", "brakes", "clutches", "description", "released"}
 _SYMBOL = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
 #: Names a symbolic tooth number may not take: they print as (or parse to) something else.
 _RESERVED = frozenset({*CONSTANTS, *FUNCTIONS, "I", "oo", "zoo", "nan", "inf", "infinity", "t"})
@@ -108,7 +113,7 @@ def ready_made() -> dict[str, str]:
     """The ready-made train files shipped with symkin: name -> description.
 
     >>> sorted(ready_made())[:4]
-    ['bevel-differential', 'bevel-epicyclic', 'double-pinion', 'ferguson']
+    ['bevel-differential', 'bevel-epicyclic', 'double-pinion', 'eight-speed']
     """
     out = {}
     for entry in sorted(_library().iterdir(), key=lambda e: e.name):
@@ -316,7 +321,7 @@ class _Reader:
             gears = [self.gear(g, spec, module, f"{where} gears.{g}") for g, spec in table.get("gears", {}).items()]
             try:
                 props = self.mass_properties(table, where)
-                if link_name in (FRAME_TABLE, FRAME):
+                if link_name == FRAME_TABLE:
                     extra = sorted(set(table) - {"gears"})
                     if extra:
                         raise self.fail(f"{where} {extra[0]}", "the frame holds fixed gears only")
@@ -355,14 +360,16 @@ class _Reader:
         meshes = self.meshes(data.get("meshes"), gear_owner)
         states = self.states(data.get("states", {}), set(links_table) | set(gear_owner))
         base = self.base(data["base"]) if "base" in data else None
+        one_ways = self.one_ways(data.get("one_way", {}), set(links_table) | set(gear_owner))
         try:
             train = Train(tuple(links), tuple(meshes), name=name, states=tuple(states), description=description,
-                          source=self.path, base=base, tooth_forms=tuple((g, f) for g, f in self.forms.items() if f))
+                          source=self.path, base=base, tooth_forms=tuple((g, f) for g, f in self.forms.items() if f),
+                          one_ways=one_ways)
         except TrainFileError:
             raise
         except ModelError as err:
             raise self.fail(self._where_of(str(err), specs), str(err)) from None
-        self._check_joined(specs, meshes, states, gear_owner)
+        self._check_joined(specs, meshes, [*states, *(State("", "", "", (), ((o.link, o.other),)) for o in one_ways)], gear_owner)
         return train
 
     def base(self, table: Any) -> Any:
@@ -503,10 +510,38 @@ class _Reader:
             description = spec.get("description", "")
             if not isinstance(description, str):
                 raise self.fail(f"{where} description", f"must be a string, got {_show(description)}")
+            released = spec.get("released", [])
+            if not isinstance(released, list) or not all(isinstance(r, str) for r in released):
+                raise self.fail(f"{where} released", f"must be a list of one-way clutch names, got {_show(released)}")
             frame = lambda n: FRAME if n == FRAME_TABLE else n  # noqa: E731
             out.append(State(state_name, spec["input"], spec["output"], tuple(frame(b) for b in brakes),
-                             tuple((frame(a), frame(b)) for a, b in clutches), description))
+                             tuple((frame(a), frame(b)) for a, b in clutches), description, tuple(released)))
         return out
+
+    def one_ways(self, table: Any, names: set[str]) -> tuple[OneWay, ...]:
+        """[one_way.NAME]: links = ["A", "B"] (B may be "frame"), blocks = "negative" or "positive"."""
+        if not isinstance(table, Mapping):
+            raise self.fail("[one_way]", f"must be tables [one_way.NAME], got {_show(table)}")
+        out = []
+        for ow_name, spec in table.items():
+            where = f"[one_way.{ow_name}]"
+            spec = self.keys(spec, _ONE_WAY, where)
+            pair = spec.get("links")
+            if not isinstance(pair, list) or len(pair) != 2 or not all(isinstance(n, str) for n in pair):
+                raise self.fail(f"{where} links", f"is the pair of links it joins, [\"C2\", \"frame\"], got {_show(pair)}")
+            for n in pair:
+                if n not in names and n != FRAME_TABLE:
+                    raise self.fail(f"{where} links", f"names no link {n!r}; the links are {', '.join(sorted(names))}")
+            blocks = spec.get("blocks", "negative")
+            if blocks not in ("negative", "positive"):
+                raise self.fail(f"{where} blocks", f"is \"negative\" (the first link may not turn backwards relative to "
+                                f"the second) or \"positive\", got {_show(blocks)}")
+            try:
+                link, other = (FRAME if n == FRAME_TABLE else n for n in pair)
+                out.append(OneWay(ow_name, link, other, blocks=blocks))
+            except ModelError as err:
+                raise self.fail(where, str(err)) from None
+        return tuple(out)
 
     def _where_of(self, message: str, specs: Mapping[str, Any]) -> str:
         """The table an error of the model is about, when it names a link or a state."""

@@ -26,8 +26,9 @@ from symkin.errors import DeterminacyError, ModelError
 from symkin.kinematics import Speeds, solve_speeds
 from symkin.laws import Law
 from symkin.model import FRAME, Mechanism
+from symkin.trains.one_way import Engagement, OneWay, engage
 
-__all__ = ["State", "Train", "Shift", "ShiftTable"]
+__all__ = ["State", "Train", "Shift", "ShiftTable", "OneWay", "Engagement"]
 
 
 @dataclass(frozen=True)
@@ -44,6 +45,8 @@ class State:
     clutches : tuple of (str, str)
         Pairs of links made to turn together.
     description : str
+    released : tuple of str
+        One-way clutches held out of engagement in this state (a hub's pawls lifted).
     """
 
     name: str
@@ -52,27 +55,44 @@ class State:
     brakes: tuple[str, ...] = ()
     clutches: tuple[tuple[str, str], ...] = ()
     description: str = ""
+    released: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)
 class Shift:
-    """A state solved: its ratio ``omega_input / omega_output`` and every link's speed."""
+    """A state solved: its ratio ``omega_input / omega_output`` and every link's speed.
+
+    With one-way clutches in the train, ``drive`` and ``coast`` say which hold and which
+    overrun (:class:`~symkin.trains.one_way.Engagement`), driving and with the output
+    driving; a state no one-way clutch can hold in drive is ``free``: no ratio, no speeds.
+    """
 
     state: State
-    ratio: Law
-    speeds: Speeds
+    ratio: Law | None
+    speeds: Speeds | None
+    drive: Engagement | None = None
+    coast: Engagement | None = None
+
+    @property
+    def free(self) -> bool:
+        """True when nothing holds the state in drive (a one-way clutch overruns): no ratio."""
+        return self.ratio is None
 
     def to_json(self) -> dict[str, Any]:
-        """The gear state as JSON: input, output, brakes, clutches and the exact ratio."""
-        return {
+        """The gear state as JSON: input, output, brakes, clutches and the exact ratio (null when free)."""
+        out: dict[str, Any] = {
             "state": self.state.name,
             "input": self.state.input,
             "output": self.state.output,
             "brakes": list(self.state.brakes),
             "clutches": [list(c) for c in self.state.clutches],
-            "ratio": exact_json(self.ratio.rhs),
-            "speeds_per_input": {n: exact_json(sp.cancel(v / S.omega(self.state.input))) for n, v in self.speeds.items()},
+            "ratio": None if self.ratio is None else exact_json(self.ratio.rhs),
+            "speeds_per_input": {} if self.speeds is None else
+            {n: exact_json(sp.cancel(v / S.omega(self.state.input))) for n, v in self.speeds.items()},
         }
+        if self.drive is not None and self.coast is not None:
+            out.update(free=self.free, one_way=self.drive.to_json()["one_way"], coast=self.coast.to_json())
+        return out
 
 
 @dataclass(frozen=True)
@@ -93,13 +113,16 @@ class ShiftTable:
 
     def text(self) -> str:
         """The shift table as ``symkin states`` prints it, one row per state."""
-        rows = [("state", "input", "output", "brakes", "clutches", "ratio", "float")]
+        one_way = bool(self.train.one_ways)
+        rows = [("state", "input", "output", "brakes", "clutches", "ratio", "float")
+                + (("one-way clutches (drive)", "coast (output driving)") if one_way else ())]
         for s in self.shifts:
             st = s.state
-            value = s.ratio.rhs
+            value = None if s.ratio is None else s.ratio.rhs
             rows.append((st.name, st.input, st.output, ", ".join(st.brakes) or "-",
-                         ", ".join(f"{a}+{b}" for a, b in st.clutches) or "-", str(value),
-                         float_text(value)))
+                         ", ".join(f"{a}+{b}" for a, b in st.clutches) or "-", "free" if value is None else str(value),
+                         "-" if value is None else float_text(value))
+                        + ((s.drive.text(), s.coast.text()) if one_way and s.drive and s.coast else ()))
         widths = [max(len(r[i]) for r in rows) for i in range(len(rows[0]))]
         lines = ["  ".join(c.ljust(w) for c, w in zip(r, widths)).rstrip() for r in rows]
         lines.insert(1, "  ".join("-" * w for w in widths).rstrip())
@@ -119,10 +142,24 @@ class ShiftTable:
         True
         """
         rows = [(s.state.name, s.state.input, s.state.output, ", ".join(s.state.brakes) or "-",
-                 ", ".join(f"{a}+{b}" for a, b in s.state.clutches) or "-", f"${sp.latex(s.ratio.rhs)}$",
-                 float_text(s.ratio.rhs)) for s in self.shifts]
+                 ", ".join(f"{a}+{b}" for a, b in s.state.clutches) or "-",
+                 "free" if s.ratio is None else f"${sp.latex(s.ratio.rhs)}$",
+                 "-" if s.ratio is None else float_text(s.ratio.rhs)) for s in self.shifts]
         return html_table(["state", "input", "output", "brakes", "clutches", "ratio", "float"], rows,
                           caption=f"{self.train.name or 'train'}: ratio = omega_input/omega_output", raw_columns=(5,))
+
+
+def _named(items: Any, kind: type, what: str) -> tuple[Any, ...]:
+    """``items`` as a tuple, each a ``kind`` with a name of its own."""
+    seen: set[str] = set()
+    for item in items:
+        if not isinstance(item, kind):
+            raise ModelError(f"{item!r} is not a {kind.__name__}")
+        name: str = getattr(item, "name")  # noqa: B009 - State and OneWay both have one
+        if name in seen:
+            raise ModelError(f"two {what} are called {name!r}; give each its own name")
+        seen.add(name)
+    return tuple(items)
 
 
 @dataclass(frozen=True)
@@ -142,6 +179,8 @@ class Train(Mechanism):
     tooth_forms : tuple of (gear name, ((key, value), ...))
         The tooth form keys a gear's table gives (``shift``, ``addendum``, ``dedendum``,
         ``pressure_angle``, ``fillet``, ``tip_diameter``), exact; :mod:`symkin.geometry` reads them.
+    one_ways : tuple of OneWay
+        One-way clutches ([one_way.NAME]): each state engages those that can hold it.
     """
 
     states: tuple[State, ...] = ()
@@ -149,18 +188,26 @@ class Train(Mechanism):
     source: str = ""
     base: Any = None
     tooth_forms: tuple[tuple[str, tuple[tuple[str, Any], ...]], ...] = ()
+    one_ways: tuple[OneWay, ...] = ()
 
     def __post_init__(self) -> None:
         super().__post_init__()
-        object.__setattr__(self, "states", tuple(self.states))
-        seen: set[str] = set()
+        object.__setattr__(self, "states", _named(self.states, State, "states"))
         for st in self.states:
-            if not isinstance(st, State):
-                raise ModelError(f"{st!r} is not a State")
-            if st.name in seen:
-                raise ModelError(f"two states are called {st.name!r}; give every state its own name")
-            seen.add(st.name)
             self._check_state(st)
+        object.__setattr__(self, "one_ways", _named(self.one_ways, OneWay, "one-way clutches"))
+        for st in self.states:
+            unknown = sorted(set(st.released) - {ow.name for ow in self.one_ways})
+            if unknown:
+                raise ModelError(f"state {st.name!r}: releases no one-way clutch {unknown[0]!r}; the one-way clutches are "
+                                 f"{', '.join(ow.name for ow in self.one_ways) or '(none)'}")
+        for ow in self.one_ways:
+            for n in (ow.link, ow.other):
+                if n != FRAME:
+                    try:
+                        self.link(n)
+                    except ModelError as err:
+                        raise ModelError(f"one-way clutch {ow.name}: {err}") from None
 
     def _check_state(self, st: State) -> None:
         where = f"state {st.name!r}"
@@ -210,15 +257,44 @@ class Train(Mechanism):
         i_{SR2} = 76
         """
         st = self.state(state) if isinstance(state, str) else state
-        return self._memo(("shift", st), lambda: self._shift(st))
+        return self._memo(("shift", st, self.one_ways), lambda: self._shift(st))
+
+    def engaged(self, state: str | State) -> tuple[tuple[str, ...], tuple[tuple[str, str], ...]]:
+        """The brakes and clutches that hold ``state`` in drive: its own, and the one-way clutches
+        that hold (as a brake against the frame, else as a clutch); what the statics take.
+
+        >>> from symkin.trains import load_train
+        >>> load_train("simpson-oneway").engaged("D1")
+        (('C2',), ())
+        """
+        shift = self.shift(state)
+        st = shift.state
+        if shift.free:
+            raise ModelError(f"state {st.name!r} is free: no one-way clutch can hold it in drive")
+        brakes, clutches = list(st.brakes), list(st.clutches)
+        for ow in self.one_ways:
+            if shift.drive is not None and ow.name in shift.drive.holding:
+                if FRAME in (ow.link, ow.other):
+                    brakes.append(ow.other if ow.link == FRAME else ow.link)
+                else:
+                    clutches.append((ow.link, ow.other))
+        return tuple(brakes), tuple(clutches)
 
     def _shift(self, st: State) -> Shift:
         inp, out = self.link(st.input).name, self.link(st.output).name
         known: dict[str, Any] = {self.link(b).name: 0 for b in st.brakes if self.link(b).name != FRAME}
         known[inp] = S.omega(inp)
         joined = [(self.link(a).name, self.link(b).name) for a, b in st.clutches]
+        drive = coast = None
         try:
-            speeds = solve_speeds(self, known, joined=joined)
+            if self.one_ways:
+                drive = engage(self, st, 1, inp=inp, out=out, known=known, joined=joined)
+                coast = engage(self, st, -1, inp=inp, out=out, known=known, joined=joined)
+                if drive.speeds is None:
+                    return Shift(st, None, None, drive, coast)
+                speeds = drive.speeds
+            else:
+                speeds = solve_speeds(self, known, joined=joined)
         except DeterminacyError as err:
             raise type(err)(f"state {st.name!r}: {err}", dof=err.dof, admissible=err.admissible) from None
         per_input = sp.cancel(speeds[out] / S.omega(inp))
@@ -228,7 +304,7 @@ class Train(Mechanism):
         desc = f"state {st.name}: omega_{inp}/omega_{out}" + (f", {', '.join(held)} held" if held else "") + \
             (f", {', '.join(f'{a}+{b}' for a, b in joined)} joined" if joined else "")
         ratio = Law(S.ratio_symbol(inp, out, held), sp.cancel(1 / per_input), desc)
-        return Shift(st, ratio, speeds)
+        return Shift(st, ratio, speeds, drive, coast)
 
     def shift_table(self) -> ShiftTable:
         """Every state solved, in order (a :class:`ShiftTable`: iterate, print ``.text()``)."""

@@ -116,3 +116,30 @@ def test_carrier_can_hold_the_next_stage_sun():
     train = schemes.common_ring_train(2)
     assert [g.name for g in train.link("H1").gears] == ["s2"]
     assert train.dof == 2
+
+
+def test_reserved_link_names_are_refused_and_frame_names_the_frame():
+    import pytest as _pytest
+
+    from symkin.errors import TrainFileError
+    from symkin.model import FRAME
+    from symkin.trains import load_train, read_train
+
+    assert load_train("simple").link("frame").name == FRAME
+    text = """meshes = [["s", "p"], ["p", "r"]]
+[links.S]
+gears = { s = 20 }
+[links.C]
+[links.P]
+carrier = "C"
+gears = { p = 20 }
+[links.R]
+gears = { r = { teeth = 60, internal = true } }
+"""
+    assert read_train(text).ratio("S", "C", fixed="R").rhs == 4
+    for old, new, word in (("[links.P]", "[links.O]", "main axis"), ("[links.C]", "[links.0]", "frame")):
+        changed = text.replace(old, new).replace('carrier = "C"', 'carrier = "0"' if new == "[links.0]" else 'carrier = "C"')
+        with _pytest.raises(TrainFileError, match=f"reserved .symkin's name for the {word}"):
+            read_train(changed)
+    with _pytest.raises(ModelError, match="reserved"):
+        Mechanism([Link.frame(), Link.central("O", Gear.from_teeth("x", 20))], [])

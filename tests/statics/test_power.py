@@ -184,8 +184,11 @@ def test_efficiency_tends_to_one_as_every_mesh_does(scheme, z, drive):
 def test_circulating_power_and_self_locking_of_the_2009_ii_example():
     res = statics(schemes.two_row("II", teeth=(200, 99, 100, 201)), input="H", output="1", fixed=("4",),
                   efficiency="default")
-    # the planet's meshes carry 99 times the input power (it circulates), and gear 1 cannot drive the carrier
-    assert res.circulating == 99 and res.self_locking is True
+    # the planet's meshes roll i - 1 times the input power relative to the carrier (by hand: gear 1's torque is
+    # -i by the power balance, its speed relative to the carrier 1/i - 1), and gear 1 cannot drive the carrier
+    i = sp.Rational(200 * 100, 101)  # the ratio omega_H/omega_1 of the 2009 paper's II train, 1 - (201*99)/(200*100)
+    assert res.speeds["1"] == 1 / i
+    assert res.circulating == i - 1 and res.self_locking is True
     assert float(res.backward.efficiency.rhs) < 0
 
 

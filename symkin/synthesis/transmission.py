@@ -1,0 +1,332 @@
+"""Tooth numbers of a whole transmission: every state's ratio at once, pruned state by state.
+
+A transmission is a train with several gear states and a target ratio for each.  The
+conditions of every set (coaxiality, assembly of ``k`` planets, neighbours, internal gears,
+limits) are derived once from the model (:func:`symkin.synthesis.problem.derive`) and split
+into independent **groups** of tooth numbers: the unknowns that a condition ties together
+(one simple planetary set is one group).  Each group's admissible tuples are enumerated
+once, the coaxiality solved for the tooth numbers it fixes.  Then the states are taken in the
+order that brings in the fewest new groups: a state's ratio law (derived by the kinematics
+in the unknowns) is evaluated for every partial design extended by the new group's tuples,
+and only those within the tolerance go on.  Every design found is exact: its ratios are
+evaluated again exactly, and its train, built with the numbers, is solved again state by
+state.  Designs are ranked by their largest ratio error, then by their largest error in the
+steps between consecutive states, then by size (the largest tooth number), then tooth sum.
+
+    >>> from symkin.trains import load_train
+    >>> res = synthesize_transmission(load_train("simple"), {"low": 4, "overdrive": 0.75}, tolerance=0, zmax=60)
+    >>> res.designs[0].teeth, res.designs[0].ratios
+    ({'z_s': 18, 'z_p': 18, 'z_r': 54}, {'low': 4, 'overdrive': 3/4})
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import itertools
+import time
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import sympy as sp
+
+from symkin._util.jsonout import exact_json, float_text
+from symkin.errors import InputError, TimeLimitError
+from symkin.model import Gear, Mechanism
+from symkin.numeric import compile as compile_law
+from symkin.synthesis.problem import Problem, derive
+from symkin.synthesis.request import Options
+from symkin.values import as_rational
+
+__all__ = ["TransmissionDesign", "TransmissionResult", "synthesize_transmission"]
+
+#: Partial designs kept between two states at most (beyond it the search says to tighten the target).
+MAX_PARTIAL = 2_000_000
+#: The relative tolerance on every ratio unless one is given (1 %).
+DEFAULT_TOLERANCE = sp.Rational(1, 100)
+
+
+@dataclass(frozen=True)
+class TransmissionDesign:
+    """Tooth numbers for every state at once: ``teeth`` (unknown -> number), each state's exact ratio."""
+
+    teeth: dict[str, int]
+    ratios: dict[str, sp.Rational]
+    error: sp.Rational
+    step_error: sp.Rational
+
+    def to_json(self) -> dict[str, Any]:
+        """The design as JSON: its teeth, ratios and errors."""
+        return {"teeth": dict(self.teeth), "ratios": {k: exact_json(v) for k, v in self.ratios.items()},
+                "error": exact_json(self.error), "step_error": exact_json(self.step_error)}
+
+
+@dataclass(frozen=True)
+class TransmissionResult:
+    """The designs of :func:`synthesize_transmission`, best first, and how the search went."""
+
+    problem: Problem
+    targets: dict[str, sp.Rational]
+    tolerance: sp.Rational
+    absolute: bool
+    designs: tuple[TransmissionDesign, ...]
+    found: int
+    order: tuple[str, ...]
+    groups: tuple[tuple[str, ...], ...]
+    candidates: tuple[int, ...]
+    kept: tuple[int, ...]
+    seconds: float
+    where: str = "this process"
+
+    def text(self) -> str:
+        """The search and the designs as ``symkin synthesize --ratios`` prints them."""
+        tol = f"+- {float_text(self.tolerance)}" + ("" if self.absolute else " (relative)")
+        lines = [f"{self.problem.train.name or 'train'}: {len(self.targets)} states at once, "
+                 + ", ".join(f"{k} {float_text(v)}" for k, v in self.targets.items()) + f" {tol}"]
+        lines.append("groups of tooth numbers (tuples meeting their sets' conditions): " + "; ".join(
+            f"{', '.join(g)} ({n})" for g, n in zip(self.groups, self.candidates)))
+        lines.append("pruned state by state: " + ", ".join(f"{s} {n}" for s, n in zip(self.order, self.kept)))
+        lines.append(f"{self.found} design{'s' * (self.found != 1)} in {self.seconds:.2f} s (exact ratios: {self.where})")
+        for d in self.designs:
+            lines.append("  " + " ".join(f"{k}={v}" for k, v in d.teeth.items()))
+            lines.append("    " + ", ".join(f"{k} {float_text(v)}" for k, v in d.ratios.items())
+                         + f"; largest error {float_text(d.error)}, steps {float_text(d.step_error)}")
+        return "\n".join(lines)
+
+    def to_json(self) -> dict[str, Any]:
+        """The result as JSON."""
+        return {"train": self.problem.train.name, "targets": {k: exact_json(v) for k, v in self.targets.items()},
+                "tolerance": exact_json(self.tolerance),
+                "absolute": self.absolute, "found": self.found, "order": list(self.order),
+                "groups": [list(g) for g in self.groups], "candidates": list(self.candidates), "kept": list(self.kept),
+                "seconds": self.seconds, "where": self.where, "designs": [d.to_json() for d in self.designs]}
+
+
+def synthesize_transmission(train: Mechanism, ratios: Mapping[str, Any], *, tolerance: Any = DEFAULT_TOLERANCE,
+                            absolute: bool = False, planets: int | None = 3, zmin: int | None = None, zmax: int = 150,
+                            top: int | None = 10, time_limit: float = 600.0, scheduler: str | None = None,
+                            workers: int | None = None, **options: Any) -> TransmissionResult:
+    """Tooth numbers that give every named state of ``train`` its target ratio at once.
+
+    Parameters
+    ----------
+    train : Train
+        A train with states; symbolic tooth numbers are the unknowns (all, when it gives numbers).
+    ratios : mapping of state name to ratio
+    tolerance : number
+        Relative (default) or, with ``absolute``, absolute tolerance on every ratio.
+    planets, zmin, zmax, options
+        As for :func:`symkin.synthesis.synthesize` (:class:`~symkin.synthesis.request.Options`).
+    top : int or None
+        How many designs to keep (None: all).
+    time_limit : float
+        Seconds; a longer search raises :class:`~symkin.errors.TimeLimitError`.
+    scheduler, workers : optional
+        Evaluate the designs that pass the floating-point pruning exactly, in chunks, on Dask
+        (``"local"``: a local cluster of ``workers`` processes, or a scheduler's address); the
+        result is the same as without.
+    """
+    began = time.perf_counter()
+    if not ratios:
+        raise InputError("give a target ratio for at least one state (ratios={state: ratio})")
+    targets = {str(k): as_rational(v, what=f"the ratio of state {k}") for k, v in ratios.items()}
+    tol = as_rational(tolerance, what="the tolerance")
+    if tol < 0:
+        raise InputError(f"the tolerance must be zero or positive, got {tolerance}")
+    first = next(iter(targets))
+    problem = derive(train, state=first, options=Options(planets=planets, zmin=zmin, zmax=zmax, **options))
+    laws = {s: dataclasses.replace(problem, request=(None, None, (), s)).ratio_of(problem.train).rhs for s in targets}
+    groups = _groups(problem)
+    lo, hi = int(problem.options.zmin), int(problem.options.zmax)
+    tables = [_candidates(problem, g, lo, hi) for g in groups]
+    for g, t in zip(groups, tables):
+        if not len(t):
+            raise InputError(f"no tooth numbers of {', '.join(map(str, g))} meet their set's conditions within "
+                             f"{lo} <= z <= {hi}; widen the limits")
+    # states in the order that brings in the fewest new groups; partial designs as index rows into the tables
+    order: list[str] = []
+    assigned: list[int] = []
+    partial = np.zeros((1, 0), dtype=np.int64)
+    remaining = list(targets)
+    kept: list[int] = []
+    while remaining:
+        def new_groups(s: str) -> list[int]:
+            used = {i for i, g in enumerate(groups) if set(g) & laws[s].free_symbols}
+            return sorted(used - set(assigned))
+        s = min(remaining, key=lambda s: (len(new_groups(s)), remaining.index(s)))
+        remaining.remove(s)
+        for i in new_groups(s):
+            partial = _extend(partial, len(tables[i]))
+            assigned.append(i)
+            if len(partial) > MAX_PARTIAL:
+                raise InputError(f"state {s}: {len(partial)} partial designs before its ratio prunes them; name states "
+                                 "whose ratios involve fewer sets first, or narrow the limits")
+        partial = partial[_within(laws[s], targets[s], tol, absolute, groups, tables, assigned, partial)]
+        order.append(s)
+        kept.append(len(partial))
+        if time.perf_counter() - began > time_limit:
+            raise TimeLimitError(f"the search ran past {time_limit:.0f} s after state {s} ({len(partial)} partial "
+                                 "designs); narrow the limits or the tolerance")
+    free = [i for i in range(len(groups)) if i not in assigned]  # groups no ratio names: their least tuple
+    rows: list[dict[sp.Symbol, int]] = []
+    for row in partial:
+        values: dict[sp.Symbol, int] = {}
+        for col, i in enumerate(assigned):
+            values.update(zip(groups[i], (int(x) for x in tables[i][row[col]])))
+        for i in free:
+            values.update(zip(groups[i], (int(x) for x in tables[i][0])))
+        rows.append(values)
+    designs, where = _exact(rows, laws, targets, tol, absolute, scheduler, workers)
+    designs.sort(key=lambda d: (d.error, d.step_error, max(d.teeth.values()), sum(d.teeth.values())))
+    kept_designs = tuple(designs if top is None else designs[:top])
+    for d in kept_designs:
+        _recheck(train, problem, d)
+    return TransmissionResult(problem, targets, tol, absolute, kept_designs, len(designs), tuple(order),
+                              tuple(tuple(map(str, g)) for g in groups), tuple(len(t) for t in tables), tuple(kept),
+                              time.perf_counter() - began, where)
+
+
+def _groups(problem: Problem) -> list[tuple[sp.Symbol, ...]]:
+    """The unknowns in groups that the conditions (limits aside) tie together, in the file's order."""
+    parent = {z: z for z in problem.unknowns}
+
+    def root(z: sp.Symbol) -> sp.Symbol:
+        while parent[z] != z:
+            z = parent[z]
+        return z
+
+    for c in problem.conditions():
+        if c.kind == "limits":
+            continue
+        zs = [z for z in problem.unknowns if z in c.relation.free_symbols]
+        for a, b in itertools.pairwise(zs):
+            parent[root(a)] = root(b)
+    out: dict[sp.Symbol, list[sp.Symbol]] = {}
+    for z in problem.unknowns:
+        out.setdefault(root(z), []).append(z)
+    return [tuple(g) for g in out.values()]
+
+
+def _candidates(problem: Problem, group: Sequence[sp.Symbol], lo: int, hi: int) -> np.ndarray:
+    """Every tuple of the group's tooth numbers in [lo, hi] that meets its conditions (an array, one row each)."""
+    own = [c for c in problem.conditions() if c.kind != "limits" and c.relation.free_symbols & set(group)]
+    equalities = [c.relation for c in own if isinstance(c.relation, sp.Equality)]
+    solved = sp.solve(equalities, list(group)[::-1], dict=True) if equalities else [{}]
+    if len(solved) != 1:
+        raise InputError(f"the conditions of {', '.join(map(str, group))} do not fix a unique tooth number")
+    fixed = solved[0]
+    free = [z for z in group if z not in fixed]
+    grid = np.array(list(itertools.product(range(lo, hi + 1), repeat=len(free))), dtype=np.int64).reshape(-1, len(free))
+    columns = {z: grid[:, k] for k, z in enumerate(free)}
+    keep = np.ones(len(grid), dtype=bool)
+    for z, expr in fixed.items():
+        value = _evaluate(expr, free, [columns[f] for f in free], len(grid))
+        whole = np.isclose(value, np.round(value), rtol=0, atol=1e-9)
+        columns[z] = np.round(value).astype(np.int64)
+        keep &= whole & (columns[z] >= lo) & (columns[z] <= hi)
+    for c in own:
+        rel = c.relation
+        if isinstance(rel, sp.Equality):
+            continue
+        args = [columns[z] for z in group]
+        if isinstance(rel, sp.Contains):
+            value = _evaluate(rel.args[0], group, args, len(grid))
+            keep &= np.isclose(value, np.round(value), rtol=0, atol=1e-9)
+        elif not c.integers:
+            keep &= _evaluate(rel, group, args, len(grid))
+    table = np.stack([columns[z] for z in group], axis=1)[keep]
+    if any(c.integers for c in own):  # assembly with integers to find: decided exactly, row by row
+        ok = [problem.assembles({**{z: 1 for z in problem.unknowns}, **dict(zip(group, map(int, row)))}) for row in table]
+        table = table[np.asarray(ok, dtype=bool)]
+    return table
+
+
+def _evaluate(expr: Any, symbols: Sequence[sp.Symbol], columns: Sequence[np.ndarray], n: int) -> np.ndarray:
+    """``expr`` at every row of ``columns`` (floats; a relation: where it holds)."""
+    if isinstance(expr, sp.core.relational.Relational):
+        difference = _evaluate(expr.lhs - expr.rhs, symbols, columns, n)
+        op = {"<": np.less, "<=": np.less_equal, ">": np.greater, ">=": np.greater_equal}[expr.rel_op]
+        return op(difference, 0)
+    expr = sp.sympify(expr)
+    if not expr.free_symbols:
+        return np.full(n, float(expr))
+    used = [k for k, z in enumerate(symbols) if z in expr.free_symbols]
+    f = compile_law(expr, [symbols[k] for k in used], backend="numpy", on_pole="return")
+    with np.errstate(all="ignore"):
+        return np.asarray(f(*[np.asarray(columns[k], dtype=float) for k in used]), dtype=float) * np.ones(n)
+
+
+def _extend(partial: np.ndarray, n: int) -> np.ndarray:
+    """Every partial design with each of a new group's ``n`` tuples (one column more)."""
+    rows = np.repeat(partial, n, axis=0)
+    return np.concatenate([rows, np.tile(np.arange(n), len(partial))[:, None]], axis=1)
+
+
+def _within(law: sp.Expr, target: sp.Rational, tol: sp.Rational, absolute: bool, groups: list, tables: list,
+            assigned: list[int], partial: np.ndarray) -> np.ndarray:
+    """Which partial designs give ``law`` within the tolerance (in floats, with a margin; exact later)."""
+    symbols, columns = [], []
+    for col, i in enumerate(assigned):
+        for k, z in enumerate(groups[i]):
+            if z in law.free_symbols:
+                symbols.append(z)
+                columns.append(tables[i][partial[:, col], k].astype(float))
+    value = _evaluate(law, symbols, columns, len(partial))
+    bound = float(tol) if absolute else float(tol) * abs(float(target))
+    return np.abs(value - float(target)) <= bound * (1 + 1e-9) + 1e-12
+
+
+#: Designs evaluated exactly per Dask task.
+CHUNK = 256
+
+
+def _exact(rows: list[dict[sp.Symbol, int]], laws: dict[str, sp.Expr], targets: dict[str, sp.Rational], tol: sp.Rational,
+           absolute: bool, scheduler: str | None, workers: int | None) -> tuple[list[TransmissionDesign], str]:
+    """The designs of ``rows`` that meet every ratio exactly: here, or in chunks on Dask (merged in order)."""
+    if scheduler is None:
+        return _exact_chunk(rows, laws, targets, tol, absolute), "this process"
+    from symkin.synthesis.runner import _client
+
+    client, cluster, where, _ = _client(scheduler, workers)
+    try:
+        chunks = [rows[k:k + CHUNK] for k in range(0, len(rows), CHUNK)]
+        futures = client.map(_exact_chunk, chunks, laws=laws, targets=targets, tol=tol, absolute=absolute, pure=False)
+        return [d for part in client.gather(futures) for d in part], f"{where}, {len(chunks)} chunks"
+    finally:
+        client.close()
+        if cluster is not None:
+            cluster.close()
+
+
+def _exact_chunk(rows: list[dict[sp.Symbol, int]], laws: dict[str, sp.Expr], targets: dict[str, sp.Rational],
+                 tol: sp.Rational, absolute: bool) -> list[TransmissionDesign]:
+    return [d for d in (_design(v, laws, targets, tol, absolute) for v in rows) if d is not None]
+
+
+def _design(values: dict[sp.Symbol, int], laws: dict[str, sp.Expr], targets: dict[str, sp.Rational], tol: sp.Rational,
+            absolute: bool) -> TransmissionDesign | None:
+    """The design with exact ratios, or None when one misses the tolerance exactly."""
+    exact = {z: sp.Integer(v) for z, v in values.items()}
+    ratios = {s: sp.Rational(sp.cancel(law.xreplace(exact))) for s, law in laws.items()}  # xreplace: no re-derivation
+    errors = [abs(ratios[s] - t) if absolute else abs(ratios[s] - t) / abs(t) for s, t in targets.items()]
+    if max(errors) > tol:
+        return None
+    names = list(targets)
+    steps = [abs(ratios[a] / ratios[b] - targets[a] / targets[b]) / abs(targets[a] / targets[b])
+             for a, b in itertools.pairwise(names) if ratios[b] != 0]
+    return TransmissionDesign({str(z): v for z, v in values.items()}, ratios, max(errors), max(steps, default=sp.Integer(0)))
+
+
+def _recheck(train: Any, problem: Problem, design: TransmissionDesign) -> None:
+    """Build the train with the design's numbers and solve every state again: the same exact ratios."""
+    links = []
+    for L in problem.train.links:
+        gears = tuple(Gear.from_teeth(g.name, design.teeth[str(g.teeth)], internal=g.internal, module=g.module)
+                      if isinstance(g.teeth, sp.Symbol) else g for g in L.gears)
+        links.append(dataclasses.replace(L, gears=gears))
+    built: Any = dataclasses.replace(problem.train, links=tuple(links))
+    for s, ratio in design.ratios.items():
+        again = built.shift(s).ratio.rhs
+        if again != ratio:  # pragma: no cover - a failure of the search, not of the input
+            raise AssertionError(f"state {s}: the built train gives {again}, the search {ratio}")
