@@ -282,7 +282,8 @@ class EquationsOfMotion:
         class TrainLagrangesMethod(me.LagrangesMethod):
             """Lagrange's method with the train's kinetic energy as the Lagrangian."""
 
-            def __init__(self, Lagrangian: Any, qs: Any, **kwargs: Any) -> None:  # noqa: N803 (sympy's name)
+            def __init__(self, Lagrangian: Any, qs: Any, **kwargs: Any) -> None:
+                # System.form_eoms passes the Lagrangian of its bodies (it has none): the train's energy stands in
                 super().__init__(energy, qs, **kwargs)
 
         system.form_eoms(TrainLagrangesMethod)
