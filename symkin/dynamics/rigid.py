@@ -244,30 +244,50 @@ class EquationsOfMotion:
         return "\n".join(lines)
 
     def to_mechanics(self) -> Any:
-        """The same equations as a :class:`sympy.physics.mechanics.LagrangesMethod` (formed): the
-        Lagrangian is the kinetic energy in dynamic symbols ``varphi_<link>(t)``, and each
-        coordinate's generalised force is a torque on a frame turning with it.  A bridge to
+        """The same equations as a :class:`sympy.physics.mechanics.System`, formed: a bridge to
         PyDy and the rest of the mechanics ecosystem.
 
+        The system's frame ``N`` turns with the frame of the train; its coordinates are the
+        turns ``varphi_<link>(t)``, its speeds ``omega_<link>(t)`` (with ``varphi' = omega``);
+        each coordinate's generalised force is a torque on a frame ``A_<link>`` turning with it;
+        the equations are formed by Lagrange's method from the kinetic energy (the Lagrangian:
+        no potential energy), so ``system.mass_matrix`` and ``system.forcing`` are this object's
+        M and f with ``varphi'`` for ``omega``.  The system holds no bodies: the kinetic energy
+        comes from the engine's speed laws, so ``system.eom_method`` is a
+        :class:`~sympy.physics.mechanics.LagrangesMethod` that takes it as the Lagrangian
+        (``system.form_eoms(type(system.eom_method))`` forms the equations again).
+
         >>> from symkin.trains import load_train
-        >>> lm = equations_of_motion(load_train("simple"), state="low").to_mechanics()
-        >>> lm.mass_matrix.shape
-        (1, 1)
+        >>> system = equations_of_motion(load_train("simple"), state="low").to_mechanics()
+        >>> system.q, system.mass_matrix.shape
+        (Matrix([[varphi_S(t)]]), (1, 1))
         """
         from sympy.physics import mechanics as me
 
         t = me.dynamicsymbols._t
         q = [me.dynamicsymbols(str(a)) for a in self.angles]
+        u = [me.dynamicsymbols(str(w)) for w in self.speeds_symbols]
         swap = {**{a: qi for a, qi in zip(self.angles, q)}, **{w: qi.diff(t) for w, qi in zip(self.speeds_symbols, q)},
                 S.t: t}
         N = me.ReferenceFrame("N")
-        loads = []
+        system = me.System(N)
+        system.add_coordinates(*q)
+        system.add_speeds(*u)
+        system.add_kdes(*(qi.diff(t) - ui for qi, ui in zip(q, u)))
         for c, qi, Qi in zip(self.coordinates, q, self.generalised_forces):
             A = N.orientnew(f"A_{c}", "Axis", (qi, N.z))
-            loads.append((A, Qi.xreplace(swap) * N.z))
-        lm = me.LagrangesMethod(self.kinetic_energy.xreplace(swap), q, forcelist=loads, frame=N)
-        lm.form_lagranges_equations()
-        return lm
+            system.add_loads(me.Torque(A, Qi.xreplace(swap) * N.z))
+        energy = self.kinetic_energy.xreplace(swap)
+
+        class TrainLagrangesMethod(me.LagrangesMethod):
+            """Lagrange's method with the train's kinetic energy as the Lagrangian."""
+
+            def __init__(self, Lagrangian: Any, qs: Any, **kwargs: Any) -> None:
+                # System.form_eoms passes the Lagrangian of its bodies (it has none): the train's energy stands in
+                super().__init__(energy, qs, **kwargs)
+
+        system.form_eoms(TrainLagrangesMethod)
+        return system
 
     def simulate(self, t_span: tuple[float, float], initial_speeds: Sequence[float] | None = None,
                  initial_angles: Sequence[float] | None = None, values: Mapping[Any, Any] | None = None,

@@ -263,13 +263,23 @@ def test_a_free_run_keeps_its_energy_and_torques_balance_power():
     assert dT[50:150] == pytest.approx(5 * run.speeds["S1"][50:150], rel=1e-4)
 
 
-def test_mechanics_bridge_gives_the_same_mass_matrix_and_forcing():
-    eom = equations_of_motion(load_train("double-pinion"), coordinates=["S", "R"], torques={"S": sp.Symbol("T_S")})
-    lm = eom.to_mechanics()
+@pytest.mark.parametrize(("name", "coordinates"), [("double-pinion", ["S", "R"]), ("nested-one", ["C", "Q"])])
+def test_mechanics_bridge_gives_the_same_mass_matrix_and_forcing(name, coordinates):
+    # a sympy.physics.mechanics System formed by Lagrange's method from the kinetic energy and the
+    # torques on frames turning with the coordinates; nested-one's M depends on the configuration,
+    # so its forcing carries the velocity terms
+    train = read_train(NESTED_ONE) if name == "nested-one" else load_train(name)
+    torques = {coordinates[0]: sp.Symbol("T_1"), coordinates[1]: sp.sin(S.t)}
+    eom = equations_of_motion(train, coordinates=coordinates, torques=torques)
+    system = eom.to_mechanics()
+    assert isinstance(system, me.System)
     q = [me.dynamicsymbols(str(a)) for a in eom.angles]
+    assert list(system.q) == q and len(system.u) == len(q) and len(system.kdes) == len(q)
     back = {**{qi.diff(t): w for qi, w in zip(q, eom.speeds_symbols)}, **dict(zip(q, eom.angles))}
-    assert (lm.mass_matrix.subs(back) - eom.mass_matrix).applyfunc(sp.simplify) == sp.zeros(2, 2)
-    assert (lm.forcing.subs(back) - eom.forcing).applyfunc(sp.simplify) == sp.zeros(2, 1)
+    n = len(q)
+    assert (system.mass_matrix.subs(back) - eom.mass_matrix).applyfunc(sp.simplify) == sp.zeros(n, n)
+    assert (system.forcing.subs(back).subs(t, S.t) - eom.forcing).applyfunc(sp.simplify) == sp.zeros(n, 1)
+    assert eom.forcing.has(sp.sin(S.t))
 
 
 def test_bad_requests_are_one_line_errors():

@@ -164,3 +164,51 @@ def test_every_copy_summed_gives_the_rigid_mass_matrix(name):
                     for c in eom.coordinates] for n in model.names])
     at_rest = eom.mass_matrix.subs({S.angle(c): 0 for c in eom.coordinates})  # the torsional model's place
     assert (G.T * model.mass_matrix * G - at_rest).applyfunc(sp.simplify) == sp.zeros(*eom.mass_matrix.shape)
+
+
+KAHRAMAN = """
+module = 2
+meshes = [{ gears = ["s", "p"], stiffness = 4e8 }, { gears = ["p", "r"], stiffness = 6e8 }]
+[links.S]
+gears = { s = 30 }
+inertia = 0.012
+[links.C]
+inertia = 0.3
+[links.P]
+carrier = "C"
+count = 4
+gears = { p = 21 }
+inertia = 0.004
+mass = 0
+[links.R]
+gears = { r = { teeth = 72, internal = true } }
+inertia = 0.5
+[states.low]
+input = "S"
+output = "C"
+brakes = ["R"]
+"""
+
+
+@pytest.mark.parametrize("count", [3, 4, 5])
+def test_fixed_ring_frequencies_have_kahramans_closed_form(count):
+    # Kahraman, "Natural modes of planetary gear trains", J. Sound Vib. 173(1) (1994) 125-130: the
+    # purely torsional model with the ring fixed, in the equivalent masses m = J / r^2 (r the base
+    # radius; the carrier's at r_c = r_s + r_p) and the mesh deflections u_s + u_p - u_c and
+    # u_p + u_c: a rigid mode, the planet modes omega^2 = (k_r + k_s) / m_p (multiplicity N - 1) and
+    # the two roots of l1 lambda^2 + l2 lambda + l3 = 0.  The closed form as typed (citing the paper)
+    # in gfsReboucas/Drivetrain-python, tests/test_kahraman_1994.py; the paper itself was not reachable.
+    # Zero pressure angle: symkin's base radius is then the pitch radius, as in the closed form.
+    train = read_train(KAHRAMAN.replace("count = 4", f"count = {count}"))
+    modes = natural_modes(train, state="low", pressure_angle=0)
+    rs, rp = 0.030, 0.021  # module 2 mm, 30 and 21 teeth, in metres
+    ms, mp, mc = 0.012 / rs**2, 0.004 / rp**2, 0.3 / (rs + rp) ** 2
+    ks, kr, n = 4e8, 6e8, count
+    l1 = mp * mc * ms
+    l2 = -(n * ks * mp * mc + (kr + ks) * mc * ms + n * (kr + ks) * mp * ms)
+    l3 = n * kr * ks * (n * mp + mc + 4 * ms)
+    root = math.sqrt(l2**2 - 4 * l1 * l3)
+    lam = [0.0, *[(kr + ks) / mp] * (n - 1), (-l2 - root) / (2 * l1), (-l2 + root) / (2 * l1)]
+    expected = sorted(math.sqrt(x) / (2 * math.pi) for x in lam)
+    assert modes.model.names == ("S", "C", *(f"P_{k + 1}" for k in range(n)))
+    assert modes.frequencies_hz == pytest.approx(expected, rel=1e-12, abs=1e-9)
