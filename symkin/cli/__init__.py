@@ -29,7 +29,7 @@ from symkin.errors import SymkinError, SymkinWarning
 __all__ = ["main", "console_main", "COMMANDS", "ArgumentParser", "output_schema", "JSON_SCHEMA_VERSION"]
 
 #: Modules of symkin.cli that define commands, in the order --help lists them.
-COMMANDS = ("reproduce", "gears", "trains", "efficiency", "plots", "cardan", "multistage", "helical", "synthesis")
+COMMANDS = ("reproduce", "gears", "trains", "diagram", "efficiency", "plots", "cardan", "multistage", "helical", "synthesis")
 
 EXIT_OK, EXIT_DIFFERS, EXIT_USAGE, EXIT_INTERNAL = 0, 1, 2, 3
 
