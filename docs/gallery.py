@@ -143,5 +143,32 @@ def draw(folder: Path = HERE / "gallery", *, quiet: bool = False) -> list[Path]:
     return paths
 
 
+def draw_trains(folder: Path = HERE / "trains") -> list[Path]:
+    """Draw the kinematic scheme and the lever diagram of every ready-made train into ``folder``
+    (``NAME-scheme.svg``, ``NAME-lever.svg``: the pictures of docs/trains.md, tracked in git so
+    that they show where the page is read; ``python docs/gallery.py --trains`` redraws them)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from symkin.trains import load_train, ready_made
+    from symkin.viz.diagram import diagram, text_as_text
+
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    paths = []
+    for name in ready_made():
+        train = load_train(name)
+        for kind in ("scheme", "lever"):
+            fig = diagram(train, lever=kind == "lever")
+            path = folder / f"{name}-{kind}.svg"
+            with text_as_text():
+                fig.savefig(path, format="svg", metadata={"Date": None})
+            paths.append(path)
+    return paths
+
+
 if __name__ == "__main__":
-    draw(Path(sys.argv[1]) if len(sys.argv) > 1 else HERE / "gallery")
+    if sys.argv[1:2] == ["--trains"]:
+        draw_trains(Path(sys.argv[2]) if len(sys.argv) > 2 else HERE / "trains")
+    else:
+        draw(Path(sys.argv[1]) if len(sys.argv) > 1 else HERE / "gallery")

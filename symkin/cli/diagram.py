@@ -13,6 +13,7 @@ from __future__ import annotations
 from typing import Any
 
 from symkin.cli.common import add_command, add_out_argument, add_train_argument, emit, figure_file
+from symkin.errors import InputError
 
 __all__ = ["register", "LENGTH_UNITS"]
 
@@ -36,8 +37,8 @@ def register(sub: Any) -> None:
     add_train_argument(p, required=True)
     p.add_argument("--state", default=None, metavar="NAME", help="a gear state of the train to show (symkin states lists them)")
     p.add_argument("--lever", action="store_true", help="draw the lever diagram instead of the kinematic scheme")
-    p.add_argument("--length-unit", default="mm", choices=LENGTH_UNITS,
-                   help="the unit of the scheme's radii (default mm: the module is in millimetres)")
+    p.add_argument("--length-unit", default="mm", metavar="UNIT",
+                   help=f"the unit of the scheme's radii: {', '.join(LENGTH_UNITS)} (default mm: the module is in millimetres)")
     add_out_argument(p, "a figure, .svg, .png, .pdf or .eps")
 
 
@@ -50,6 +51,8 @@ def run_diagram(args: Any) -> Any:
     from symkin.viz.diagram import diagram, text_as_text
 
     out = figure_file(args.out)
+    if args.length_unit not in LENGTH_UNITS:
+        raise InputError(f"--length-unit {args.length_unit!r}: choose one of {', '.join(LENGTH_UNITS)}")
     train = load_train(args.train)
     state = train.state(args.state) if args.state is not None else None
     fig = diagram(train, state, lever=args.lever, length_unit=args.length_unit)

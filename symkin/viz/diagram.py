@@ -50,6 +50,8 @@ __all__ = ["diagram", "scheme_figure", "lever_figure", "text_as_text", "LENGTH_U
 LENGTH_UNITS = {"mm": 1.0, "cm": 0.1, "m": 0.001, "in": 1 / 25.4}
 _INK, _GREY, _ON = "#000000", "0.6", style.PALETTE[1]
 _IN, _OUT = style.PALETTE[0], style.PALETTE[2]
+#: A gear label's box: white under the text, so that lines behind it do not cross it.
+_CLEAR = {"boxstyle": "square,pad=0.1", "facecolor": "white", "edgecolor": "none", "alpha": 0.85}
 
 
 def _name(link: str) -> str:
@@ -103,13 +105,13 @@ class _Scheme:
                 if geo.kind == "bevel" and L.name in (geo.link_a.name, geo.link_b.name):
                     self.R = max(self.R, _number(geo.centre_distance, "a bevel mesh's radius"))
         self.band = 0.07 * self.R
-        for g in gears.values():
-            if g.internal:
-                g.lo, g.hi = g.r, g.r + self.band
-            elif g.y0 > 0:
-                g.lo, g.hi = g.y0 - g.r, g.y0 + g.r
+        for gg in gears.values():
+            if gg.internal:
+                gg.lo, gg.hi = gg.r, gg.r + self.band
+            elif gg.y0 > 0:
+                gg.lo, gg.hi = gg.y0 - gg.r, gg.y0 + gg.r
             else:
-                g.lo, g.hi = 0.0, g.r
+                gg.lo, gg.hi = 0.0, gg.r
         self._columns()
         self._levels()
 
@@ -163,9 +165,9 @@ class _Scheme:
         for g in self.gears.values():
             g.column = renumber[g.column]
         self.pinion_column = {n: renumber[c] for n, c in self.pinion_column.items()}
-        self.W = 0.32 * self.R
-        self.w = 0.4 * self.W
-        self.gap = 0.12 * self.W
+        self.W = 0.45 * self.R
+        self.w = 0.3 * self.W
+        self.gap = 0.09 * self.W
         widths = [self.W] * len(order)
         self.pinions: dict[str, float] = {}
         for L in self.radial:
@@ -255,7 +257,7 @@ def scheme_figure(mech: Mechanism, state: Any = None, *, length_unit: str = "mm"
     st = _state_of(mech, state)
     sc = _Scheme(mech)
     brakes, clutches = _controls(mech)
-    x_ctrl = {}
+    x_ctrl: dict[Any, float] = {}
     at = sc.x_end
     for b in brakes:
         x_ctrl[("B", b)] = at + sc.W / 2
@@ -266,12 +268,12 @@ def scheme_figure(mech: Mechanism, state: Any = None, *, length_unit: str = "mm"
     x_left = -0.9 * sc.W
     height = sc.housing + sc.band
     width_in = style.PAGE
-    height_in = min(6.5, max(2.6, width_in * height / (at - x_left) + 0.9))
+    height_in = min(6.5, max(2.6, 0.92 * width_in * height / (at - x_left + 1.8 * sc.W) + 0.75))
     fig = style.new_figure(width_in, height_in)
     ax = fig.add_subplot()
     ax.set_aspect("equal", adjustable="box")
-    for side in ("top", "right", "bottom"):
-        ax.spines[side].set_visible(False)
+    for edge in ("top", "right", "bottom"):
+        ax.spines[edge].set_visible(False)
     ax.xaxis.set_visible(False)
     ax.tick_params(labelsize=style.SMALL)
     ax.set_ylabel(style.label("radius", length_unit), fontsize=style.FONT)
@@ -299,7 +301,7 @@ def scheme_figure(mech: Mechanism, state: Any = None, *, length_unit: str = "mm"
                 _line(ax, [x + sc.w / 2, xs, xs], [g.hi, g.hi, sc.level[g.link]], k, color=c)
                 reach[g.link].append(xs)
             ax.annotate(f"{g.name} ({_teeth(mech, g.name)})", (x * k, (g.hi + 0.3 * sc.band) * k), fontsize=style.SMALL,
-                        ha="center", va="bottom", color="0.25")
+                        ha="center", va="bottom", color="0.25", bbox=_CLEAR)
         else:
             bottom = g.lo if g.y0 > 0 or g.link == FRAME else sc.level.get(g.link, 0.0)
             wide = sc.w if g.y0 > 0 else 0.6 * sc.w  # planets wide and tinted, gears on the main axis narrow
@@ -313,7 +315,7 @@ def scheme_figure(mech: Mechanism, state: Any = None, *, length_unit: str = "mm"
             elif g.y0 == 0:
                 reach[g.link].append(x)
             ax.annotate(f"{g.name} ({_teeth(mech, g.name)})", ((x + sc.w / 2 + 1.6 * sc.gap) * k, (g.hi - 0.5 * sc.delta) * k),
-                        fontsize=style.SMALL, ha="left", va="top", color="0.25")
+                        fontsize=style.SMALL, ha="left", va="top", color="0.25", bbox=_CLEAR)
     # planets: axles through their gears, arms from their carriers
     label_at: dict[str, tuple[float, float, str]] = {}
     for L in mech.links:
@@ -350,7 +352,7 @@ def scheme_figure(mech: Mechanism, state: Any = None, *, length_unit: str = "mm"
                 y_rim = yc if up else yc - sc.w
                 _rect(ax, xc - rim, y_rim, 2 * rim, sc.w, f"gear:{pin.name}", k, color=colour(L.name), lw=1.3)
                 ax.annotate(f"{pin.name} ({_teeth(mech, pin.name)})", ((xc - rim) * k, (y_rim + sc.w * 1.15) * k),
-                            fontsize=style.SMALL, ha="right", va="bottom", color="0.25")
+                            fontsize=style.SMALL, ha="right", va="bottom", color="0.25", bbox=_CLEAR)
                 rims += [pin.name, yc]
             offset = side.side * sides.count(side.side) * (sc.w + sc.gap)  # a second side gear on one side: beside
             sides.append(side.side)
@@ -365,7 +367,7 @@ def scheme_figure(mech: Mechanism, state: Any = None, *, length_unit: str = "mm"
             else:
                 reach[side_link.name].append(xs + side.side * sc.w / 2)
             ax.annotate(f"{side.name} ({_teeth(mech, side.name)})", ((xs + side.side * sc.w * 1.3) * k, yc * 0.55 * k),
-                        fontsize=style.SMALL, ha="left" if side.side > 0 else "right", va="center", color="0.25")
+                        fontsize=style.SMALL, ha="left" if side.side > 0 else "right", va="center", color="0.25", bbox=_CLEAR)
             _line(ax, [xs - offset, xs], [yc, yc], k, gid=f"mesh:{mesh.a}-{mesh.b}", lw=1.0, ls=":", color=_INK,
                   marker="o", markersize=2.5)
         top = max(y for y in rims[1::2]) + sc.w
@@ -377,16 +379,16 @@ def scheme_figure(mech: Mechanism, state: Any = None, *, length_unit: str = "mm"
     for mesh in mech.meshes:
         if mesh.a not in sc.gears or mesh.b not in sc.gears:
             continue
-        a, b = sc.gears[mesh.a], sc.gears[mesh.b]
-        xa, xb = sc.x[a.column], sc.x[b.column]
-        if a.column == b.column:  # touching: the pitch point
-            y = a.hi if abs(a.hi - b.lo) < abs(b.hi - a.lo) else a.lo
-            if a.internal or b.internal:
-                y = (a if a.internal else b).lo
+        ga, gb = sc.gears[mesh.a], sc.gears[mesh.b]
+        xa, xb = sc.x[ga.column], sc.x[gb.column]
+        if ga.column == gb.column:  # touching: the pitch point
+            y = ga.hi if abs(ga.hi - gb.lo) < abs(gb.hi - ga.lo) else ga.lo
+            if ga.internal or gb.internal:
+                y = (ga if ga.internal else gb).lo
             _line(ax, [xa - sc.w / 2, xa + sc.w / 2], [y, y], k, gid=f"mesh:{mesh.a}-{mesh.b}", lw=2.4, color=_INK)
         else:  # the pitch circles meet out of the section: a dotted line between the two
-            ya = (a.lo + a.hi) / 2 if not a.internal else a.lo
-            yb = (b.lo + b.hi) / 2 if not b.internal else b.lo
+            ya = (ga.lo + ga.hi) / 2 if not ga.internal else ga.lo
+            yb = (gb.lo + gb.hi) / 2 if not gb.internal else gb.lo
             sa = sc.w / 2 if xb > xa else -sc.w / 2
             _line(ax, [xa + sa, xb - sa], [ya, yb], k, gid=f"mesh:{mesh.a}-{mesh.b}", lw=1.0, ls=":", color=_INK,
                   marker="o", markersize=2.5)
@@ -425,8 +427,8 @@ def scheme_figure(mech: Mechanism, state: Any = None, *, length_unit: str = "mm"
         if L.kind is not LinkKind.CENTRAL:
             continue
         y = sc.level[L.name]
-        xs = reach[L.name] or [0.0]
-        _line(ax, [x_left, max(xs)], [y, y], k, gid=f"shaft:{L.name}", color=colour(L.name),
+        ends = reach[L.name] or [0.0]
+        _line(ax, [x_left, max(ends)], [y, y], k, gid=f"shaft:{L.name}", color=colour(L.name),
               lw=1.6 if L.name in (inp, out) else 1.0)
         label_at[L.name] = (x_left - sc.gap / 2, y, "right")
     if any(L.kind is LinkKind.FRAME and L.gears for L in mech.links) or brakes:
@@ -498,8 +500,8 @@ def lever_figure(mech: Mechanism, state: Any = None, *, title: str | None = None
         span = hi - lo or 1
         ys = {nm: (x - lo) / span for nm, x in pos.items()}  # 0 .. 1, to scale
         ax.set_ylim(-0.12, 1.12)
-        for side in ("top", "right", "left"):
-            ax.spines[side].set_visible(False)
+        for edge in ("top", "right", "left"):
+            ax.spines[edge].set_visible(False)
         ax.yaxis.set_visible(False)
         ax.tick_params(labelsize=style.SMALL)
         ax.plot([0, 0], [0, 1], color=_INK, lw=2.2, solid_capstyle="round")
