@@ -44,7 +44,7 @@ from symkin.errors import InputError
 from symkin.model import FRAME, LinkKind, Mechanism
 from symkin.viz import style
 
-__all__ = ["diagram", "scheme_figure", "lever_figure", "text_as_text", "LENGTH_UNITS"]
+__all__ = ["diagram", "scheme_figure", "lever_figure", "scheme_svg", "text_as_text", "LENGTH_UNITS"]
 
 #: Units a drawn length may be given in, as a factor from millimetres (the module's unit).
 LENGTH_UNITS = {"mm": 1.0, "cm": 0.1, "m": 0.001, "in": 1 / 25.4}
@@ -578,3 +578,24 @@ def text_as_text() -> Iterator[None]:
 
     with mpl.rc_context({"svg.fonttype": "none", "svg.hashsalt": "symkin"}):
         yield
+
+
+def scheme_svg(mech: Mechanism, state: Any = None) -> str:
+    """The kinematic scheme as SVG text (for Jupyter, ``_repr_html_``), or ``""`` where it cannot be
+    drawn (symbolic tooth numbers or radii).
+
+    >>> from symkin.trains import load_train
+    >>> scheme_svg(load_train("simple")).startswith("<svg")
+    True
+    """
+    import io
+
+    try:
+        fig = scheme_figure(mech, state)
+    except InputError:
+        return ""
+    buffer = io.StringIO()
+    with text_as_text():
+        fig.savefig(buffer, format="svg", metadata={"Date": None})
+    text = buffer.getvalue()
+    return text[text.index("<svg"):]
