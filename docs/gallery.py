@@ -66,26 +66,33 @@ def _space(path: Path) -> Path:
     return _save(fig, path)
 
 
+#: Frames per turn of the carrier in the animation: the carrier of the AA reducer turns 24 times
+#: for one turn of gear 1, so frames spread over gear 1's turn would alias (the carrier seemed
+#: to stand still); one carrier turn is sampled, finely enough for the planet's 4 lobes.
+FRAMES_PER_CARRIER_TURN = 48
+
+
 def _frames(path: Path, frames: int) -> Any:
     from symkin import schemes
     from symkin.viz.animation import Frames
     from symkin.viz.figures import default_particles
 
     mech = schemes.two_row("AA", teeth=(54, 45, 44, 55), module=1)
-    return Frames.build(mech.motion({"1": 1, "4": 0}), default_particles(mech), t_end=6.2832, frames=frames)
+    motion = mech.motion({"1": 1, "4": 0})
+    return Frames.build(motion, default_particles(mech), t_end=motion.turn_time(1), frames=frames, length="mm")
 
 
 def _frame(path: Path) -> Path:
     from symkin.viz.animation import frame_figure
 
-    frames = _frames(path, 25)
-    return _save(frame_figure(frames, 18), path)
+    frames = _frames(path, FRAMES_PER_CARRIER_TURN + 1)
+    return _save(frame_figure(frames, 3 * FRAMES_PER_CARRIER_TURN // 4), path)
 
 
 def _animation(path: Path) -> Path:
     from symkin.viz.animation import animate
 
-    return animate(_frames(path, 24), path.with_suffix(".gif"), fps=8, dpi=60)
+    return animate(_frames(path, FRAMES_PER_CARRIER_TURN), path.with_suffix(".gif"), fps=12, dpi=60)
 
 
 def _split(path: Path) -> Path:
