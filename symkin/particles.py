@@ -223,7 +223,7 @@ class Motion:
         base = self._origin0 if carrier.kind is not LinkKind.PLANET else self.pole(carrier.name)[1]
         return L.carrier, sp.ImmutableMatrix(base + offset)
 
-    def particle(self, link: str, point: Sequence[Any], *, relative_to: str = "frame") -> Any:
+    def particle(self, link: str, point: Sequence[Any], *, relative_to: str = "frame") -> Particle | SpaceParticle:
         """A particle of ``link``.
 
         Parameters

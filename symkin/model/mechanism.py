@@ -13,7 +13,7 @@ from collections import OrderedDict
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import sympy as sp
 
@@ -21,6 +21,11 @@ from symkin._util.budget import simplify_within
 from symkin._util.display import html_table, short_repr
 from symkin.errors import CoaxialityWarning, ModelError, warn_user
 from symkin.model.parts import FRAME, MAIN_AXIS, Gear, Link, LinkKind, Mesh, MeshGeometry, mesh_pair
+
+if TYPE_CHECKING:  # the engine's result types, for annotations only (the engine imports the model)
+    from symkin.kinematics import Speeds
+    from symkin.laws import Law
+    from symkin.particles import Motion
 
 __all__ = ["Mechanism"]
 
@@ -500,7 +505,7 @@ class Mechanism:
 
         return kinematic_system(self).equations
 
-    def speeds(self, known: Mapping[str, Any]) -> Any:
+    def speeds(self, known: Mapping[str, Any]) -> Speeds:
         """Angular velocity of every link, given the speeds of some links.
 
         See :func:`symkin.kinematics.solve_speeds`.
@@ -509,7 +514,7 @@ class Mechanism:
 
         return solve_speeds(self, known)
 
-    def ratio(self, driver: str, driven: str, fixed: str | Sequence[str] | None = None) -> Any:
+    def ratio(self, driver: str, driven: str, fixed: str | Sequence[str] | None = None) -> Law:
         """The ratio i_ab^(c) = omega_a / omega_b with link(s) c fixed.
 
         See :func:`symkin.kinematics.ratio`.
@@ -518,7 +523,7 @@ class Mechanism:
 
         return ratio(self, driver, driven, fixed)
 
-    def motion(self, inputs: Mapping[str, Any], frame: Any = None) -> Any:
+    def motion(self, inputs: Mapping[str, Any], frame: Any = None) -> Motion:
         """The motion of every link for given input drives; see :class:`symkin.particles.Motion`."""
         from symkin.particles import Motion
 

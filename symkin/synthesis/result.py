@@ -135,7 +135,7 @@ class Design:
 
     def _repr_html_(self) -> str:
         """The design as a compact HTML table (each gear's teeth, the ratio, its error, the size), for Jupyter."""
-        rows = [(g, z) for g, z in self.gear_teeth]
+        rows: list[tuple[str, Any]] = [(g, z) for g, z in self.gear_teeth]
         rows += [("ratio", self.ratio), ("error", float_text(self.error)), ("size", self.size)]
         rows += [(f"arm {n}", a) for n, a in self.arms] + [(f"shift {n}", y) for n, y in self.shifts]
         return html_table(["", "value"], rows, caption="design")
