@@ -335,7 +335,7 @@ def equations_document(results: Iterable[Any], root: Path | None = None) -> str:
     check_numbers: dict[int, int] = {}  # check -> its number
     figures = 0  # figures placed so far: LaTeX numbers them in the order of their captions
     for r in results:
-        parts.append(rf"\section{{{escape(r.citation)}}}")
+        parts.append(rf"\section{{\texorpdfstring{{{escape(r.citation)}}}{{{escape_text(r.citation)}}}}}")  # (a bookmark: no breaks)
         parts.append(rf"Paper key: \texttt{{{escape(r.key)}}} \cite{{{_cite_key(r.key)}}}." + "\n")
         after, loose, figure_of = _placed_figures(r, root)
         placed = [label for c in r.checks for _, _, label in after.get(id(c), [])] + [label for _, _, label in loose]
