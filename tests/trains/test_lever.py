@@ -21,6 +21,7 @@ from symkin import symbols as S
 from symkin.model import FRAME
 from symkin.trains import load_train, ready_made
 from symkin.trains.lever import Lever, levers
+from tests.support.train_texts import SYMBOLIC_SIMPLE
 
 READY = sorted(ready_made())
 
@@ -115,15 +116,4 @@ def test_a_lever_needs_two_speeds_for_its_line():
 def test_a_train_with_symbolic_teeth_has_no_lever():
     from symkin.trains import read_train
 
-    text = """name = "x"
-meshes = [["s", "p"], ["p", "r"]]
-[links.S]
-gears = { s = "z1" }
-[links.C]
-[links.P]
-carrier = "C"
-gears = { p = "z2" }
-[links.R]
-gears = { r = { teeth = "z3", internal = true } }
-"""
-    assert levers(read_train(text)) == []
+    assert levers(read_train(SYMBOLIC_SIMPLE)) == []

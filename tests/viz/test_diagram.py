@@ -29,6 +29,7 @@ from symkin.trains import load_train, ready_made
 from symkin.viz.diagram import diagram, text_as_text
 from symkin.viz.figures import save
 from symkin.viz.style import layout_problems
+from tests.support.train_texts import SYMBOLIC_SIMPLE
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -189,19 +190,8 @@ def test_the_pictures_pass_the_layout_check(name, tmp_path):
 def test_what_cannot_be_drawn_is_a_clear_error():
     from symkin.trains import read_train
 
-    text = """name = "x"
-meshes = [["s", "p"], ["p", "r"]]
-[links.S]
-gears = { s = "z1" }
-[links.C]
-[links.P]
-carrier = "C"
-gears = { p = 20 }
-[links.R]
-gears = { r = { teeth = 60, internal = true } }
-"""
     with pytest.raises(InputError, match="symbolic tooth numbers"):
-        diagram(read_train(text))
+        diagram(read_train(SYMBOLIC_SIMPLE))
     with pytest.raises(InputError, match="unknown length unit"):
         diagram(load_train("simple"), length_unit="furlong")
     with pytest.raises(Exception, match="no state 'x'"):
