@@ -23,6 +23,7 @@ from typing import Any
 import sympy as sp
 
 from symkin import symbols as S
+from symkin._util.display import short_repr
 from symkin.errors import (
     InputError,
     OverdeterminedError,
@@ -323,6 +324,10 @@ class Speeds(MappingABC):
     coefficients: tuple[tuple[str, tuple[sp.Expr, ...]], ...]
     unit: Any = None
     _cache: dict = field(default_factory=dict, init=False, repr=False, compare=False, hash=False)
+
+    def __repr__(self) -> str:
+        """``Speeds('AI1', 1=1, 2=-1/3, H=1/5, 4=0)``, under 200 characters."""
+        return short_repr("Speeds", repr(self.mechanism.name), *(f"{n}={self[n]}" for n in self))
 
     def __getitem__(self, name: str) -> sp.Expr:
         link = self.mechanism.link(name).name
