@@ -66,26 +66,33 @@ def _space(path: Path) -> Path:
     return _save(fig, path)
 
 
+#: Frames per turn of the carrier in the animation: the carrier of the AA reducer turns 24 times
+#: for one turn of gear 1, so frames spread over gear 1's turn would alias (the carrier seemed
+#: to stand still); one carrier turn is sampled, finely enough for the planet's 4 lobes.
+FRAMES_PER_CARRIER_TURN = 48
+
+
 def _frames(path: Path, frames: int) -> Any:
     from symkin import schemes
     from symkin.viz.animation import Frames
     from symkin.viz.figures import default_particles
 
     mech = schemes.two_row("AA", teeth=(54, 45, 44, 55), module=1)
-    return Frames.build(mech.motion({"1": 1, "4": 0}), default_particles(mech), t_end=6.2832, frames=frames)
+    motion = mech.motion({"1": 1, "4": 0})
+    return Frames.build(motion, default_particles(mech), t_end=motion.turn_time(1), frames=frames, length="mm")
 
 
 def _frame(path: Path) -> Path:
     from symkin.viz.animation import frame_figure
 
-    frames = _frames(path, 25)
-    return _save(frame_figure(frames, 18), path)
+    frames = _frames(path, FRAMES_PER_CARRIER_TURN + 1)
+    return _save(frame_figure(frames, 3 * FRAMES_PER_CARRIER_TURN // 4), path)
 
 
 def _animation(path: Path) -> Path:
     from symkin.viz.animation import animate
 
-    return animate(_frames(path, 24), path.with_suffix(".gif"), fps=8, dpi=60)
+    return animate(_frames(path, FRAMES_PER_CARRIER_TURN), path.with_suffix(".gif"), fps=12, dpi=60)
 
 
 def _split(path: Path) -> Path:
@@ -153,5 +160,32 @@ def draw(folder: Path = HERE / "gallery", *, quiet: bool = False) -> list[Path]:
     return paths
 
 
+def draw_trains(folder: Path = HERE / "trains") -> list[Path]:
+    """Draw the kinematic scheme and the lever diagram of every ready-made train into ``folder``
+    (``NAME-scheme.svg``, ``NAME-lever.svg``: the pictures of docs/trains.md, tracked in git so
+    that they show where the page is read; ``python docs/gallery.py --trains`` redraws them)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from symkin.trains import load_train, ready_made
+    from symkin.viz.diagram import diagram, text_as_text
+
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    paths = []
+    for name in ready_made():
+        train = load_train(name)
+        for kind in ("scheme", "lever"):
+            fig = diagram(train, lever=kind == "lever")
+            path = folder / f"{name}-{kind}.svg"
+            with text_as_text():
+                fig.savefig(path, format="svg", metadata={"Date": None})
+            paths.append(path)
+    return paths
+
+
 if __name__ == "__main__":
-    draw(Path(sys.argv[1]) if len(sys.argv) > 1 else HERE / "gallery")
+    if sys.argv[1:2] == ["--trains"]:
+        draw_trains(Path(sys.argv[2]) if len(sys.argv) > 2 else HERE / "trains")
+    else:
+        draw(Path(sys.argv[1]) if len(sys.argv) > 1 else HERE / "gallery")

@@ -23,6 +23,7 @@ from typing import Any
 import sympy as sp
 
 from symkin import symbols as S
+from symkin._util.display import short_repr
 from symkin.errors import (
     InputError,
     OverdeterminedError,
@@ -33,7 +34,7 @@ from symkin.laws import Law
 from symkin.linsolve import generic_values, independent_rows, is_zero, nullspace, solve_factored, solve_rational
 from symkin.model import FRAME, LinkKind, Mechanism, Mesh
 from symkin.superposition import vec, velocity
-from symkin.values import as_expr
+from symkin.values import as_expr, is_quantity
 
 __all__ = ["contact_condition", "kinematic_system", "KinematicSystem", "solve_speeds", "Speeds", "ratio"]
 
@@ -313,12 +314,20 @@ class Speeds(MappingABC):
     coefficients : tuple of (str, tuple of sympy expression)
         For every moving link, d omega_link / d omega_k for each known link k, in the
         order of ``known``: constant laws (the speeds are linear in the known ones).
+    unit : pint unit or None
+        The unit of the first known speed given as a pint quantity (``rpm``), or None: the
+        speeds are in rad/s; :meth:`quantities` gives them back in that unit.
     """
 
     mechanism: Mechanism
     known: tuple[tuple[str, sp.Expr], ...]
     coefficients: tuple[tuple[str, tuple[sp.Expr, ...]], ...]
+    unit: Any = None
     _cache: dict = field(default_factory=dict, init=False, repr=False, compare=False, hash=False)
+
+    def __repr__(self) -> str:
+        """``Speeds('AI1', 1=1, 2=-1/3, H=1/5, 4=0)``, under 200 characters."""
+        return short_repr("Speeds", repr(self.mechanism.name), *(f"{n}={self[n]}" for n in self))
 
     def __getitem__(self, name: str) -> sp.Expr:
         link = self.mechanism.link(name).name
@@ -368,6 +377,35 @@ class Speeds(MappingABC):
         from symkin.printing import latex
 
         return f"$\\displaystyle {latex(self, aligned=True)}$"
+
+    def in_unit(self, unit: Any) -> dict[str, sp.Expr]:
+        """Every link's speed in ``unit`` (a pint unit or its name, ``"rpm"``), exact.
+
+        >>> from symkin import schemes
+        >>> schemes.two_row("AA", teeth=(54, 45, 44, 55)).speeds({"1": 10 * sp.pi, "4": 0}).in_unit("rpm")["H"]
+        -7200
+        """
+        from symkin.values import unit_factor
+
+        f = unit_factor(unit, "rad/s", what="the unit of the speeds")
+        return {n: sp.cancel(self[n] / f) for n in self}
+
+    def quantities(self, unit: Any = None) -> dict[str, Any]:
+        """Every link's speed as a pint quantity: in ``unit``, or in the unit the known speeds were
+        given in (rad/s when they were bare numbers); magnitudes exact (SymPy).
+
+        >>> import pint
+        >>> from symkin import schemes
+        >>> rpm = pint.get_application_registry().rpm
+        >>> speeds = schemes.two_row("AA", teeth=(54, 45, 44, 55)).speeds({"1": 300 * rpm, "4": 0})
+        >>> speeds["H"], speeds.quantities()["H"]
+        (-240*pi, <Quantity(-7200, 'revolutions_per_minute')>)
+        """
+        import pint
+
+        unit = unit if unit is not None else (self.unit if self.unit is not None else "rad/s")
+        reg = getattr(unit, "_REGISTRY", None) or pint.get_application_registry()
+        return {n: reg.Quantity(v, unit) for n, v in self.in_unit(unit).items()}
 
     def coefficient(self, link: str, known_link: str) -> sp.Expr:
         """d omega_link / d omega_known: the constant factor in the linear law."""
@@ -459,6 +497,7 @@ def solve_speeds(mech: Mechanism, known: Mapping[str, Any], *, joined: Sequence[
     if not isinstance(known, MappingABC):
         raise InputError(f"known speeds are a mapping of link name to speed, got {known!r}")
     resolved: dict[str, sp.Expr] = {}
+    unit = next((v.units for v in known.values() if is_quantity(v)), None)
     for name, value in known.items():
         link = _resolve(mech, name)
         if link == FRAME:
@@ -476,7 +515,7 @@ def solve_speeds(mech: Mechanism, known: Mapping[str, Any], *, joined: Sequence[
         table = _coefficient_table(mech, order)
     permutation = [order.index(n) for n in names]
     coefficients = tuple((n, tuple(table[n][i] for i in permutation)) for n in mech.link_names)
-    return Speeds(mech, tuple(resolved.items()), coefficients)
+    return Speeds(mech, tuple(resolved.items()), coefficients, unit)
 
 
 def _coefficient_table(mech: Mechanism, names: tuple[str, ...]) -> dict[str, tuple[sp.Expr, ...]]:

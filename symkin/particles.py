@@ -29,6 +29,7 @@ import numpy as np
 import sympy as sp
 
 from symkin import symbols as S
+from symkin._util.display import short_repr
 from symkin.drives import Drive, as_drive
 from symkin.errors import InputError, UnsupportedError
 from symkin.kinematics import check_known_links, solve_speeds
@@ -147,6 +148,11 @@ class Motion:
     space: SpaceFrame | None = None
     _cache: dict = field(default_factory=dict, init=False, repr=False, compare=False, hash=False)
 
+    def __repr__(self) -> str:
+        """``Motion(Mechanism('AI1', ...), inputs H, 4)``, under 200 characters."""
+        return short_repr("Motion", f"mechanism {self.mechanism.name!r}", "inputs " + ", ".join(n for n, _ in self.inputs),
+                          *(["in space"] if self.space is not None else []))
+
     @classmethod
     def build(cls, mechanism: Mechanism, inputs: Mapping[str, Any], frame: FrameMotion | SpaceFrame | None = None) -> Motion:
         """The motion of ``mechanism`` under ``inputs`` (link name to drive or speed) and an optional moving ``frame``; checks the inputs first."""
@@ -217,7 +223,7 @@ class Motion:
         base = self._origin0 if carrier.kind is not LinkKind.PLANET else self.pole(carrier.name)[1]
         return L.carrier, sp.ImmutableMatrix(base + offset)
 
-    def particle(self, link: str, point: Sequence[Any], *, relative_to: str = "frame") -> Any:
+    def particle(self, link: str, point: Sequence[Any], *, relative_to: str = "frame") -> Particle | SpaceParticle:
         """A particle of ``link``.
 
         Parameters
@@ -365,6 +371,11 @@ class Particle(_Letters):
     link: str
     initial: sp.ImmutableMatrix
 
+    def __repr__(self) -> str:
+        """``Particle(link 2 at (15, 0), Mechanism 'AI1')``, under 200 characters."""
+        return short_repr(type(self).__name__, f"link {self.link} at ({', '.join(str(c) for c in self.initial)})",
+                          f"mechanism {self.motion.mechanism.name!r}")
+
     @cached_property
     def _pole(self) -> tuple[Particle | None, sp.ImmutableMatrix]:
         parent, pole0 = self.motion.pole(self.link)
@@ -451,6 +462,11 @@ class SpaceParticle(_Letters):
     motion: Motion
     link: str
     initial: sp.ImmutableMatrix
+
+    def __repr__(self) -> str:
+        """``Particle(link 2 at (15, 0), Mechanism 'AI1')``, under 200 characters."""
+        return short_repr(type(self).__name__, f"link {self.link} at ({', '.join(str(c) for c in self.initial)})",
+                          f"mechanism {self.motion.mechanism.name!r}")
 
     @cached_property
     def relative(self) -> tuple[sp.ImmutableMatrix, sp.ImmutableMatrix, sp.ImmutableMatrix]:

@@ -49,6 +49,12 @@ class SymkinLatexPrinter(LatexPrinter):
         """The terms of a sum, each with its sign (" + ..." / " - ..."), the first bare."""
         # constants first, as a paper writes 1 + z2 z4 / (z1 z3)
         terms = sorted(expr.args, key=lambda a: (not a.is_number, sp.default_sort_key(a)))
+        # and a positive term first, as a reader writes r_4 - r_2 (not -r_2 + r_4)
+        if sp.Mul(terms[0]).could_extract_minus_sign():
+            first = next((t for t in terms if not sp.Mul(t).could_extract_minus_sign()), None)
+            if first is not None:
+                terms.remove(first)
+                terms.insert(0, first)
         pieces = []
         for i, term in enumerate(terms):
             sign = ""

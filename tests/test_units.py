@@ -104,7 +104,7 @@ def test_the_command_line_takes_units_and_json_states_them(capsys):
     code, out, _ = run(capsys, "speeds", "AA", "--teeth", "54,45,44,55", "--omega", "1=10*pi", "--omega", "4=0", "--json")
     bare = json.loads(out)
     assert with_unit["speeds"] == bare["speeds"] and with_unit["speeds"]["H"]["exact"] == "-240*pi"
-    assert with_unit["units"] == {"speeds": "rad/s"}
+    assert with_unit["units"] == {"speeds": "rad/s", "speeds_in_unit": "rpm"}  # the rpm given, beside rad/s
     # 100 is still 100 rad/s
     code, out, _ = run(capsys, "speeds", "AA", "--teeth", "54,45,44,55", "--omega", "1=100", "--omega", "4=0", "--json")
     assert json.loads(out)["speeds"]["1"]["exact"] == "100"

@@ -15,7 +15,7 @@ import html
 from collections.abc import Iterable, Sequence
 from typing import Any
 
-__all__ = ["html_table", "markdown_table", "math"]
+__all__ = ["html_table", "markdown_table", "math", "short_repr", "REPR_LIMIT"]
 
 
 def math(tex: str) -> str:
@@ -55,3 +55,19 @@ def markdown_table(headers: Sequence[str], rows: Iterable[Sequence[Any]]) -> str
     lines = ["| " + " | ".join(headers) + " |", "|" + "|".join("---" for _ in headers) + "|"]
     lines += ["| " + " | ".join(cell(v) for v in row) + " |" for row in rows]
     return "\n".join(lines)
+
+
+#: The longest repr of a symkin object (a notebook shows it when nothing richer is there).
+REPR_LIMIT = 199
+
+
+def short_repr(name: str, *parts: object, limit: int = REPR_LIMIT) -> str:
+    """``name(part, part, ...)`` cut to ``limit`` characters with ``...`` where it is cut.
+
+    >>> short_repr("Train", "'simple'", "links S, C, P, R", "3 states")
+    "Train('simple', links S, C, P, R, 3 states)"
+    >>> len(short_repr("X", "y" * 500))
+    199
+    """
+    text = f"{name}({', '.join(str(p) for p in parts)})"
+    return text if len(text) <= limit else text[: limit - 4] + "...)"

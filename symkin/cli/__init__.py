@@ -29,8 +29,8 @@ from symkin.errors import SymkinError, SymkinWarning
 __all__ = ["main", "console_main", "COMMANDS", "ArgumentParser", "output_schema", "JSON_SCHEMA_VERSION"]
 
 #: Modules of symkin.cli that define commands, in the order --help lists them.
-COMMANDS = ("reproduce", "gears", "trains", "efficiency", "dynamics", "plots", "cardan", "multistage", "helical", "synthesis",
-            "geometry")
+COMMANDS = ("reproduce", "gears", "trains", "diagram", "efficiency", "dynamics", "plots", "cardan", "multistage", "helical",
+            "synthesis", "geometry")
 
 EXIT_OK, EXIT_DIFFERS, EXIT_USAGE, EXIT_INTERNAL = 0, 1, 2, 3
 

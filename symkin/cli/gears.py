@@ -75,15 +75,27 @@ def run_ratio(args: Any) -> Any:
 
 def run_speeds(args: Any) -> Any:
     """Run ``symkin speeds`` with the parsed ``args``: every link's angular velocity from the known ones; returns its output, :func:`symkin.cli.common.emit` (bad input raises a :class:`~symkin.errors.SymkinError`, exit 2)."""
+    from symkin.parsing.quantities import unit_of
+
     known = link_values(args.omega)
     mech, about, title = mechanism_of(args)
     speeds = mech.speeds(known)
     given = {mech.link(k).name for k in known}
+    # the unit the speeds were given in, when one was (the derived ones are printed in it too)
+    typed = {unit_of(item.partition("=")[2], "rad/s") for item in args.omega} - {None}
+    unit = typed.pop() if len(typed) == 1 else None
+    unit = None if unit in ("rad/s", "radian/second") else unit
+    converted = speeds.in_unit(unit) if unit else {}
     rows, data_links = [], {}
     for name, value in speeds.items():
         tag = "given" if name in given else "derived"
         f = float_text(value)
-        rows.append(f"omega_{name:<3} = {value}" + (f" = {f}" if f and f != str(value) else "") + f"   ({tag})")
+        row = f"omega_{name:<3} = {value}" + (f" = {f}" if f and f != str(value) else "") + (" rad/s" if unit else "")
+        if unit:
+            there = converted[name]
+            g = float_text(there)
+            row += f" = {there}" + (f" = {g}" if g and g != str(there) else "") + f" {unit}"
+        rows.append(row + f"   ({tag})")
         speed = exact_json(value)
         assert speed is not None  # a speed is never None
         data_links[name] = {**speed, "given": name in given}
@@ -91,6 +103,8 @@ def run_speeds(args: Any) -> Any:
         **about,
         "speeds": data_links,
         "coaxial": not mech.coaxiality_defects(),
-        "units": {"speeds": "rad/s"},
+        "units": {"speeds": "rad/s", **({"speeds_in_unit": unit} if unit else {})},
     }
+    if unit:
+        data["speeds_in_unit"] = {name: exact_json(v) for name, v in converted.items()}
     return emit(f"{title}\n" + "\n".join(rows), data)

@@ -1,7 +1,8 @@
 """``symkin trajectory``, ``symkin curves`` and ``symkin animate``: look at a scheme's motion.
 
 Particles are given as ``LINK:a,b``, coordinates relative to the link's axis at t = 0
-(pitch radii are module * teeth / 2, the module 1 by default).  Without ``--point`` the
+(pitch radii are module * teeth / 2, the module 1 mm by default). Lengths are drawn in
+millimetres, the module's unit (``--length-unit m`` for metres), speeds in mm/s.  Without ``--point`` the
 planet's particles on the pitch circle of its first rim and at half that radius are
 shown: an epicycloid or hypocycloid (the Cardan line for a planet in a ring twice its size).
 """
@@ -9,6 +10,7 @@ shown: an epicycloid or hypocycloid (the Cardan line for a planet in a ring twic
 from __future__ import annotations
 
 import math
+from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
@@ -48,7 +50,10 @@ def _common(p: Any, out_help: str) -> None:
                       ("pitch", "then about the new y, rad"), ("roll", "then about the newest x, rad")):
         base.add_argument(f"--base-{key}", metavar="EXPR", help=f"{what}, an expression in t (default 0; a train "
                           "file's [base] table otherwise)")
-    p.add_argument("--module", default=None, help="gear module of a scheme: pitch radius = module * teeth / 2 (default 1)")
+    p.add_argument("--module", default=None, help="gear module of a scheme in mm, or with a unit (1.5mm, 0.06in): pitch "
+                   "radius = module * teeth / 2 (default 1 mm)")
+    p.add_argument("--length-unit", default="mm", metavar="UNIT",
+                   help="the unit of lengths drawn and of --point: mm (default: the module's unit) or m")
     span = p.add_mutually_exclusive_group()
     span.add_argument("--turns", default=None, help="time span: turns of the carrier H (or of the fastest link), default 1, at most 10^6")
     span.add_argument("--t-end", default=None, help="time span in seconds, or with a unit (500ms, 2min)")
@@ -61,7 +66,7 @@ def register(sub: Any) -> None:
         sub, "trajectory",
         help="plot the paths of chosen particles of a scheme (PNG, PDF, SVG or EPS)",
         description="Plot the paths of particles of a scheme's links over a time span, with the pitch circles "
-        "at t = 0, eq. (4), axes in metres for bare numbers. Writes FILE (.png, or vector .pdf, .svg, .eps).",
+        "at t = 0, eq. (4), axes in mm (the module's unit; --length-unit m for metres). Writes FILE (.png, or vector .pdf, .svg, .eps).",
         run=run_trajectory,
     )
     _common(p, "a figure, .png, .pdf, .svg or .eps")
@@ -70,7 +75,7 @@ def register(sub: Any) -> None:
         sub, "curves",
         help="plot speed and acceleration of chosen particles against time",
         description="Plot the speed |V| and the acceleration |a| (|w| in the 2009 paper) of particles of a "
-        "scheme's links against time, eqs. (5) and (6), in m/s and m/s^2 for bare numbers. "
+        "scheme's links against time, eqs. (5) and (6), in mm/s and mm/s^2 (the module in mm; --length-unit m: m/s). "
         "Writes FILE (.png, or vector .pdf, .svg, .eps).",
         run=run_curves,
     )
@@ -110,12 +115,19 @@ def _point(text: str, mech: Any) -> tuple[str, tuple[Any, ...]]:
 
 def _setup(args: Any) -> tuple[Any, Any, list, float, list[str], dict[str, Any], str]:
     known = link_values(args.omega, names=("t",))  # a number (rad/s), or an expression in t (s) such as 10*t
+    if args.length_unit not in LENGTH_UNITS:
+        raise InputError(f"--length-unit {args.length_unit!r}: choose one of {', '.join(LENGTH_UNITS)}")
+    scale = LENGTH_UNITS[args.length_unit]  # millimetres -> the unit drawn
     module: Any = None if getattr(args, "train", None) is not None else 1
     if args.module is not None:
-        module = parse_number(args.module, what="--module")
-        if module <= 0:
-            raise InputError(f"--module must be positive, got {args.module}")
+        from symkin.parsing import parse_real
+
+        module = parse_real(args.module, what="--module", unit="mm", positive=True)
     mech, about, title = mechanism_of(args, module)
+    if module is not None and scale != 1:  # a scheme: its module in the unit drawn
+        mech, _, _ = mechanism_of(args, module * scale)
+    elif scale != 1:  # a train file: its lengths are millimetres
+        mech = _scaled(mech, scale)
     frame = _base(args, mech)
     motion = mech.motion(known, frame)
     from symkin.viz.figures import default_particles
@@ -139,7 +151,8 @@ def _setup(args: Any) -> tuple[Any, Any, list, float, list[str], dict[str, Any],
         raise InputError(f"the time span 0 ... {t_end:.3g} s covers {turns:.3g} turns of the fastest link; at most "
                          f"{MAX_TURNS:.0e} turns and {MAX_TIME:.0e} s are drawn (a picture of more would be noise "
                          "between its samples): shorten --t-end or --turns")
-    labels = [f"link {mech.link(name).name} at ({', '.join(_fmt(c) for c in xy)}) from its axis" for name, xy in points]
+    labels = [f"link {mech.link(name).name} at ({', '.join(_fmt(c) for c in xy)}) {args.length_unit} from its axis"
+              for name, xy in points]
     return mech, motion, points, t_end, labels, about, title
 
 
@@ -192,6 +205,23 @@ def _turns(args: Any) -> float:
     return float(turns)
 
 
+#: The units --length-unit takes, as factors from millimetres (a module is in millimetres, ISO 54).
+LENGTH_UNITS = {"mm": Fraction(1), "m": Fraction(1, 1000)}
+
+
+def _scaled(mech: Any, scale: Any) -> Any:
+    """``mech`` with every length times ``scale`` (pitch radii, modules, arms, centre distances)."""
+    from dataclasses import replace
+
+    def times(v: Any) -> Any:
+        return None if v is None else v * scale
+
+    links = tuple(replace(L, gears=tuple(replace(g, radius=g.radius * scale, module=times(g.module)) for g in L.gears),
+                          arm=L.arm if L.arm is None or L.arm == 0 else L.arm * scale) for L in mech.links)
+    meshes = tuple(replace(m, centre_distance=times(m.centre_distance)) for m in mech.meshes)
+    return replace(mech, links=links, meshes=meshes)
+
+
 #: The most turns (of the fastest link) and the longest time span trajectory, curves and animate draw.
 MAX_TURNS = 10**6
 MAX_TIME = 1e12
@@ -208,7 +238,7 @@ def _report(args: Any, kind: str, out: Path, mech: Any, points: list, t_end: flo
         **about,
         "file": str(out),
         "t_end": t_end,
-        "units": {"t_end": "s"},
+        "units": {"t_end": "s", "length": args.length_unit, "speed": f"{args.length_unit}/s"},
         "particles": [{"link": mech.link(name).name, **{k: float(c) for k, c in zip("abc", xy)}} for name, xy in points],
         **(extra or {}),
     }
@@ -226,7 +256,7 @@ def run_trajectory(args: Any) -> Any:
     if _in_space(motion, points):
         from symkin.viz.figures import space_figure
 
-        fig = space_figure(motion, points, t_end, relative_to="pole", labels=labels,
+        fig = space_figure(motion, points, t_end, relative_to="pole", labels=labels, length=args.length_unit,
                            title=f"{title}: particle paths in space, t = 0 ... {t_end:.3g} s")
         save_figure(fig, out)
         return _report(args, "trajectory", out, mech, points, t_end, about, title)
@@ -235,7 +265,7 @@ def run_trajectory(args: Any) -> Any:
     style.style_axes(ax)
     draw_pitch_circles(ax, mech, teeth=True)
     draw_trajectories(ax, motion, points, t_end, relative_to="pole", labels=labels)
-    label_plane(ax)
+    label_plane(ax, args.length_unit)
     ax.set_title(f"{title}: particle paths,\nt = 0 ... {t_end:.3g} s", fontsize=style.FONT)
     style.legend_outside(ax)
     save_figure(style.finish(fig), out)
@@ -248,7 +278,7 @@ def run_curves(args: Any) -> Any:
 
     out = figure_file(args.out)
     mech, motion, points, t_end, labels, about, title = _setup(args)
-    fig = kinematics_figure(motion, points, t_end, relative_to="pole", labels=labels,
+    fig = kinematics_figure(motion, points, t_end, relative_to="pole", labels=labels, length=args.length_unit,
                             title=f"{title}: speed and acceleration, eqs. (5), (6)")
     save_figure(fig, out)
     return _report(args, "curves", out, mech, points, t_end, about, title)
@@ -273,7 +303,7 @@ def run_animate(args: Any) -> Any:
     if frames is None:
         turns = _turns(args) if args.t_end is None else 1.0
         frames = max(2, min(2000, round(4 * fps * turns)))
-    sampled = Frames.build(motion, points, t_end=t_end, frames=frames, labels=labels,
+    sampled = Frames.build(motion, points, t_end=t_end, frames=frames, labels=labels, length=args.length_unit,
                            title=title)
     from symkin._io.atomic import replacing
     from symkin._io.progress import Progress

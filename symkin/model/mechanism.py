@@ -13,13 +13,19 @@ from collections import OrderedDict
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import sympy as sp
 
 from symkin._util.budget import simplify_within
+from symkin._util.display import html_table, short_repr
 from symkin.errors import CoaxialityWarning, ModelError, warn_user
 from symkin.model.parts import FRAME, MAIN_AXIS, Gear, Link, LinkKind, Mesh, MeshGeometry, mesh_pair
+
+if TYPE_CHECKING:  # the engine's result types, for annotations only (the engine imports the model)
+    from symkin.kinematics import Speeds
+    from symkin.laws import Law
+    from symkin.particles import Motion
 
 __all__ = ["Mechanism"]
 
@@ -52,6 +58,31 @@ class Mechanism:
     meshes: tuple[Mesh, ...]
     name: str = ""
     _cache: dict = field(default_factory=dict, init=False, repr=False, compare=False, hash=False)
+
+    def __repr__(self) -> str:
+        """A short repr (under 200 characters): the name, the links and the meshes.
+
+        >>> from symkin import schemes
+        >>> schemes.single_row_AI(teeth=(20, 30, 80))
+        Mechanism('AI1', links 1, 2, H, 4, meshes 1-2, 2-4)
+        """
+        return short_repr(type(self).__name__, repr(self.name), "links " + ", ".join(L.name for L in self.moving_links),
+                          "meshes " + ", ".join(f"{m.a}-{m.b}" for m in self.meshes))
+
+    def _repr_html_(self) -> str:
+        """For Jupyter: the kinematic scheme (SVG, :func:`symkin.viz.diagram`) and a table of the links."""
+        from symkin.viz.diagram import scheme_svg
+
+        rows = []
+        for L in self.links:
+            if L.kind.value == "frame" and not L.gears:
+                continue
+            gears = ", ".join(f"{g.name} ({g.teeth if g.teeth is not None else g.radius}{', internal' if g.internal else ''})"
+                              for g in L.gears)
+            rows.append((L.name, L.kind.value, L.carrier or "", gears or "-"))
+        table = html_table(["link", "kind", "carrier", "gears (teeth)"], rows,
+                           caption=f"{self.name or 'mechanism'}: meshes " + ", ".join(f"{m.a}-{m.b}" for m in self.meshes))
+        return scheme_svg(self) + table
 
     def __post_init__(self) -> None:
         for what in ("links", "meshes"):
@@ -479,7 +510,7 @@ class Mechanism:
 
         return kinematic_system(self).equations
 
-    def speeds(self, known: Mapping[str, Any]) -> Any:
+    def speeds(self, known: Mapping[str, Any]) -> Speeds:
         """Angular velocity of every link, given the speeds of some links.
 
         See :func:`symkin.kinematics.solve_speeds`.
@@ -488,7 +519,7 @@ class Mechanism:
 
         return solve_speeds(self, known)
 
-    def ratio(self, driver: str, driven: str, fixed: str | Sequence[str] | None = None) -> Any:
+    def ratio(self, driver: str, driven: str, fixed: str | Sequence[str] | None = None) -> Law:
         """The ratio i_ab^(c) = omega_a / omega_b with link(s) c fixed.
 
         See :func:`symkin.kinematics.ratio`.
@@ -497,7 +528,7 @@ class Mechanism:
 
         return ratio(self, driver, driven, fixed)
 
-    def motion(self, inputs: Mapping[str, Any], frame: Any = None) -> Any:
+    def motion(self, inputs: Mapping[str, Any], frame: Any = None) -> Motion:
         """The motion of every link for given input drives; see :class:`symkin.particles.Motion`."""
         from symkin.particles import Motion
 

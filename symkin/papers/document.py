@@ -1,7 +1,9 @@
 """The LaTeX document of a reproduction: each derived equation beside the published one.
 
 The document uses only what TeX Live's base packages hold (amsmath, amssymb, geometry,
-graphicx), breaks long laws over lines at ``+`` and ``-`` and escapes every piece of
+graphicx, hyperref: a table of contents, PDF bookmarks and internal links, a bibliography of
+the papers each section cites; :func:`~symkin.papers.texbuild.compile_pdf` runs pdflatex twice
+to resolve them), breaks long laws over lines at ``+`` and ``-`` and escapes every piece of
 text, so it compiles with pdflatex without overfull lines.
 
     >>> doc = equations_document([])
@@ -101,10 +103,12 @@ PREAMBLE = r"""\documentclass[10pt,a4paper]{article}
 \setlength{\parindent}{0pt}
 \setlength{\parskip}{4pt}
 \emergencystretch=3em
+\usepackage[hidelinks,bookmarksnumbered,pdftitle={symkin: derived laws beside the published ones}]{hyperref}
 \title{symkin: derived laws beside the published ones}
 \date{}
 \begin{document}
 \maketitle
+\tableofcontents
 """
 
 
@@ -160,7 +164,8 @@ def check_rows(check: Any) -> dict[str, list[str]]:
 def _check_block(check: Any, figure: int = 0, number: int = 0) -> str:
     """A check's subsection; ``number`` (from 1) heads it as ``[number]``, the index names it so,
     and ``figure`` is the number of the figure it points to: both are printed, not ``\\ref``-ed,
-    so that the one pdflatex pass :func:`~symkin.papers.texbuild.compile_pdf` makes resolves them."""
+    so that they need no cross-reference file (the contents, citations and bookmarks do:
+    :func:`~symkin.papers.texbuild.compile_pdf` runs pdflatex twice for them)."""
     rows = []
     printed = check_rows(check)
     for label in ("derived", "published"):
@@ -293,9 +298,27 @@ def _placed_figures(result: Any, root: Path | None) -> _Placed:
     return after, loose, figure_of
 
 
+def _cite_key(key: str) -> str:
+    """A paper's key as a LaTeX citation key (letters and digits only).
+
+    >>> _cite_key("alyushin2009")
+    'alyushin2009'
+    """
+    return re.sub(r"[^A-Za-z0-9]", "", key) or "paper"
+
+
+def _bibliography(results: list[Any]) -> list[str]:
+    """The papers reproduced, each cited by its section; listed in the contents and the bookmarks."""
+    out = [r"\clearpage", r"\phantomsection", r"\addcontentsline{toc}{section}{References}",
+           r"\begin{thebibliography}{9}"]
+    out += [rf"\bibitem{{{_cite_key(r.key)}}} {escape(r.citation)}" for r in results]
+    return out + [r"\end{thebibliography}"]
+
+
 def _items_index(results: list[Any], check_numbers: dict[int, int]) -> list[str]:
     """An index of every paper's printed items: verdict, and the numbers of the checks."""
-    out = [r"\clearpage", r"\section*{Index of paper items}",
+    out = [r"\clearpage", r"\phantomsection", r"\addcontentsline{toc}{section}{Index of paper items}",
+           r"\section*{Index of paper items}",
            "Every item each paper prints, with its verdict and the numbers [n] of the checks that compare it." + "\n"]
     for r in results:
         block = _items(r, check_numbers)
@@ -317,8 +340,8 @@ def equations_document(results: Iterable[Any], root: Path | None = None) -> str:
     check_numbers: dict[int, int] = {}  # check -> its number
     figures = 0  # figures placed so far: LaTeX numbers them in the order of their captions
     for r in results:
-        parts.append(rf"\section{{{escape(r.citation)}}}")
-        parts.append(rf"Paper key: \texttt{{{escape(r.key)}}}." + "\n")
+        parts.append(rf"\section{{\texorpdfstring{{{escape(r.citation)}}}{{{escape_text(r.citation)}}}}}")  # (a bookmark: no breaks)
+        parts.append(rf"Paper key: \texttt{{{escape(r.key)}}} \cite{{{_cite_key(r.key)}}}." + "\n")
         after, loose, figure_of = _placed_figures(r, root)
         placed = [label for c in r.checks for _, _, label in after.get(id(c), [])] + [label for _, _, label in loose]
         figure_numbers = {label: figures + k for k, label in enumerate(placed, 1)}
@@ -337,5 +360,7 @@ def equations_document(results: Iterable[Any], root: Path | None = None) -> str:
             parts.append(r"\textit{Note:} " + escape(note) + "\n")
     if any(paper_items(r) for r in results):
         parts += _items_index(results, check_numbers)
+    if results:
+        parts += _bibliography(results)
     parts.append(r"\end{document}")
     return "\n".join(parts) + "\n"

@@ -88,19 +88,25 @@ def compile_pdf(tex: Path, *, pdflatex: str | None = None, timeout: float = 180.
     if exe is None:
         raise ToolError(MISSING)
     folder, job = tex.parent, tex.stem
-    try:
-        proc = subprocess.run(
-            [exe, "-interaction=nonstopmode", "-halt-on-error", "-no-shell-escape", "-file-line-error", tex.name],
-            cwd=folder, stdin=subprocess.DEVNULL, capture_output=True, timeout=timeout,
-            env={**os.environ, "TEXINPUTS": f"{folder}{os.pathsep}"},
-        )
-    except subprocess.TimeoutExpired:
-        raise ToolError(f"pdflatex did not finish {tex.name} within {timeout:.0f} s; check the TeX installation") from None
-    except OSError as err:
-        raise ToolError(f"pdflatex could not be started ({err.strerror}); check the TeX installation") from None
+    # a table of contents, citations and PDF bookmarks are read from the first pass's files by the second
+    text = tex.read_text(errors="replace") if tex.exists() else ""
+    passes = 2 if any(word in text for word in (r"\tableofcontents", r"\cite{", "{hyperref}")) else 1
+    for _ in range(passes):
+        try:
+            proc = subprocess.run(
+                [exe, "-interaction=nonstopmode", "-halt-on-error", "-no-shell-escape", "-file-line-error", tex.name],
+                cwd=folder, stdin=subprocess.DEVNULL, capture_output=True, timeout=timeout,
+                env={**os.environ, "TEXINPUTS": f"{folder}{os.pathsep}"},
+            )
+        except subprocess.TimeoutExpired:
+            raise ToolError(f"pdflatex did not finish {tex.name} within {timeout:.0f} s; check the TeX installation") from None
+        except OSError as err:
+            raise ToolError(f"pdflatex could not be started ({err.strerror}); check the TeX installation") from None
+        if proc.returncode != 0:
+            break
     log_file = folder / f"{job}.log"
     log = log_file.read_text(errors="replace") if log_file.exists() else proc.stdout.decode(errors="replace")
-    for suffix in (".aux", ".out") + (() if keep_log else (".log",)):
+    for suffix in (".aux", ".out", ".toc") + (() if keep_log else (".log",)):
         (folder / f"{job}{suffix}").unlink(missing_ok=True)
     pdf = folder / f"{job}.pdf"
     if proc.returncode != 0 or not pdf.exists():

@@ -22,7 +22,7 @@ from symkin.parsing.expressions import parse_expression
 from symkin.parsing.numbers import _BARE_EXPONENT, _check_text
 from symkin.values import as_expr, is_quantity, unit_factor
 
-__all__ = ["parse_quantity", "MAX_UNIT_LENGTH"]
+__all__ = ["parse_quantity", "unit_of", "MAX_UNIT_LENGTH"]
 
 #: The text of a unit: a name and products, quotients and integer powers of names.
 _UNIT_TEXT = re.compile(r"^[A-Za-z_°µ][A-Za-z0-9_°µ]*(\s*(\*\*|[*/^])?\s*[A-Za-z0-9_°µ.-]+)*$")
@@ -84,6 +84,34 @@ def parse_quantity(value: Any, unit: str, *, what: str = "value", names: Iterabl
         except InputError as err:
             error = err
     raise refused or error
+
+
+def unit_of(text: str, unit: str) -> str | None:
+    """The unit a user typed after a number (``"rpm"`` in ``"300 rpm"``), a unit of ``unit``'s
+    kind, or None for a bare number (or text that is not a quantity).
+
+    >>> unit_of("300 rpm", "rad/s"), unit_of("2*pi", "rad/s"), unit_of("90deg/s", "rad/s")
+    ('rpm', None, 'deg/s')
+    """
+    try:
+        s = _check_text(text, "value")
+    except InputError:
+        return None
+    try:
+        parse_expression(s, what="value")
+        return None
+    except InputError:
+        pass
+    for m in _UNIT_START.finditer(s):
+        number, unit_text = s[: m.start()].strip(), s[m.end():].strip()
+        try:
+            if number:
+                parse_expression(number, what="value")
+                _unit_factor(unit_text, unit, what="value")
+                return unit_text
+        except InputError:
+            continue
+    return None
 
 
 def _well_formed(text: str) -> bool:

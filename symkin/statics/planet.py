@@ -33,6 +33,7 @@ import numpy as np
 import sympy as sp
 
 from symkin._util.budget import simplify_within
+from symkin._util.display import short_repr
 from symkin.errors import ModelError, UnsupportedError
 from symkin.model import LinkKind, Mechanism, Mesh
 from symkin.schemes import TWO_ROW, two_row
@@ -117,6 +118,11 @@ class PlanetStatics:
     same_direction: bool
     axial: tuple[sp.Expr, sp.Expr]
     axial_sum: sp.Expr
+
+    def __repr__(self) -> str:
+        """``PlanetStatics('23', rims 2, 3, same direction)``, under 200 characters."""
+        return short_repr("PlanetStatics", repr(self.planet), f"rims {', '.join(self.rims)}",
+                          "same direction" if self.same_direction else "opposite directions")
     same_hand: bool
     condition: sp.Eq
 
@@ -276,6 +282,11 @@ class PlanetForces:
     force_2: np.ndarray
     force_3: np.ndarray
     axial_sum: float
+
+    def __repr__(self) -> str:
+        """``PlanetForces(F2 = [...], F3 = [...], axial sum ...)``, under 200 characters."""
+        return short_repr("PlanetForces", f"F2 = {np.round(self.force_2, 4).tolist()}",
+                          f"F3 = {np.round(self.force_3, 4).tolist()}", f"axial sum {self.axial_sum:.4g}")
     axial_residual: float
     carrier_torque: float
     ratio: float

@@ -39,7 +39,7 @@ from typing import Any
 import sympy as sp
 
 from symkin import symbols as S
-from symkin._util.display import html_table
+from symkin._util.display import html_table, short_repr
 from symkin._util.jsonout import exact_json, float_text
 from symkin.errors import InputError, ModelError, UnderdeterminedError
 from symkin.kinematics import solve_speeds
@@ -189,6 +189,11 @@ class Statics:
     housing_with_losses: sp.Expr = sp.Integer(0)
     pins: dict[str, tuple[sp.Expr, sp.Expr]] = field(default_factory=dict)
     _cache: dict = field(default_factory=dict, init=False, repr=False, compare=False, hash=False)
+
+    def __repr__(self) -> str:
+        """``Statics('AI1', 1 -> H, fixed 4, eta = ...)``, under 200 characters."""
+        return short_repr("Statics", repr(self.mechanism.name), f"{self.input} -> {self.output}",
+                          f"fixed {', '.join(self.fixed) or '-'}", f"eta = {self.efficiency.rhs}")
 
     @property
     def backward(self) -> Statics:

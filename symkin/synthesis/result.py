@@ -20,6 +20,7 @@ from typing import Any
 
 import sympy as sp
 
+from symkin._util.display import html_table, short_repr
 from symkin._util.jsonout import exact_json, float_text
 from symkin.errors import CoaxialityWarning, ModelError, SymkinError
 from symkin.model import Gear, LinkKind, Mechanism
@@ -126,6 +127,18 @@ class Design:
     planets: tuple[tuple[str, int], ...]
     ranked_efficiency: sp.Rational | None = None
     mesh_efficiency: tuple[tuple[str, sp.Expr], ...] = ()
+
+    def __repr__(self) -> str:
+        """``Design(z1=30, z2=18, ratio 12/5, error 0, size 78)``, under 200 characters."""
+        return short_repr("Design", *(f"{n}={z}" for n, z in self.teeth), f"ratio {self.ratio}", f"error {self.error}",
+                          f"size {self.size}")
+
+    def _repr_html_(self) -> str:
+        """The design as a compact HTML table (each gear's teeth, the ratio, its error, the size), for Jupyter."""
+        rows: list[tuple[str, Any]] = [(g, z) for g, z in self.gear_teeth]
+        rows += [("ratio", self.ratio), ("error", float_text(self.error)), ("size", self.size)]
+        rows += [(f"arm {n}", a) for n, a in self.arms] + [(f"shift {n}", y) for n, y in self.shifts]
+        return html_table(["", "value"], rows, caption="design")
 
     @classmethod
     def from_record(cls, plan: SearchPlan, record: Record) -> Design:
@@ -458,6 +471,12 @@ class SynthesisResult:
     made: int = 0
     rank: tuple[str, ...] = DEFAULT_RANK
     mesh_efficiency: tuple[tuple[str, sp.Expr], ...] = ()
+
+    def __repr__(self) -> str:
+        """``SynthesisResult(3 designs of 12 found, best ratio 12/5, 0.4 s)``, under 200 characters."""
+        best = f"best ratio {self.designs[0].ratio}" if self.designs else "no design"
+        return short_repr("SynthesisResult", f"{len(self.designs)} designs of {self.found} found", best,
+                          f"{self.seconds:.3g} s")
 
     def __iter__(self) -> Iterator[Design]:
         return iter(self.designs)

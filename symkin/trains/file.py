@@ -4,7 +4,7 @@ The file reads like a stick diagram: the links, the gears each holds, which link
 each planet, which gears mesh, and the gear states.  The minimal form::
 
     name = "Ravigneaux"
-    module = 1                        # pitch radius = module * teeth / 2 unless a gear gives radius
+    module = 1                        # in mm ("1.5 mm", "0.06 in" with a unit); pitch radius = module * teeth / 2
     meshes = [["s1", "p1"], ["p1", "p2"], ["p2", "s2"], ["p2", "r"]]
     [links.S1]                        # a link turning about the main axis
     gears = { s1 = 30 }               # gear name = teeth (an integer, or a string naming a symbol)
@@ -74,7 +74,7 @@ import sympy as sp
 
 from symkin.errors import ModelError, SymkinError, TrainFileError
 from symkin.model import FRAME, Gear, Link, Mesh
-from symkin.parsing import CONSTANTS, FUNCTIONS, parse_expression
+from symkin.parsing import CONSTANTS, FUNCTIONS, parse_expression, parse_real
 from symkin.trains.one_way import OneWay
 from symkin.trains.train import State, Train
 from symkin.values import as_rational
@@ -223,6 +223,15 @@ class _Reader:
                         raise self.fail(f"{where} {key}", f"must be 0 or more, got {_show(value)}")
         return out
 
+    def module(self, value: Any, where: str) -> sp.Expr:
+        """A module in millimetres (ISO 54): a number, or text with a unit ("1.5 mm", "0.06 in")."""
+        if not isinstance(value, str):
+            return self.number(value, where)
+        try:
+            return parse_real(value, what="the module", unit="mm", positive=True)
+        except SymkinError as err:
+            raise self.fail(where, str(err)) from None
+
     def angle(self, value: Any, where: str) -> sp.Expr:
         return self.number(value, where, positive=False)
 
@@ -274,7 +283,7 @@ class _Reader:
                 if isinstance(side, bool) or side not in (-1, 0, 1):
                     raise self.fail(f"{where} side", f"is 1 (the side gear meets the bevel pinions above their axes) or "
                                     f"-1 (below), got {_show(side)}")
-                m = self.number(spec["module"], f"{where} module") if "module" in spec else module
+                m = self.module(spec["module"], f"{where} module") if "module" in spec else module
                 z = self.teeth(spec["teeth"], f"{where} teeth") if "teeth" in spec else None
                 if "radius" in spec:
                     return Gear(name, self.number(spec["radius"], f"{where} radius"), teeth=z, internal=internal, module=m,
@@ -296,7 +305,7 @@ class _Reader:
         description = data.get("description", "")
         if not isinstance(description, str):
             raise self.fail("description", f"must be a string, got {_show(description)}")
-        module = self.number(data["module"], "module") if "module" in data else sp.Integer(1)
+        module = self.module(data["module"], "module") if "module" in data else sp.Integer(1)
         links_table = data.get("links")
         if not isinstance(links_table, Mapping) or not links_table:
             raise self.fail("[links]", "the file names no links; add a [links.NAME] table for each link")

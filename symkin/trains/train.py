@@ -20,7 +20,7 @@ from typing import Any
 import sympy as sp
 
 from symkin import symbols as S
-from symkin._util.display import html_table
+from symkin._util.display import html_table, short_repr
 from symkin._util.jsonout import exact_json, float_text
 from symkin.errors import DeterminacyError, ModelError
 from symkin.kinematics import Speeds, solve_speeds
@@ -57,6 +57,18 @@ class State:
     description: str = ""
     released: tuple[str, ...] = ()
 
+    def __repr__(self) -> str:
+        """``State('first', S1 -> R, brakes C, clutches -)``, under 200 characters."""
+        return short_repr("State", repr(self.name), f"{self.input} -> {self.output}",
+                          f"brakes {', '.join(self.brakes) or '-'}",
+                          f"clutches {', '.join(f'{a}+{b}' for a, b in self.clutches) or '-'}")
+
+    def _repr_html_(self) -> str:
+        """The state as a one-row HTML table, for Jupyter."""
+        return html_table(["state", "input", "output", "brakes", "clutches", "description"],
+                          [(self.name, self.input, self.output, ", ".join(self.brakes) or "-",
+                            ", ".join(f"{a}+{b}" for a, b in self.clutches) or "-", self.description)])
+
 
 @dataclass(frozen=True)
 class Shift:
@@ -77,6 +89,17 @@ class Shift:
     def free(self) -> bool:
         """True when nothing holds the state in drive (a one-way clutch overruns): no ratio."""
         return self.ratio is None
+
+    def __repr__(self) -> str:
+        """``Shift('first', ratio 12/5)``, under 200 characters."""
+        return short_repr("Shift", repr(self.state.name), f"ratio {self.ratio.rhs}")
+
+    def _repr_html_(self) -> str:
+        """The state's ratio and every link's speed per unit input speed, for Jupyter."""
+        w_in = S.omega(self.state.input)
+        rows = [(n, f"${sp.latex(sp.cancel(v / w_in))}$") for n, v in self.speeds.items()]
+        return html_table(["link", "speed / input speed"], rows, raw_columns=(1,),
+                          caption=f"state {self.state.name}: ratio {self.ratio.rhs}")
 
     def to_json(self) -> dict[str, Any]:
         """The gear state as JSON: input, output, brakes, clutches and the exact ratio (null when free)."""
@@ -101,6 +124,10 @@ class ShiftTable:
 
     train: Train
     shifts: tuple[Shift, ...]
+
+    def __repr__(self) -> str:
+        """``ShiftTable('simple planetary', low 4, reverse -3, overdrive 3/4)``, under 200 characters."""
+        return short_repr("ShiftTable", repr(self.train.name), *(f"{s.state.name} {s.ratio.rhs}" for s in self.shifts))
 
     def __iter__(self) -> Any:
         return iter(self.shifts)
@@ -189,6 +216,20 @@ class Train(Mechanism):
     base: Any = None
     tooth_forms: tuple[tuple[str, tuple[tuple[str, Any], ...]], ...] = ()
     one_ways: tuple[OneWay, ...] = ()
+
+    def __repr__(self) -> str:
+        """``Train('simple planetary', links S, C, P, R, states low, reverse, overdrive)``, under 200 characters."""
+        return short_repr("Train", repr(self.name), "links " + ", ".join(L.name for L in self.moving_links),
+                          "states " + (", ".join(self.state_names) or "-"))
+
+    def _repr_html_(self) -> str:
+        """For Jupyter: the kinematic scheme, the links and the shift table (a state that cannot be
+        solved is left out of it)."""
+        try:
+            table = self.shift_table()._repr_html_() if self.states else ""
+        except ModelError:
+            table = ""
+        return super()._repr_html_() + table
 
     def __post_init__(self) -> None:
         super().__post_init__()

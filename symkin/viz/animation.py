@@ -35,7 +35,7 @@ from symkin.model import FRAME, LinkKind
 from symkin.numeric.sampling import on_grid, time_grid
 from symkin.values import as_values, substitute
 from symkin.viz import style
-from symkin.viz.teeth import involute_outline, mesh_phases
+from symkin.viz.teeth import involute_outline, mesh_phases, rear_gears
 
 __all__ = ["Frames", "draw_frame", "frame_figure", "animate", "WRITERS", "ffmpeg_available"]
 
@@ -79,6 +79,9 @@ class Frames:
         involute teeth, phased so that they mesh (:func:`symkin.viz.teeth.mesh_phases`).
     length : str
         The unit of the coordinates, for the axis labels (bare numbers are metres).
+    rear : frozenset of str
+        The gears of a second row (:func:`symkin.viz.teeth.rear_gears`): drawn dashed, without
+        teeth or fill, so that they stand apart from the front row they overlap.
     """
 
     t: np.ndarray
@@ -91,6 +94,7 @@ class Frames:
     title: str
     teeth: Mapping[str, tuple[int, float]] = field(default_factory=dict)
     length: str = "m"
+    rear: frozenset[str] = frozenset()
 
     @classmethod
     def build(
@@ -146,7 +150,7 @@ class Frames:
         phases = mesh_phases(mech, subs) if teeth else {}
         toothed = {name: (int(mech.gear(name).teeth), phase) for name, phase in phases.items()}
         return cls(t, tuple(links), axis_xy, angle, main_xy, particle_xy, names, title or mech.name or "mechanism",
-                   toothed, length)
+                   toothed, length, rear_gears(mech))
 
     def _repr_html_(self) -> str:
         """In Jupyter, frames show as the animation with its playback controls (:meth:`html`)."""
@@ -237,13 +241,14 @@ class _Artists:
             colour = _COLOURS[index[name.split("#")[0]] % len(_COLOURS)]  # a planet's copies in its colour
             for gname, radius, internal in gears:
                 outline = None
-                if gname in frames.teeth:
+                rear = gname in frames.rear  # a second row: dashed pitch circle, no teeth, no fill
+                if gname in frames.teeth and not rear:
                     z, phase = frames.teeth[gname]
                     outline = np.array(involute_outline(radius, z, internal=internal, phase=phase))
-                (circle,) = ax.plot([], [], color=colour, lw=1.1 if internal else 0.9)
-                (marks,) = ax.plot([], [], color=colour, lw=0.9)
+                (circle,) = ax.plot([], [], color=colour, lw=1.1 if internal else 0.9, ls=(0, (4, 2)) if rear else "-")
+                (marks,) = ax.plot([], [], color=colour, lw=0.9, ls=":" if rear else "-")
                 face = None
-                if not internal:  # external gears filled lightly, so that overlapping outlines read as meshing
+                if not internal and not rear:  # external gears filled lightly, so that overlapping outlines read as meshing
                     face = Polygon(np.zeros((1, 2)), closed=True, facecolor=colour, alpha=0.18, lw=0)
                     ax.add_patch(face)
                 self.gear_lines.append((i, radius, internal, circle, marks, outline, face))
@@ -254,7 +259,7 @@ class _Artists:
         self.dots = []
         for k, label in enumerate(frames.labels):
             colour = _PATH_COLOURS[k % len(_PATH_COLOURS)]
-            (path,) = ax.plot([], [], color=colour, lw=1.3, label=label, zorder=5, ls=style.LINESTYLES[k % 2])
+            (path,) = ax.plot([], [], color=colour, lw=1.3, label=label, zorder=5)  # solid: the legend shows it so
             (dot,) = ax.plot([], [], "o", color=colour, ms=5, zorder=6)
             self.paths.append(path)
             self.dots.append(dot)

@@ -28,7 +28,7 @@ from symkin.errors import InputError
 from symkin.model import LinkKind, Mechanism
 from symkin.values import as_values, substitute
 from symkin.viz import style
-from symkin.viz.teeth import involute_outline, mesh_phases
+from symkin.viz.teeth import involute_outline, mesh_phases, rear_gears
 
 __all__ = [
     "space_figure",
@@ -81,6 +81,7 @@ def draw_pitch_circles(ax: Any, mech: Mechanism, values: Mapping[Any, Any] | Non
     """
     named = as_values(values)
     phases = mesh_phases(mech, named) if teeth else {}
+    rear = rear_gears(mech)  # a second row: dashed, without teeth, behind the first it overlaps
     n = 0
     for link in mech.links:
         centre = (0.0, 0.0)
@@ -92,7 +93,9 @@ def draw_pitch_circles(ax: Any, mech: Mechanism, values: Mapping[Any, Any] | Non
             centre = (x, y)
         for gear in link.gears:
             r = float(substitute(gear.radius, named))
-            if gear.name in phases:
+            if gear.name in rear:
+                ax.add_patch(Circle(centre, r, fill=False, lw=0.7, ls=(0, (4, 2)), color="0.45"))
+            elif gear.name in phases:
                 gx, gy = involute_outline(r, int(sp.sympify(gear.teeth)), internal=gear.internal, phase=phases[gear.name])
                 ax.plot(centre[0] + gx, centre[1] + gy, lw=0.5, color="0.45", ls="-")
                 ax.add_patch(Circle(centre, r, fill=False, lw=0.4, ls=":", color="0.6"))
@@ -101,8 +104,10 @@ def draw_pitch_circles(ax: Any, mech: Mechanism, values: Mapping[Any, Any] | Non
             angle = np.radians(_LABEL_ANGLES[n % len(_LABEL_ANGLES)])
             n += 1
             out = r * (1.08 if gear.internal else 0.86)  # inside a gear, outside a ring: clear of its teeth
-            ax.annotate(gear.name, (centre[0] + out * np.cos(angle), centre[1] + out * np.sin(angle)), color="0.3",
-                        fontsize=style.SMALL, ha="center", va="center")
+            ax.annotate(gear.name,
+                        (centre[0] + out * np.cos(angle), centre[1] + out * np.sin(angle)), color="0.3",
+                        fontsize=style.SMALL, ha="center", va="center", zorder=6,  # over the paths, on a white box
+                        bbox={"boxstyle": "round,pad=0.15", "facecolor": "white", "edgecolor": "none", "alpha": 0.8})
 
 
 def _draw_pinion(ax: Any, mech: Mechanism, link: Any, named: Mapping[str, Any]) -> None:

@@ -23,7 +23,7 @@ import sympy as sp
 from symkin.errors import InputError
 from symkin.values import as_values, substitute
 
-__all__ = ["involute_outline", "mesh_phases", "outline_figure", "PRESSURE_ANGLE"]
+__all__ = ["involute_outline", "mesh_phases", "outline_figure", "rear_gears", "PRESSURE_ANGLE"]
 
 #: Pressure angle of the drawn teeth, in radians (20 degrees).
 PRESSURE_ANGLE = float(np.radians(20))
@@ -151,3 +151,19 @@ def outline_figure(geometry: Any, *, title: str | None = None, zoom: tuple[float
     if title:
         axes[0].set_title(title)
     return fig
+
+
+def rear_gears(mech: Any) -> frozenset[str]:
+    """The gears of a train's second row, seen from +z behind the first: every rim of a link
+    after its first (a stepped planet's second rim) and every gear meshing a rear rim, so that
+    figures draw them apart (dashed, without teeth) from the front row they overlap.
+
+    >>> from symkin import schemes
+    >>> sorted(rear_gears(schemes.two_row("AA", teeth=(54, 45, 44, 55), module=1)))
+    ['3', '4']
+    """
+    rear = {g.name for L in mech.links for g in L.gears[1:]}
+    for mesh in mech.meshes:  # a gear meshing a rear rim is in the rear row too (one pass: a row is one mesh deep)
+        if mesh.a in rear or mesh.b in rear:
+            rear |= {mesh.a, mesh.b} - {g.name for L in mech.links for g in L.gears[:1] if len(L.gears) > 1}
+    return frozenset(rear)

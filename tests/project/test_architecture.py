@@ -47,7 +47,9 @@ LAYERS: list[tuple[str, ...]] = [
 
 #: The deliberate convenience layer: Mechanism.speeds/ratio/motion call the kinematics
 #: and the particle laws (like sympy's Point.v2pt_theory), imported inside those methods.
-CONVENIENCE = {("symkin.model.mechanism", "symkin.kinematics"), ("symkin.model.mechanism", "symkin.particles")}
+CONVENIENCE = {("symkin.model.mechanism", "symkin.kinematics"), ("symkin.model.mechanism", "symkin.particles"),
+               # and a mechanism shows in Jupyter as its kinematic scheme (Mechanism._repr_html_)
+               ("symkin.model.mechanism", "symkin.viz.diagram")}
 
 
 def _module(path: Path) -> str:

@@ -185,6 +185,8 @@ COMMANDS: dict[str, Command] = {
                          "--json")),
     "modes": Command(("modes", "--train", "simple", "--state", "low", "--value", "J_S=0.01", "--json")),
     "geometry": Command(("geometry", "--train", "simple", "--min-contact-ratio", "1.2", "--out", "g.svg", "--json")),
+    "diagram": Command(("diagram", "--train", "simple", "--state", "low", "--length-unit", "mm", "--out", "d.svg", "--json")),
+    "diagram-lever": Command(("diagram", "--train", "simpson", "--state", "second", "--lever", "--out", "l.png", "--json")),
     "trajectory": Command(("trajectory", *_AI1, "--point", "2:10,0", "--module", "1", "--turns", "1", "--out", "t.png", "--json")),
     "trajectory-space": Command(("trajectory", *_AI1, "--point", "2:10,0,1", "--base-z", "5*t", "--base-pitch", "t/10",
                                  "--turns", "1", "--out", "t.png", "--json")),
