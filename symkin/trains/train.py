@@ -92,10 +92,12 @@ class Shift:
 
     def __repr__(self) -> str:
         """``Shift('first', ratio 12/5)``, under 200 characters."""
-        return short_repr("Shift", repr(self.state.name), f"ratio {self.ratio.rhs}")
+        return short_repr("Shift", repr(self.state.name), "free" if self.ratio is None else f"ratio {self.ratio.rhs}")
 
     def _repr_html_(self) -> str:
         """The state's ratio and every link's speed per unit input speed, for Jupyter."""
+        if self.ratio is None or self.speeds is None:  # nothing holds it in drive (a one-way clutch overruns)
+            return html_table(["link", "speed / input speed"], [], caption=f"state {self.state.name}: free, no ratio")
         w_in = S.omega(self.state.input)
         rows = [(n, f"${sp.latex(sp.cancel(v / w_in))}$") for n, v in self.speeds.items()]
         return html_table(["link", "speed / input speed"], rows, raw_columns=(1,),
