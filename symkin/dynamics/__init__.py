@@ -8,7 +8,8 @@
   their lines of action, shafts to the frame) and its natural frequencies and mode shapes.
 - :func:`planar_model` and :func:`planar_modes` (:mod:`symkin.dynamics.planar`): Lin and Parker's
   rotational-translational model of a simple planetary set (every body also translates on its
-  bearings), derived from its energies.
+  bearings), derived from its energies; :func:`planar_geometry` takes its radii and planet places
+  from a train.
 
 Mass properties come from the links (``inertia``, ``mass``, ``stiffness``) and meshes
 (``stiffness``), SI units; the model's lengths are millimetres (a train file's module, ISO 54),
@@ -16,9 +17,10 @@ converted to metres.  docs/dynamics.md explains the model and its assumptions.
 """
 
 from symkin.dynamics.bodies import MILLIMETRE
-from symkin.dynamics.planar import PlanarModel, planar_model, planar_modes
+from symkin.dynamics.planar import PlanarModel, planar_geometry, planar_model, planar_modes
 from symkin.dynamics.rigid import EquationsOfMotion, Simulation, equations_of_motion
 from symkin.dynamics.torsional import Modes, TorsionalModel, modes_of, natural_modes, torsional_model
 
 __all__ = ["MILLIMETRE", "EquationsOfMotion", "Simulation", "equations_of_motion", "Modes", "TorsionalModel",
-           "natural_modes", "torsional_model", "modes_of", "PlanarModel", "planar_model", "planar_modes"]
+           "natural_modes", "torsional_model", "modes_of", "PlanarModel", "planar_model", "planar_modes",
+           "planar_geometry"]

@@ -40,11 +40,13 @@ from typing import Any
 
 import sympy as sp
 
+from symkin.dynamics.bodies import MILLIMETRE, carrier_chain, inertia_of
 from symkin.dynamics.torsional import Modes, TorsionalModel, modes_of
 from symkin.errors import InputError
+from symkin.model import LinkKind, Mechanism
 from symkin.values import as_expr
 
-__all__ = ["planar_model", "planar_modes", "PlanarModel", "CENTRAL"]
+__all__ = ["planar_model", "planar_modes", "planar_geometry", "PlanarModel", "CENTRAL"]
 
 #: The central members, in the order of the coordinates.
 CENTRAL = ("sun", "ring", "carrier")
@@ -174,3 +176,54 @@ def planar_modes(planets: int | Sequence[Any], *, rigid_tolerance: float = 1e-9,
     """Natural frequencies (Hz, ascending, rigid-body modes 0) and mode shapes of
     :func:`planar_model` (same arguments)."""
     return planar_model(planets, **geometry).modes(rigid_tolerance)
+
+
+def planar_geometry(train: Mechanism, planet: str | None = None, *, pressure_angle: Any = sp.pi / 9,
+                    length: Any = MILLIMETRE) -> dict[str, Any]:
+    """The arguments of :func:`planar_model` that a simple planetary train's assembly gives: the
+    planets' places (the planet's angle on its carrier, ``count`` copies equally spaced), the
+    base radii (pitch radius x cos(pressure angle), in metres), the carrier radius (the planet's
+    arm) and the inertias of the links (``J_<link>`` symbols where not given).  Masses, bearings
+    and mesh stiffnesses are the caller's.
+
+    >>> from symkin.trains import load_train
+    >>> g = planar_geometry(load_train("simple"), pressure_angle=0)
+    >>> g["planets"], sorted(g["base_radii"].items()), g["carrier_radius"]
+    ([0, 2*pi/3, 4*pi/3], [('planet', 3/250), ('ring', 9/250), ('sun', 3/250)], 3/125)
+    """
+    planets = [L.name for L in train.moving_links if L.kind is LinkKind.PLANET]
+    if planet is None:
+        if len(planets) != 1:
+            raise InputError(f"the train has planets {', '.join(planets) or 'none'}: name the planet of the "
+                             "simple planetary set (planet=...)")
+        planet = planets[0]
+    elif planet not in planets:
+        raise InputError(f"{planet!r} is not a planet of the train; its planets are {', '.join(planets) or 'none'}")
+    chain = carrier_chain(train, planet)
+    if len(chain) != 1:
+        raise InputError(f"planet {planet} is carried by a planet: the planar model is of a simple planetary set")
+    arm = chain[0]
+    alpha = as_expr(pressure_angle, what="pressure angle", unit="rad")
+    length = as_expr(length, what="length (metres per model length unit)")
+    radii: dict[str, sp.Expr] = {}
+    links: dict[str, str] = {"carrier": arm.carrier, "planet": planet}
+    own = {g.name for g in train.link(planet).gears}
+    for mesh in train.meshes:
+        if (mesh.a in own) == (mesh.b in own):
+            continue
+        mine, other = (mesh.a, mesh.b) if mesh.a in own else (mesh.b, mesh.a)
+        body = "ring" if train.gear(other).internal else "sun"
+        if body in radii:
+            raise InputError(f"planet {planet} meshes with two {body}s: the planar model is of a simple planetary set")
+        radii[body] = train.gear(other).radius
+        radii["planet"] = train.gear(mine).radius
+        links[body] = train.link(other).name
+    if set(radii) != {"sun", "ring", "planet"}:
+        raise InputError(f"planet {planet} must mesh with a sun (an external gear) and a ring (an internal gear)")
+    return {
+        "planets": [arm.angle + 2 * sp.pi * k / arm.count for k in range(arm.count)],
+        "base_radii": {b: r * sp.cos(alpha) * length for b, r in radii.items()},
+        "carrier_radius": arm.length * length,
+        "pressure_angle": alpha,
+        "inertias": {b: inertia_of(train, n) for b, n in links.items()},
+    }

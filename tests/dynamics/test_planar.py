@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from symkin.dynamics import natural_modes, planar_model, planar_modes
+from symkin.dynamics import natural_modes, planar_geometry, planar_model, planar_modes
 from symkin.dynamics.bodies import carrier_chain
 from symkin.errors import InputError
 from symkin.trains import read_train
@@ -162,18 +162,21 @@ inertia = 0.1
 
 def test_stiff_bearings_give_the_rotational_model():
     # the geometry from symkin's assembly of the train (pitch radii x cos 20 degrees, the planets'
-    # arm and places); bearings a million times stiffer than the meshes leave the rotational model
+    # arm and places), read here by hand and by planar_geometry; bearings a million times stiffer
+    # than the meshes leave the rotational model
     train = read_train(SIMPLE)
     alpha = sp.pi / 9
     radius = {b: train.gear(g).radius / 1000 for b, g in (("sun", "s"), ("ring", "r"), ("planet", "p"))}
     arm = carrier_chain(train, "P")[0]
-    psi = [arm.angle + 2 * sp.pi * n / arm.count for n in range(arm.count)]
+    geometry = planar_geometry(train)
+    assert geometry["planets"] == [arm.angle + 2 * sp.pi * n / 3 for n in range(3)] == [0, 2 * sp.pi / 3, 4 * sp.pi / 3]
+    assert geometry["base_radii"] == {b: r * sp.cos(alpha) for b, r in radius.items()}
+    assert geometry["carrier_radius"] == sp.Rational(48, 1000) == arm.length / 1000
+    assert geometry["inertias"] == {"sun": sp.Rational(1, 100), "ring": sp.Rational(1, 10), "carrier": sp.Rational(1, 20),
+                                    "planet": sp.Rational(1, 500)}
     stiff = 10 ** 14
-    modes = planar_modes(
-        psi, base_radii={b: r * sp.cos(alpha) for b, r in radius.items()}, carrier_radius=arm.length / 1000,
-        pressure_angle=alpha, masses={"sun": 1, "ring": 3, "carrier": 2, "planet": 0.5},
-        inertias={"sun": 0.01, "ring": 0.1, "carrier": 0.05, "planet": 0.002},
-        bearings=dict.fromkeys(("sun", "ring", "carrier", "planet"), stiff), mesh_stiffness=(5e8, 6e8))
+    modes = planar_modes(**geometry, masses={"sun": 1, "ring": 3, "carrier": 2, "planet": 0.5},
+                         bearings=dict.fromkeys(("sun", "ring", "carrier", "planet"), stiff), mesh_stiffness=(5e8, 6e8))
     rotational = natural_modes(train).frequencies_hz
     assert len(rotational) == 6
     assert modes.frequencies_hz[:6] == pytest.approx(rotational, rel=1e-5, abs=1e-3)
@@ -192,3 +195,7 @@ def test_bad_input_is_one_line():
         planar_model(0, **geometry)
     with pytest.raises(InputError, match="pairs"):
         planar_model(3, **{**geometry, "mesh_stiffness": (1,)})
+    with pytest.raises(InputError, match="name the planet"):
+        planar_geometry(read_train(SIMPLE.replace("[links.R]", "[links.Q]\ncarrier = \"C\"\ngears = { q = 10 }\n[links.R]")))
+    with pytest.raises(InputError, match="two suns"):
+        planar_geometry(read_train(SIMPLE.replace("r = { teeth = 72, internal = true }", "r = 24")))
