@@ -45,7 +45,7 @@ from symkin.errors import InputError
 from symkin.model import FRAME, LinkKind, Mechanism
 from symkin.values import as_expr
 
-__all__ = ["torsional_model", "TorsionalModel", "natural_modes", "Modes"]
+__all__ = ["torsional_model", "TorsionalModel", "natural_modes", "modes_of", "Modes"]
 
 Body = tuple[str, tuple[int, ...]]
 #: The most coordinates whose characteristic polynomial the commands expand in symbols (seven
@@ -193,6 +193,9 @@ class TorsionalModel:
     coordinates: tuple[sp.Symbol, ...]
     mass_matrix: sp.ImmutableMatrix
     stiffness_matrix: sp.ImmutableMatrix
+    #: What the model is, as ``symkin modes`` names it.
+    kind = "torsional model"
+    unit = "rad"
 
     def characteristic_polynomial(self, variable: sp.Symbol | None = None) -> sp.Expr:
         """``det(K - lambda M)`` in ``lambda`` = omega^2 (rad^2/s^2), exact."""
@@ -215,6 +218,12 @@ def natural_modes(train: Mechanism, state: Any = None, *, pressure_angle: Any = 
     [0, 968, 1269, 1269, 1384]
     """
     model = torsional_model(train, state, pressure_angle=pressure_angle, length=length, values=values)
+    return modes_of(model, rigid_tolerance)
+
+
+def modes_of(model: TorsionalModel, rigid_tolerance: float = 1e-9) -> Modes:
+    """The natural frequencies and mode shapes of a model's exact M and K (SciPy's ``eigh``; the
+    characteristic polynomial only, ``frequencies_hz`` None, where symbols are left)."""
     M, K = model.mass_matrix, model.stiffness_matrix
     if M.free_symbols or K.free_symbols:
         return Modes(model, None, None)
@@ -272,7 +281,7 @@ class Modes:
     def text(self) -> str:
         """The modes as ``symkin modes`` prints them."""
         name = getattr(self.model.train, "name", "") or "train"
-        lines = [f"{name}: torsional model, coordinates {', '.join(self.model.names)} [rad]"]
+        lines = [f"{name}: {self.model.kind}, coordinates {', '.join(self.model.names)} [{self.model.unit}]"]
         if self.frequencies_hz is None:
             symbols = sorted(map(str, self.model.mass_matrix.free_symbols | self.model.stiffness_matrix.free_symbols))
             lines.append(f"symbols left ({', '.join(symbols)}): give inertias, masses and stiffnesses in the file for "
