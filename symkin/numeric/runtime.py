@@ -607,12 +607,12 @@ class _DoubleDouble:
         return f"h{k}", f"l{k}"
 
     def emit(self, e: Any) -> tuple[str, str]:
-        """The pair holding ``e`` (a parameter, a rational, a sum, a product or an integer power)."""
+        """The pair holding ``e`` (a parameter, an exact number, a sum, a product or an integer power)."""
         if e in self.names:
             return self.names[e], "0.0"
-        if e.is_Rational:
+        if e.is_number:  # a rational, or an exact constant such as 4 pi/5 or sqrt(2): to 2^-106
             with mpmath.workdps(60):
-                v = mpmath.mpf(int(e.p)) / int(e.q)
+                v = mpmath.mpf(int(e.p)) / int(e.q) if e.is_Rational else mpmath.mpf(str(e.evalf(40)))
                 return repr(float(v)), repr(float(v - float(v)))
         if e.is_Add or e.is_Mul:
             op = "_dd_add" if e.is_Add else "_dd_mul"

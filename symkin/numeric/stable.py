@@ -638,8 +638,10 @@ def reduce_phases(expr: sp.Expr, times: Iterable[sp.Symbol]) -> sp.Expr:
 
     ``c`` is a rational constant, at most three symbol factors, ``t`` one of ``times``;
     the product is evaluated in double-double arithmetic and reduced modulo 2 pi.  Other
-    terms ``c t`` with ``c`` a rational function of inputs with rational coefficients
-    become :class:`LongPhase` (``c`` in double-double where the phase is long).
+    terms ``c t`` with ``c`` a rational function of inputs with exact coefficients
+    (rationals, and numbers such as ``4 pi/5`` or ``sqrt(2)``, held in double-double), or
+    an exact number alone, become :class:`LongPhase` (``c`` in double-double where the
+    phase is long).
 
     >>> t, w = sp.symbols("t omega", real=True)
     >>> reduce_phases(sp.sin(w*t/2 + 1), [t])
@@ -677,11 +679,25 @@ def _long_phase(term: sp.Expr, times: set[sp.Symbol]) -> sp.Expr | None:
         return None
     (t,) = ts
     coeff = term / t
-    if coeff.has(t) or not coeff.free_symbols or not _rational_function(plain_form(coeff)):
+    if coeff.has(t) or not _rational_in_constants(plain_form(coeff)):
         return None
-    if any(n.is_Atom and n.is_number and not n.is_Rational for n in sp.preorder_traversal(plain_form(coeff))):
-        return None  # pi, a float: not held exactly in double-double
     return long_phase(coeff, t)
+
+
+def _rational_in_constants(expr: sp.Expr) -> bool:
+    """A rational function of symbols whose coefficients are exact numbers (rationals, pi,
+    sqrt(2), ...: each held in double-double to 2^-106); a Float is not exact, so not one."""
+    if expr.has(sp.Float):
+        return False
+    stack = [expr]
+    while stack:
+        node = stack.pop()
+        if node.is_number or node.is_Symbol:
+            continue
+        if isinstance(node, sp.Function) or (node.is_Pow and not node.exp.is_Integer):
+            return False
+        stack.extend(node.args)
+    return True
 
 
 # --------------------------------------------------------------------------- all
