@@ -628,6 +628,34 @@ class _DoubleDouble:
         raise ValueError(f"not a rational function of the inputs: {e}")
 
 
+def compensated_sum(value: Any, bound: Any, fn: Any, *args: Any) -> Any:
+    """A :class:`~symkin.numeric.stable.CompensatedSum` for the NumPy code: the plain sum
+    ``value`` where ``|value| >= bound`` (a bound the printer derives from the sum of the
+    terms' magnitudes: there the plain sum is within 8 units of 2^-53, see
+    :func:`symkin.numeric.codegen.compensated_bound`), and elsewhere (where the terms cancel,
+    and at nan) ``fn``, the double-double sum, at those points only."""
+    if type(value) is not np.ndarray or value.ndim == 0:
+        if abs(value) >= bound:
+            return value
+        return fn(*(np.float64(a) for a in args))[0]
+    redo = ~(np.abs(value) >= bound)
+    if not redo.any():
+        return value
+    shape = value.shape
+    value = np.array(value, dtype=np.float64)  # (a fresh array: the caller's temporaries are not written)
+    parts = [a if np.ndim(a) == 0 else np.broadcast_to(a, shape)[redo] for a in (np.asarray(x, np.float64) for x in args)]
+    value[redo] = fn(*parts)[0]
+    return value
+
+
+def _compensated_sum_scalar(value: float, bound: float, fn: Any, *args: float) -> float:
+    return value if abs(value) >= bound else float(fn(*args)[0])
+
+
+SCALAR_NAMESPACE["_symkin_compensated_sum"] = _compensated_sum_scalar
+NAMESPACE["float64"]["_symkin_compensated_sum"] = compensated_sum
+
+
 def _same(v: Any) -> Any:
     return v
 
