@@ -76,6 +76,7 @@ BEFORE = {
     "speed differential": "0.27x lambdify speed at 10^7 points (25.5 vs 94.5 Mpt/s), i.e. 3.7x its time",
     "slider peaks": "4.0e-9 (default); 3.1e-15 with the opt-in reduce_phase=[t]",
     "planet 1e6": "1.6e-10 with or without reduce_phase",
+    "exact speed": "2.2e-9 to 5.2e-9 (issue 34); 1.9e-8 before this change in one run",
     "float32 pole": "relative error 1.0, finite, no warning",
     "scalar call": "37 us per scalar call (lambdify 0.3 us)",
 }
@@ -306,6 +307,18 @@ def hard_regions() -> list[dict]:
         got = symkin.compile(laws, SLIDER_ARGS, backend=b, ranges=L.RANGES)(*vals)
         add(region, label(b), max(error(g, r, True) for g, r in zip(got, ref)), "normwise",
             before=BEFORE["slider peaks"] if b == "numpy" else None)
+    # the same at the 2018 paper's own exact speed 4 pi/5 rad/s (substituted: the phase 4 pi m t/5)
+    exact_args = [a for a in SLIDER_ARGS if a != L.W]
+    exact_laws = [x.subs(L.W, 4 * sp.pi / 5) for x in laws]
+    evals = [v for a, v in zip(SLIDER_ARGS, vals) if a != L.W]
+    ref = mp([x.subs(L.W, 4 * sp.pi / 5) for x in L.slider_laws_continuous()], exact_args, evals)
+    region = "slider s, V_s, a_s at e = 0.999999, omega = 4 pi/5 exactly (substituted), on and beside the speed peaks"
+    raw = sp.lambdify(exact_args, exact_laws, modules="numpy", cse=True)(*evals)
+    add(region, "lambdify(cse=True)", max(error(g, r, True) for g, r in zip(raw, ref)), "normwise")
+    for b in float_backends:
+        got = symkin.compile(exact_laws, exact_args, backend=b, ranges=L.RANGES)(*evals)
+        add(region, label(b), max(error(g, r, True) for g, r in zip(got, ref)), "normwise",
+            before=BEFORE["exact speed"] if b == "numpy" else None)
     # planet laws at t = 10^6 s
     motion = schemes.two_row("AI").motion({"1": W1, "4": 0})
     particle = motion.particle("23", (R[0], 0))
@@ -522,7 +535,7 @@ def markdown(res: dict) -> str:
         "",
         "## Hard regions, against mpmath at 50 digits",
         "",
-        "`before` is the figure issue 18 reported for the default path (then NumPy) before this work (where it gave one).",
+        "`before` is the figure issue 18 (issue 34 for the exact speed) reported for the default path before that work.",
         "",
         "| region | method | error | metric | warning | before (issue 18) |",
         "|---|---|---:|---|---|---|",
