@@ -251,7 +251,10 @@ def first_use(rounds: int) -> dict:
     """benchmarks/first_use.py's measurement (fresh processes, empty and warm kernel cache)."""
     import first_use as F
 
-    return F.measure(rounds)
+    load = os.getloadavg()[0]
+    res = F.measure(rounds)
+    res["load"] = [load, os.getloadavg()[0]]
+    return res
 
 
 # --------------------------------------------------------------------------- accuracy
@@ -515,8 +518,8 @@ def markdown(res: dict) -> str:
     if res.get("first_use"):
         fu = res["first_use"]
         lines += [
-            "", f"## First use: a fresh process to the README's numeric example ({fu['rounds']} rounds, load "
-            f"{fu['load'][0]:.1f} -> {fu['load'][1]:.1f})", "",
+            "", f"## First use: a fresh process to the README's numeric example ({fu['rounds']} rounds"
+            + (f", load {fu['load'][0]:.1f} -> {fu['load'][1]:.1f})" if "load" in fu else ")"), "",
             "`python benchmarks/first_use.py`: each figure its own child process, from before `import symkin`: the AA",
             "ratio compiled and called once (first result), then a Study of the AI planet acceleration evaluated at",
             "10^5 times (total). `default` names no backend (numba in `jit=\"auto\"`: the NumPy code until the time",
@@ -691,8 +694,13 @@ def main() -> None:
     ap.add_argument("--quick", action="store_true", help="1 and 10^3 points only, 3 rounds; docs not written")
     ap.add_argument("--rounds", type=int, default=7)
     ap.add_argument("--no-docs", action="store_true")
+    ap.add_argument("--docs-from", type=Path, metavar="JSON",
+                    help="write docs/numerics.md from the results of an earlier run (its results.json), measuring nothing")
     ap.add_argument("--first-use-rounds", type=int, default=2, help="rounds of benchmarks/first_use.py (0: none)")
     opts = ap.parse_args()
+    if opts.docs_from:
+        (ROOT / "docs" / "numerics.md").write_text(markdown(json.loads(opts.docs_from.read_text())))
+        return
     sizes = (1, 10**3) if opts.quick else SIZES
     rounds = 3 if opts.quick else opts.rounds
     t0 = time.perf_counter()
