@@ -76,6 +76,7 @@ BEFORE = {
     "speed differential": "0.27x lambdify speed at 10^7 points (25.5 vs 94.5 Mpt/s), i.e. 3.7x its time",
     "slider peaks": "4.0e-9 (default); 3.1e-15 with the opt-in reduce_phase=[t]",
     "planet 1e6": "1.6e-10 with or without reduce_phase",
+    "exact speed": "2.2e-9 to 5.2e-9 (issue 34); 1.9e-8 before this change in one run",
     "float32 pole": "relative error 1.0, finite, no warning",
     "scalar call": "37 us per scalar call (lambdify 0.3 us)",
 }
@@ -209,6 +210,53 @@ def speed(all_cases: dict, sizes, rounds: int) -> list[dict]:
     return rows
 
 
+# --------------------------------------------------------------------------- random points, exact
+def random_points(n: int = 10**5) -> list[dict]:
+    """Relative error of every method on ``n`` random points of the II differential (as the README
+    derives it, and with r4 = r1 - r2 + r3 substituted and factored), against exact rational
+    arithmetic (Fraction) on the same binary inputs: the benchmark radii, and radii of one range
+    whose products r1 r3 and r2 r4 overlap (numerator and denominator both cancel)."""
+    from fractions import Fraction
+
+    law = schemes.two_row("II").speeds({"1": W1, "4": W4}).law("H").rhs
+    sub = sp.factor(law.subs(R[3], R[0] - R[1] + R[2]))
+    rng = np.random.default_rng(34)
+    w = [rng.uniform(-1, 1, n), rng.uniform(-1, 1, n)]
+    bench = [rng.uniform(5, 10, n), rng.uniform(1, 2, n), rng.uniform(2.5, 4, n), rng.uniform(1, 2, n)]
+    overlap = [rng.uniform(1, 2, n) for _ in range(4)]
+    rows = []
+    for title, expr, args, values in (
+        ("II in radii, benchmark radii", law, [W1, W4, *R], w + bench),
+        ("II in radii, overlapping products", law, [W1, W4, *R], w + overlap),
+        ("II, r4 substituted, benchmark radii", sub, [W1, W4, *R[:3]], w + bench[:3]),
+    ):
+        points = list(zip(*(map(Fraction, v.tolist()) for v in values)))
+        if len(args) == 5:
+            points = [(a, b, c, d, e, c - d + e) for a, b, c, d, e in points]
+        exact = [(a * r1 * r3 - b * r2 * r4) / (r1 * r3 - r2 * r4) for a, b, r1, r2, r3, r4 in points]
+        fns = {"sympy.lambdify": sp.lambdify(args, expr), "lambdify(cse=True)": sp.lambdify(args, expr, cse=True),
+               label("numpy"): symkin.compile(expr, args, backend="numpy")}
+        if HAS_NUMBA:
+            fns[label("numba")] = symkin.compile(expr, args, backend="numba")
+            fns["symkin default, first calls (NumPy code)"] = symkin.compile(expr, args, jit="auto", backend="numba")
+        for name, fn in fns.items():
+            got = np.asarray(fn(*values), dtype=float).tolist()
+            err = sorted(float(abs(Fraction(g) - x) / abs(x)) for g, x in zip(got, exact) if x)
+            rows.append(dict(law=title, method=name, max=err[-1], median=err[len(err) // 2], n=n))
+            print(f"{title:40s} {name:42s} max {err[-1]:.2e} median {err[len(err) // 2]:.2e}", flush=True)
+    return rows
+
+
+def first_use(rounds: int) -> dict:
+    """benchmarks/first_use.py's measurement (fresh processes, empty and warm kernel cache)."""
+    import first_use as F
+
+    load = os.getloadavg()[0]
+    res = F.measure(rounds)
+    res["load"] = [load, os.getloadavg()[0]]
+    return res
+
+
 # --------------------------------------------------------------------------- accuracy
 def mp(expr, args, values) -> list[np.ndarray]:
     f = symkin.compile(expr, args, backend="mpmath", digits=50)
@@ -262,6 +310,18 @@ def hard_regions() -> list[dict]:
         got = symkin.compile(laws, SLIDER_ARGS, backend=b, ranges=L.RANGES)(*vals)
         add(region, label(b), max(error(g, r, True) for g, r in zip(got, ref)), "normwise",
             before=BEFORE["slider peaks"] if b == "numpy" else None)
+    # the same at the 2018 paper's own exact speed 4 pi/5 rad/s (substituted: the phase 4 pi m t/5)
+    exact_args = [a for a in SLIDER_ARGS if a != L.W]
+    exact_laws = [x.subs(L.W, 4 * sp.pi / 5) for x in laws]
+    evals = [v for a, v in zip(SLIDER_ARGS, vals) if a != L.W]
+    ref = mp([x.subs(L.W, 4 * sp.pi / 5) for x in L.slider_laws_continuous()], exact_args, evals)
+    region = "slider s, V_s, a_s at e = 0.999999, omega = 4 pi/5 exactly (substituted), on and beside the speed peaks"
+    raw = sp.lambdify(exact_args, exact_laws, modules="numpy", cse=True)(*evals)
+    add(region, "lambdify(cse=True)", max(error(g, r, True) for g, r in zip(raw, ref)), "normwise")
+    for b in float_backends:
+        got = symkin.compile(exact_laws, exact_args, backend=b, ranges=L.RANGES)(*evals)
+        add(region, label(b), max(error(g, r, True) for g, r in zip(got, ref)), "normwise",
+            before=BEFORE["exact speed"] if b == "numpy" else None)
     # planet laws at t = 10^6 s
     motion = schemes.two_row("AI").motion({"1": W1, "4": 0})
     particle = motion.particle("23", (R[0], 0))
@@ -443,11 +503,42 @@ def markdown(res: dict) -> str:
     for law in dict.fromkeys(r["law"] for r in res["accuracy"]):
         by = {r["method"]: r["error"] for r in res["accuracy"] if r["law"] == law}
         lines.append(f"| {law} | " + " | ".join(f"{by[m]:.1e}" if m in by else "" for m in acc_methods) + " |")
+    if res.get("random"):
+        rnd = res["random"]
+        lines += [
+            "", f"## Random points against exact rational arithmetic ({rnd[0]['n']:.0e} points)", "",
+            "Relative error, pointwise (no floor), against `fractions.Fraction` arithmetic on the same binary inputs:",
+            "max and median over the points. The II differential's numerator `w1 r1 r3 - w4 r2 r4` cancels wherever",
+            "the result is small; the float64 backends sum it in double-double (numba: always; NumPy: where the plain",
+            "sum is not certified within 8 units), so the law is within a few units in the last place at every point.",
+            "",
+            "| law | method | max | median |", "|---|---|---:|---:|",
+        ]
+        lines += [f"| {r['law']} | {r['method']} | {r['max']:.1e} | {r['median']:.1e} |" for r in rnd]
+    if res.get("first_use"):
+        fu = res["first_use"]
+        lines += [
+            "", f"## First use: a fresh process to the README's numeric example ({fu['rounds']} rounds"
+            + (f", load {fu['load'][0]:.1f} -> {fu['load'][1]:.1f})" if "load" in fu else ")"), "",
+            "`python benchmarks/first_use.py`: each figure its own child process, from before `import symkin`: the AA",
+            "ratio compiled and called once (first result), then a Study of the AI planet acceleration evaluated at",
+            "10^5 times (total). `default` names no backend (numba in `jit=\"auto\"`: the NumPy code until the time",
+            "spent there pays for compiling), `numba` names it (compiled at the first call). Empty: a new kernel",
+            "cache folder; warm: the same example run once before with that folder. CPU seconds of the child (all",
+            "threads), wall seconds in brackets, medians; ratio: over the numpy mode's CPU time in the same rounds.",
+            "",
+            "| backend | kernel cache | first result | ratio | total | ratio | kernel compiled |",
+            "|---|---|---:|---:|---:|---:|---|",
+        ]
+        for r in fu["rows"]:
+            lines.append(f"| {r['mode']} | {r['cache']} | {r['first_cpu']:.2f} s ({r['first_wall']:.2f} s) | "
+                         f"{r['first_cpu_ratio']:.2f} | {r['total_cpu']:.2f} s ({r['total_wall']:.2f} s) | "
+                         f"{r['total_cpu_ratio']:.2f} | {'yes' if r['compiled'] else 'no'} |")
     lines += [
         "",
         "## Hard regions, against mpmath at 50 digits",
         "",
-        "`before` is the figure issue 18 reported for the default path (then NumPy) before this work (where it gave one).",
+        "`before` is the figure issue 18 (issue 34 for the exact speed) reported for the default path before that work.",
         "",
         "| region | method | error | metric | warning | before (issue 18) |",
         "|---|---|---:|---|---|---|",
@@ -519,6 +610,24 @@ STATIC = """## What the float backends guarantee (tested, not measured here)
 else numpy (`SYMKIN_BACKEND=numpy` or `numba` chooses). Float backends evaluate stable forms
 (`symkin.numeric.stable`; `f.stable_exprs` shows them).
 
+- First use: with no backend named (neither `backend=` nor `SYMKIN_BACKEND`) a function is numba's in
+  `jit="auto"`: it runs the NumPy code, timing it, and compiles the kernel (serial for calls below 2^15
+  points, parallel above) only once that time reaches five times the kernel's estimated compile time
+  (`symkin.numeric.backends.numba.compile_pays`; estimate 0.5 s + 0.05 s per operation, ten times that for
+  the parallel kernel, on the high side of what the benchmark laws took with an empty cache: 0.3-3 s and
+  1.3-27 s). Whatever follows, first use costs at most a fifth more than the NumPy path; a long run of work
+  reaches the kernel's speed. Numba is not even imported before (0.2-0.3 s). A named numba backend
+  (`jit="eager"`) compiles at its first call, as before. `symkin animate` and the other drawings evaluate
+  with NumPy.
+- Accuracy at every point: sums of products that can cancel in a rational law of real inputs (the II
+  differential's numerator `w1 r1 r3 - w4 r2 r4`; a numerator given as products of sums is expanded) are
+  summed in double-double and rounded once (`CompensatedSum`): within one unit of their exact value in the
+  numba kernel, within 8 units in the NumPy code (the plain sum where its error bound certifies that, the
+  double-double sum at the other points), so the law is within a few units in the last place of exact
+  rational arithmetic on the same inputs at every point (the table above), never less accurate than
+  lambdify there. Sums of more than 8 terms or of terms of more than 4 factors, and laws with functions
+  (sin, sqrt), are evaluated as written. float32 evaluates such a sum in float64 and rounds it.
+
 - Complex, boolean, text and None inputs are refused (InputError); tooth numbers must be whole.
 - No nan or inf output is silent: where an input is nan or infinite a `NonFiniteInputWarning` counts the
   points; anywhere else a `PoleWarning` does (`on_pole="raise"`: `PoleError`).
@@ -532,9 +641,12 @@ else numpy (`SYMKIN_BACKEND=numpy` or `numba` chooses). Float backends evaluate 
   laws against `backend="mpmath"`.
 - Phases of the arguments named `t` are reduced modulo 2 pi by default (`reduce_phase=()` turns it off):
   `c t` with `c` a rational constant times inputs in double-double; `c t` with `c` any rational function of
-  inputs (the planet's omega_1 r1 r3/(r1 r3 + r2 r4)) plainly where |c t| <= 8 rad and, beyond, with `c`
-  evaluated in double-double from the inputs and the product reduced, so the rounding of `c` is not
-  multiplied by t (tests/numeric/test_stable_long_phase.py). Exact while the phase is below 2^27 turns. When `c`'s
+  inputs (the planet's omega_1 r1 r3/(r1 r3 + r2 r4)) with exact coefficients, rationals or exact constants
+  such as the 2018 drive's 4 pi/5 rad/s or sqrt(2) (held in double-double to 2^-106), or such a constant
+  alone (`sin(4 pi t/5)`), plainly where |c t| <= 8 rad and, beyond, with `c` evaluated in double-double
+  from the inputs and the product reduced, so the rounding of `c` is not multiplied by t
+  (tests/numeric/test_stable_long_phase.py: a property test over random exact speeds against mpmath at 50
+  digits). A Float coefficient (`0.8*pi` typed as a float) is not exact and is not reduced. Exact while the phase is below 2^27 turns. When `c`'s
   inputs are numbers (an array of times), `c` is computed once and, if any phase of the call is long, every
   phase of the call is reduced, branch-free (tests/numeric/backends/test_numpy.py).
 - Where the products of `a b - c d` may cancel is decided per call from `g = a b/(a b - c d)`: its minimum
@@ -555,9 +667,10 @@ else numpy (`SYMKIN_BACKEND=numpy` or `numba` chooses). Float backends evaluate 
   without branches; elsewhere it is computed at the first point of a block that needs it and kept while its
   inputs repeat (tests/numeric/test_stable_long_phase.py). sin and cos are libm's scalar functions (as fast here as
   NumPy's), so laws in time gain least (the planet law above). Rational laws gain most. A scalar argument's
-  block of copies is kept for the next call with the same value. The first call of a law compiles its kernel
-  (about 1-5 s on this machine) and caches it on disk (`$SYMKIN_CACHE_DIR`, else `~/.cache/symkin/kernels`):
-  another process loads it in about 10 ms.
+  block of copies is kept for the next call with the same value. Compiling a kernel takes 0.3-3 s of CPU
+  on this machine (the parallel one 1.3-27 s) with an empty cache; it is kept on disk
+  (`$SYMKIN_CACHE_DIR`, else `~/.cache/symkin/kernels`), and another process loads it after importing
+  numba (0.2-0.3 s; the first-use table above).
 - Speed, what lambdify keeps ahead on: one point, and small NumPy calls. A call of one point pays what a
   bare lambdify expression does not (the type test of each argument, the finiteness test of each output):
   a few microseconds with either backend (the tables above). On the NumPy backend a call of up to about 10^4 points
@@ -581,7 +694,13 @@ def main() -> None:
     ap.add_argument("--quick", action="store_true", help="1 and 10^3 points only, 3 rounds; docs not written")
     ap.add_argument("--rounds", type=int, default=7)
     ap.add_argument("--no-docs", action="store_true")
+    ap.add_argument("--docs-from", type=Path, metavar="JSON",
+                    help="write docs/numerics.md from the results of an earlier run (its results.json), measuring nothing")
+    ap.add_argument("--first-use-rounds", type=int, default=2, help="rounds of benchmarks/first_use.py (0: none)")
     opts = ap.parse_args()
+    if opts.docs_from:
+        (ROOT / "docs" / "numerics.md").write_text(markdown(json.loads(opts.docs_from.read_text())))
+        return
     sizes = (1, 10**3) if opts.quick else SIZES
     rounds = 3 if opts.quick else opts.rounds
     t0 = time.perf_counter()
@@ -596,8 +715,11 @@ def main() -> None:
     res["accuracy"] = accuracy(all_cases)
     res["hard"] = hard_regions()
     res["fixed"] = fixed_costs(all_cases)
+    res["random"] = random_points(10**4 if opts.quick else 10**5)
     if not opts.quick:
         res["issue_size"] = issue_size()
+        if opts.first_use_rounds:
+            res["first_use"] = first_use(opts.first_use_rounds)
     res["load"] = [load0, os.getloadavg()[0]]
     res["seconds"] = time.perf_counter() - t0
     for r in res["accuracy"]:

@@ -59,7 +59,8 @@ def register(sub: Any) -> None:
     p.add_argument("--top", default="10", help="how many designs to list, or 'all' (default 10)")
     p.add_argument("--time-limit", default="60", metavar="SECONDS", help="stop a longer search (default 60)")
     p.add_argument("--scheduler", metavar="ADDRESS",
-                   help="run the search on Dask: a scheduler's address (tcp://host:8786) or 'local' (a local cluster)")
+                   help="run the search on Dask: a scheduler's address (tcp://host:8786), 'local' (a local cluster), or "
+                        "'auto' (a local cluster only where the search is long enough to pay for starting one)")
     p.add_argument("--workers", help="processes of a local Dask cluster (default: the machine's cores)")
     p.add_argument("--efficiency", nargs="?", const="default", metavar="ETA",
                    help="also give each listed design's efficiency (its statics, driver driving driven): every mesh "

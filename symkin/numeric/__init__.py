@@ -4,8 +4,9 @@
 backend: ``"numpy"`` (vectorised, float64 or float32), ``"numba"`` (one fused compiled
 loop, an optional extra), ``"mpmath"`` (``digits`` significant digits) or ``"exact"``
 (rationals).  Without one it takes :func:`default_backend`: numba where it is installed
-(its first call of a law compiles it, kept on disk for later processes; its speed against
-``sympy.lambdify``: docs/numerics.md), else numpy.  Float backends evaluate a *stable form* of each law
+(unnamed, ``jit="auto"``: the NumPy code first, the kernel compiled once the time spent there
+pays for it, kept on disk for later processes; its speed against ``sympy.lambdify``:
+docs/numerics.md), else numpy.  Float backends evaluate a *stable form* of each law
 (:mod:`symkin.numeric.stable`): integer parts exactly, removable singularities
 cancelled, angles unwrapped, cosine sums well conditioned.
 
@@ -57,8 +58,9 @@ BACKEND_VARIABLE = "SYMKIN_BACKEND"
 def default_backend() -> str:
     """The backend :func:`compile` uses when none is named: ``$SYMKIN_BACKEND`` when set
     (``numpy`` or ``numba``), else ``numba`` where Numba is installed (one fused loop per
-    law; a law's first call compiles it, and the kernel is kept on disk for later processes;
-    its speed: docs/numerics.md), else ``numpy``.
+    law; unnamed, it starts with the NumPy code and compiles the kernel once the time spent
+    there pays for it (``jit="auto"`` of :func:`compile`), and the kernel is kept on disk for
+    later processes; its speed: docs/numerics.md), else ``numpy``.
 
     Numba runs calls of 2^15 points and more on every thread, with OpenMP where it is found
     (symkin sets ``OMP_WAIT_POLICY=PASSIVE`` unless it is set: waiting threads sleep); GNU
@@ -79,9 +81,12 @@ def default_backend() -> str:
 
 @functools.cache
 def _numba_imports() -> bool:
-    """Whether Numba is installed and imports (a Numba built for another NumPy does not: NumPy
-    then, without a word, as where Numba is not installed)."""
-    return numba_available()
+    """Whether Numba is installed (found, not imported: importing it costs 0.2-0.3 s, paid only
+    when a default function compiles a kernel; one that does not import then, a Numba built for
+    another NumPy, leaves the NumPy code, without a word, as where Numba is not installed)."""
+    import importlib.util
+
+    return importlib.util.find_spec("numba") is not None
 
 
 def _exprs(laws: Any) -> tuple[list[sp.Expr], list[str]]:
@@ -170,6 +175,7 @@ def compile(
     chunk: int = DEFAULT_CHUNK,
     threads: int | None = None,
     on_pole: str = "warn",
+    jit: str | None = None,
 ) -> NumericFunction:
     """A numeric function of one law or several (sharing common subexpressions).
 
@@ -210,6 +216,13 @@ def compile(
         At a pole, float backends return inf/nan with a PoleWarning, raise PoleError, or
         (``"return"``) return inf/nan without a word, for a caller that tests the
         outputs itself (a sieve discarding such points).
+    jit : {"auto", "eager"}, optional
+        For the numba backend: ``"eager"`` compiles a kernel at its first call; ``"auto"``
+        evaluates with the NumPy code until the time spent there pays for compiling the kernel
+        (five times its estimated compile time: first use costs at most a fifth more than
+        NumPy alone; ``symkin.numeric.backends.numba.compile_pays``).  Default: ``"auto"``
+        where the backend is not named (neither ``backend=`` nor ``$SYMKIN_BACKEND``), else
+        ``"eager"``.
 
     Returns
     -------
@@ -226,6 +239,10 @@ def compile(
     >>> mpmath.nstr(f(0.5), 30)   # mpf values carry 30 digits; print them with nstr
     '0.958851077208406000546575870431'
     """
+    if jit is None:
+        jit = "auto" if backend is None and not os.environ.get(BACKEND_VARIABLE, "").strip() else "eager"
+    if jit not in ("auto", "eager"):
+        raise InputError(f"jit must be 'auto' or 'eager', got {jit!r}")
     if backend is None:
         backend = default_backend()
     if backend not in BACKENDS:
@@ -236,11 +253,11 @@ def compile(
         reduce_phase = tuple(a for a in args if a.name == "t")
     options = dict(
         backend=backend, precision=precision, digits=digits, cse=cse, stable=stable, ranges=dict(ranges or {}),
-        reduce_phase=tuple(reduce_phase), chunk=chunk, threads=threads, on_pole=on_pole,
+        reduce_phase=tuple(reduce_phase), chunk=chunk, threads=threads, on_pole=on_pole, jit=jit,
     )
     spec = _Spec(tuple(exprs), tuple(names), args, tuple(sorted((k, _hashable(v)) for k, v in options.items())))
     cls = BACKENDS[backend]
-    if backend == "numba" and not numba_available():
+    if backend == "numba" and jit == "eager" and not numba_available():
         warn_no_numba()
         cls = BACKENDS["numpy"]
     _check_options(cls, backend, precision, digits, chunk)
@@ -251,7 +268,7 @@ def compile(
     plan = Plan(
         tuple(exprs), tuple(rewritten), args, tuple(names),
         precision if cls.floats else cls.precisions[0],
-        digits if backend == "mpmath" else None, cse, chunk, threads,
+        digits if backend == "mpmath" else None, cse, chunk, threads, jit,
     )
     notes = [note for name, note in RULE_NOTES.items() if name in applied]
     return NumericFunction(cls(plan), plan, cls.key, notes, spec, on_pole=on_pole)

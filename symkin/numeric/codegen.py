@@ -24,6 +24,7 @@ from sympy.printing.pycode import PythonCodePrinter
 
 from symkin.numeric.runtime import LONG_PHASE
 from symkin.numeric.stable import (
+    CompensatedSum,
     ExactRatio,
     Group,
     LongPhase,
@@ -87,7 +88,7 @@ def _without(factors: list[sp.Expr] | None, x: sp.Expr) -> list[sp.Expr] | None:
 def _with_ratios(e: sp.Expr, skip: set[tuple[sp.Expr, ...]]) -> sp.Expr:
     """``e`` with every product ``a*b*X / ProductDifference(a, b, c, d)`` (not in ``skip``)
     written ``X * ProductRatio(a, b, c, d)``, innermost first."""
-    if e.is_Atom or isinstance(e, LongPhase):
+    if e.is_Atom or isinstance(e, (LongPhase, CompensatedSum)):
         return e
     args = [_with_ratios(a, skip) for a in e.args]
     e = e.func(*args) if any(x is not y for x, y in zip(args, e.args)) else e
@@ -108,14 +109,15 @@ def _bare_differences(e: sp.Expr) -> set[tuple[sp.Expr, ...]]:
     """The arguments of every :class:`ProductDifference` of ``e`` outside a ratio or a long phase."""
     if isinstance(e, ProductDifference):
         return {e.args}
-    if e.is_Atom or isinstance(e, (LongPhase, ProductRatio)):
+    if e.is_Atom or isinstance(e, (LongPhase, ProductRatio, CompensatedSum)):
         return set()
     return set().union(*(_bare_differences(a) for a in e.args))
 
 
 def phase_sources(exprs: Sequence[sp.Expr]) -> dict[str, str]:
-    """The double-double source of every :class:`LongPhase` in ``exprs``, by function name
-    (see :func:`symkin.numeric.runtime.dd_source`)."""
+    """The double-double source of every :class:`LongPhase` coefficient and every
+    :class:`CompensatedSum` in ``exprs``, by function name (see
+    :func:`symkin.numeric.runtime.dd_source`)."""
     from symkin.numeric.runtime import dd_source
 
     out: dict[str, str] = {}
@@ -124,7 +126,43 @@ def phase_sources(exprs: Sequence[sp.Expr]) -> dict[str, str]:
             if isinstance(node, LongPhase) and node.name not in out:
                 _key, coeff, _t, *syms = node.args
                 out[node.name] = dd_source(node.name, plain_form(coeff), syms)
+            elif isinstance(node, CompensatedSum) and node.name not in out:
+                _key, poly, *syms = node.args
+                out[node.name] = dd_source(node.name, plain_form(poly), syms)
     return out
+
+
+def compensated_bound(poly: sp.Expr) -> sp.Expr | None:
+    """``K (|t_1| + ... + |t_m|)`` for the terms ``t_k`` of ``poly``: where the plain float64
+    sum ``v`` has ``|v| >= K sum |t_k|`` it is within 8 units of 2^-53 of the exact sum (its
+    error is at most ``(f + m - 1) 2^-53 sum |t_k|`` to first order, ``f`` the most roundings
+    in one term, so ``K = 1.01 (f + m - 1)/8``); None where ``K >= 1`` (never certified)."""
+    terms = sp.Add.make_args(poly)
+    rounds = 0
+    for t in terms:
+        coeff, factors = t.as_coeff_mul()
+        n = sum(int(f.as_base_exp()[1]) for f in factors)
+        rounds = max(rounds, n - 1 + (0 if abs(coeff) == 1 else 1))
+    k = sp.Rational(101, 100) * (rounds + len(terms) - 1) / 8
+    if k >= 1:
+        return None
+    return sp.Float(k, 17) * sp.Add(*(abs(t.as_coeff_mul()[0]) * sp.Mul(*(sp.Abs(f) for f in t.as_coeff_mul()[1])) for t in terms))
+
+
+def _print_compensated_sum(printer: Any, expr: CompensatedSum, precision: str, kernel: bool = False) -> str:
+    """The high part of the double-double sum (the NumPy code: the plain sum where it is
+    certified, see :func:`compensated_bound`); in float32 of the inputs in float64, rounded
+    (a kernel's double-double code converts its inputs itself)."""
+    args = [printer._print(a) for a in expr.args[2:]]
+    if precision == "float64":
+        bound = None if kernel else compensated_bound(expr.args[1])
+        if bound is None:
+            return f"{expr.name}({', '.join(args)})[0]"
+        return (f"_symkin_compensated_sum({printer._print(expr.args[1])}, {printer._print(bound)}, {expr.name}, "
+                f"{', '.join(args)})")
+    if kernel:
+        return f"_F({expr.name}({', '.join(args)})[0])"
+    return f"numpy.float32({expr.name}({', '.join(f'numpy.float64({a})' for a in args)})[0])"
 
 
 def _print_long_phase(printer: Any, expr: LongPhase, kernel: bool) -> str:
@@ -244,6 +282,9 @@ class FloatPrinter(_ProductCalls, NumPyPrinter):
     def _print_LongPhase(self, expr: LongPhase) -> str:
         return _print_long_phase(self, expr, self.kernel)
 
+    def _print_CompensatedSum(self, expr: CompensatedSum) -> str:
+        return _print_compensated_sum(self, expr, self.precision, self.kernel)
+
 
 #: Name prefix of the float twin of an integer symbol inside a kernel.
 FLOAT_TWIN = "_f_"
@@ -299,6 +340,9 @@ class ScalarPrinter(_ProductCalls, PythonCodePrinter):
 
     def _print_LongPhase(self, expr: LongPhase) -> str:
         return _print_long_phase(self, expr, False)
+
+    def _print_CompensatedSum(self, expr: CompensatedSum) -> str:
+        return _print_compensated_sum(self, expr, "float64")
 
 
 class ExactPrinter(PythonCodePrinter):

@@ -40,7 +40,7 @@ import sympy as sp
 
 from symkin.numeric.codegen import FLOAT_TWIN, FloatPrinter, abs_bound, phase_sources
 from symkin.numeric.runtime import EXACT_FLOATS
-from symkin.numeric.stable import ExactRatio, LongPhase, ProductDifference, ReducedPhase
+from symkin.numeric.stable import CompensatedSum, ExactRatio, LongPhase, ProductDifference, ReducedPhase
 
 __all__ = ["kernel_source", "KERNEL_BLOCK"]
 
@@ -311,7 +311,7 @@ def _hoist_differences(exprs: Sequence[sp.Expr]) -> tuple[list[sp.Expr], list[tu
     order: list[tuple[sp.Symbol, sp.Expr]] = []
 
     def hoist(e: sp.Expr) -> sp.Expr:
-        if e.is_Atom or isinstance(e, LongPhase):
+        if e.is_Atom or isinstance(e, (LongPhase, CompensatedSum)):
             return e
         if e in names:
             return names[e]

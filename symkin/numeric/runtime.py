@@ -607,12 +607,12 @@ class _DoubleDouble:
         return f"h{k}", f"l{k}"
 
     def emit(self, e: Any) -> tuple[str, str]:
-        """The pair holding ``e`` (a parameter, a rational, a sum, a product or an integer power)."""
+        """The pair holding ``e`` (a parameter, an exact number, a sum, a product or an integer power)."""
         if e in self.names:
             return self.names[e], "0.0"
-        if e.is_Rational:
+        if e.is_number:  # a rational, or an exact constant such as 4 pi/5 or sqrt(2): to 2^-106
             with mpmath.workdps(60):
-                v = mpmath.mpf(int(e.p)) / int(e.q)
+                v = mpmath.mpf(int(e.p)) / int(e.q) if e.is_Rational else mpmath.mpf(str(e.evalf(40)))
                 return repr(float(v)), repr(float(v - float(v)))
         if e.is_Add or e.is_Mul:
             op = "_dd_add" if e.is_Add else "_dd_mul"
@@ -626,6 +626,34 @@ class _DoubleDouble:
                 acc = self.call("_dd_mul", acc, base)
             return self.call("_dd_div", ("1.0", "0.0"), acc) if e.exp < 0 else acc
         raise ValueError(f"not a rational function of the inputs: {e}")
+
+
+def compensated_sum(value: Any, bound: Any, fn: Any, *args: Any) -> Any:
+    """A :class:`~symkin.numeric.stable.CompensatedSum` for the NumPy code: the plain sum
+    ``value`` where ``|value| >= bound`` (a bound the printer derives from the sum of the
+    terms' magnitudes: there the plain sum is within 8 units of 2^-53, see
+    :func:`symkin.numeric.codegen.compensated_bound`), and elsewhere (where the terms cancel,
+    and at nan) ``fn``, the double-double sum, at those points only."""
+    if type(value) is not np.ndarray or value.ndim == 0:
+        if abs(value) >= bound:
+            return value
+        return fn(*(np.float64(a) for a in args))[0]
+    redo = ~(np.abs(value) >= bound)
+    if not redo.any():
+        return value
+    shape = value.shape
+    value = np.array(value, dtype=np.float64)  # (a fresh array: the caller's temporaries are not written)
+    parts = [a if np.ndim(a) == 0 else np.broadcast_to(a, shape)[redo] for a in (np.asarray(x, np.float64) for x in args)]
+    value[redo] = fn(*parts)[0]
+    return value
+
+
+def _compensated_sum_scalar(value: float, bound: float, fn: Any, *args: float) -> float:
+    return value if abs(value) >= bound else float(fn(*args)[0])
+
+
+SCALAR_NAMESPACE["_symkin_compensated_sum"] = _compensated_sum_scalar
+NAMESPACE["float64"]["_symkin_compensated_sum"] = compensated_sum
 
 
 def _same(v: Any) -> Any:

@@ -204,6 +204,38 @@ def long_phase(coeff: sp.Expr, t: sp.Symbol) -> LongPhase:
     return LongPhase(sp.Integer(key), coeff, t, *syms)
 
 
+class CompensatedSum(_Deferred):
+    """A polynomial ``p`` of inputs whose terms can cancel (``w1 r1 r3 - w4 r2 r4``), evaluated
+    by the float64 backends in double-double arithmetic and rounded once.
+
+    Arguments: a key (an integer digest of ``p``, naming the generated code), ``p``, and its
+    symbols in order.  Each term's product is split exactly (Dekker) and the terms summed in
+    double-double, so the float64 result is within one rounding and 2^-104 of the sum of the
+    terms' magnitudes of the exact ``p`` of the binary inputs: a few units in the last place
+    unless the terms cancel to 2^-50 of their size.  Holds while the inputs are below 2^995
+    and the products above 2^-969 in magnitude; float32 evaluates the plain ``p``.
+    """
+
+    is_real = True
+
+    def doit(self, **hints: Any) -> sp.Expr:
+        """The plain polynomial."""
+        return self.args[1]
+
+    @property
+    def name(self) -> str:
+        """The name of the generated double-double function."""
+        return f"_symkin_sum_{int(self.args[0]):016x}"
+
+
+def compensated_sum(poly: sp.Expr) -> CompensatedSum:
+    """The :class:`CompensatedSum` of ``poly`` (its key a digest of ``poly``)."""
+    import hashlib
+
+    key = int(hashlib.sha256(sp.srepr(poly).encode()).hexdigest()[:15], 16)
+    return CompensatedSum(sp.Integer(key), poly, *sorted(poly.free_symbols, key=lambda s: s.name))
+
+
 class ProductDifference(_Deferred):
     """``a*b - c*d``, evaluated in double-double arithmetic by the float backends where
     the two products cancel.
@@ -241,7 +273,8 @@ def plain_form(expr: sp.Expr) -> sp.Expr:
     >>> plain_form(ExactRatio(z - 1, z))
     (z - 1)/z
     """
-    return expr.replace(lambda e: isinstance(e, (Group, ExactRatio, ReducedPhase, ProductDifference, LongPhase)), lambda e: e.doit())
+    return expr.replace(lambda e: isinstance(e, (Group, ExactRatio, ReducedPhase, ProductDifference, LongPhase, CompensatedSum)),
+                        lambda e: e.doit())
 
 
 # --------------------------------------------------------------------------- signs
@@ -632,14 +665,70 @@ def _difference_form(node: sp.Expr, ranges: Mapping[sp.Symbol, tuple[Any, Any]] 
     return node if new is None else new / den
 
 
+# --------------------------------------------------------------------------- rule 0
+#: A polynomial of at most this many terms, each of at most this many factors, is summed
+#: in double-double (:class:`CompensatedSum`); larger ones are left to the other rules.
+_MAX_TERMS, _MAX_FACTORS = 8, 4
+
+
+def compensated_sums(expr: sp.Expr, ranges: Mapping[sp.Symbol, tuple[Any, Any]] | None = None) -> sp.Expr:
+    """Write a rational function of real (not integer) inputs whose numerator or denominator
+    is a sum of products that can cancel as a ratio of :class:`CompensatedSum` (a numerator
+    given as products of sums is expanded first; a denominator is taken as given; ``a b - c d``
+    is left to :func:`difference_of_products`).  Each is then
+    evaluated within a few units in the last place of its exact value, so the law too:
+    ``(w1 r1 r3 - w4 r2 r4)/(r1 r3 - r2 r4)`` within about 3 units at any point, where the
+    plain form (and the relative form) lose digits wherever the result is small.
+
+    >>> w1, w4, r1, r2, r3, r4 = sp.symbols("omega_1 omega_4 r_1 r_2 r_3 r_4", positive=True)
+    >>> law = compensated_sums((w1*r1*r3 - w4*r2*r4)/(r1*r3 - r2*r4))
+    >>> [type(n).__name__ for n in sp.preorder_traversal(law) if isinstance(n, CompensatedSum)]
+    ['CompensatedSum']
+    >>> compensated_sums(r1*r3 + r2*r4)   # like-signed: nothing cancels
+    r_1*r_3 + r_2*r_4
+    """
+    if expr.is_Atom or sp.count_ops(expr) > _MAX_OPS or not _rational_function(expr) or expr.has(_Deferred, Group):
+        return expr
+    if any(s.is_integer for s in expr.free_symbols):
+        return expr  # tooth numbers: exact integer parts (rule 5)
+    num, den = sp.fraction(sp.together(expr))
+    new_num, new_den = _compensated(sp.expand(num), ranges), _compensated(den, ranges)
+    if new_num is None and new_den is None:
+        return expr
+    return (new_num if new_num is not None else num) / (new_den if new_den is not None else den)
+
+
+def _compensated(poly: sp.Expr, ranges: Mapping[sp.Symbol, tuple[Any, Any]] | None) -> sp.Expr | None:
+    """``poly`` as a :class:`CompensatedSum` when it is a sum of 2 to 8 terms, each a float-exact
+    number times at most four inputs, that can cancel (not all of one sign, not one float
+    operation); else None."""
+    if not poly.is_Add or len(poly.args) > _MAX_TERMS:
+        return None
+    for term in poly.args:
+        coeff, factors = term.as_coeff_mul()
+        if not (_float_exact(coeff) and all(f.as_base_exp()[0].is_Symbol and f.as_base_exp()[1].is_Integer
+                                            and f.as_base_exp()[1] > 0 for f in factors)):
+            return None
+        if sum(int(f.as_base_exp()[1]) for f in factors) > _MAX_FACTORS:
+            return None
+    signs = {_sign(t, ranges) for t in poly.args}
+    if len(signs) == 1 and None not in signs:
+        return None  # like-signed: no cancellation
+    if len(poly.args) == 2 and (_exact_sum(*poly.args) or _direct_difference(poly.args[0], poly.args[1], ranges) is not None):
+        return None  # a - b: one rounding already; a b - c d: difference_of_products
+    return compensated_sum(poly)
+
+
 # --------------------------------------------------------------------------- rule 7
 def reduce_phases(expr: sp.Expr, times: Iterable[sp.Symbol]) -> sp.Expr:
     """Reduce the phase of ``sin``, ``cos``, ``tan`` whose argument is ``c x y t + b``.
 
     ``c`` is a rational constant, at most three symbol factors, ``t`` one of ``times``;
     the product is evaluated in double-double arithmetic and reduced modulo 2 pi.  Other
-    terms ``c t`` with ``c`` a rational function of inputs with rational coefficients
-    become :class:`LongPhase` (``c`` in double-double where the phase is long).
+    terms ``c t`` with ``c`` a rational function of inputs with exact coefficients
+    (rationals, and numbers such as ``4 pi/5`` or ``sqrt(2)``, held in double-double), or
+    an exact number alone, become :class:`LongPhase` (``c`` in double-double where the
+    phase is long).
 
     >>> t, w = sp.symbols("t omega", real=True)
     >>> reduce_phases(sp.sin(w*t/2 + 1), [t])
@@ -677,16 +766,32 @@ def _long_phase(term: sp.Expr, times: set[sp.Symbol]) -> sp.Expr | None:
         return None
     (t,) = ts
     coeff = term / t
-    if coeff.has(t) or not coeff.free_symbols or not _rational_function(plain_form(coeff)):
+    if coeff.has(t) or not _rational_in_constants(plain_form(coeff)):
         return None
-    if any(n.is_Atom and n.is_number and not n.is_Rational for n in sp.preorder_traversal(plain_form(coeff))):
-        return None  # pi, a float: not held exactly in double-double
     return long_phase(coeff, t)
+
+
+def _rational_in_constants(expr: sp.Expr) -> bool:
+    """A rational function of symbols whose coefficients are exact numbers (rationals, pi,
+    sqrt(2), ...: each held in double-double to 2^-106); a Float is not exact, so not one."""
+    if expr.has(sp.Float):
+        return False
+    stack = [expr]
+    while stack:
+        node = stack.pop()
+        if node.is_number or node.is_Symbol:
+            continue
+        if isinstance(node, sp.Function) or (node.is_Pow and not node.exp.is_Integer):
+            return False
+        stack.extend(node.args)
+    return True
 
 
 # --------------------------------------------------------------------------- all
 #: What each rule does, as stated in a compiled function's docstring.
 RULE_NOTES = {
+    "compensated_sums": "sums of products that can cancel (w1 r1 r3 - w4 r2 r4) in double-double arithmetic, "
+    "rounded once (within a few units in the last place of their exact value)",
     "relative_form": "linear law written relative to one input (removable singularity cancelled)",
     "unwrap_angles": "atan(k tan u) unwrapped to its continuous branch",
     "cosine_sums": "cosine sums written as sums of like-signed terms",
@@ -727,6 +832,7 @@ def stable_form(
     expr = expr.xreplace(opaque)
     times = tuple(reduce_phase)
     rules = [
+        ("compensated_sums", lambda e: compensated_sums(e, ranges)),
         ("relative_form", relative_form),
         ("unwrap_angles", lambda e: unwrap_angles(e, ranges)),
         ("cosine_sums", lambda e: cosine_sums(e, ranges)),

@@ -61,8 +61,10 @@ def synthesize(train: Mechanism | str | Path, request: SynthesisRequest | None =
     run : RunOptions, optional
         How the search runs; or these keywords:
     scheduler, workers, chunk
-        Run the chunks on Dask (``"local"``: a local cluster of ``workers`` processes, or a
-        scheduler's address; the result is the same as without); outer tuples per chunk.
+        Run the chunks on Dask (``"local"``: a local cluster of ``workers`` processes;
+        ``"auto"``: that cluster only where the search's projected time pays for starting it,
+        else here; or a scheduler's address; the result is the same as without); outer tuples
+        per chunk.
     time_limit : float, optional
         Seconds; a longer search raises :class:`~symkin.errors.TimeLimitError` with bounds to try.
     progress : callable(done, total, found), optional

@@ -30,13 +30,29 @@ from symkin.errors import InputError, TimeLimitError, UnsupportedError
 from symkin.synthesis.plan import SearchPlan
 from symkin.synthesis.search import ChunkResult, evaluate_chunk, merge
 
-__all__ = ["run", "Execution", "local_cluster"]
+__all__ = ["run", "Execution", "local_cluster", "cluster_pays"]
 
 #: Seconds to wait for a Dask scheduler to answer.
 CONNECT_TIMEOUT = 5
 
 #: Chunks in flight per Dask worker (the rest are submitted as these finish).
 WINDOW = 3
+
+#: Seconds a local cluster costs before it saves any: starting its worker processes (8.4 s on this
+#: project's 2 shared cores) and each worker receiving and rebuilding the plan (2.5 s more for a
+#: search of 0.07 s here; benchmarks/notes/numeric-backends.md, "Dask").
+LOCAL_CLUSTER_COST = 10.0
+
+
+def cluster_pays(projected: float, workers: int) -> bool:
+    """Whether a local cluster of ``workers`` processes is expected to finish a search that
+    would take ``projected`` seconds here sooner: at best it divides the time by the workers,
+    and it first costs :data:`LOCAL_CLUSTER_COST`.
+
+    >>> cluster_pays(5.0, 2), cluster_pays(60.0, 2), cluster_pays(60.0, 1)
+    (False, True, False)
+    """
+    return workers > 1 and projected * (1 - 1 / workers) > LOCAL_CLUSTER_COST
 
 
 @dataclass(frozen=True)
@@ -64,7 +80,9 @@ def run(plan: SearchPlan, *, scheduler: str | None = None, workers: int | None =
     ----------
     scheduler : str, optional
         None runs here; ``"local"`` starts a local Dask cluster of ``workers`` processes;
-        an address (``"tcp://host:8786"``) uses that Dask scheduler.
+        ``"auto"`` times the first chunk here and starts that cluster only where the search's
+        projected time pays for it (:func:`cluster_pays`), else goes on here; an address
+        (``"tcp://host:8786"``) uses that Dask scheduler.
     workers : int, optional
         Processes of a local cluster (default: the machine's cores).
     time_limit : float, optional
@@ -83,8 +101,21 @@ def run(plan: SearchPlan, *, scheduler: str | None = None, workers: int | None =
         raise TimeLimitError(f"deriving the conditions and compiling the search took {spent:.1f} s, more than the time "
                              f"limit of {time_limit:g} s; raise the time limit")
     if scheduler is None and workers is not None:
-        raise InputError("the number of workers is for a local Dask cluster: give the scheduler 'local' with it")
-    if scheduler is None:
+        raise InputError("the number of workers is for a local Dask cluster: give the scheduler 'local' or 'auto' with it")
+    first: ChunkResult | None = None
+    if scheduler == "auto":
+        began = time.perf_counter()
+        first = evaluate_chunk(plan, *chunks[0])
+        projected = (time.perf_counter() - began) * len(chunks)
+        n = workers or os.cpu_count() or 1
+        if cluster_pays(projected, n):
+            scheduler, first = "local", None  # (the cluster searches every chunk: the answer does not depend on where)
+        else:
+            scheduler = None
+            note = f"here (a local cluster of {n} would not pay: about {projected:.2g} s of search)"
+    if first is not None:
+        results, used, where = _local(plan, chunks, time_limit, progress, spent, first), 1, note
+    elif scheduler is None:
         results, used = _local(plan, chunks, time_limit, progress, spent), 1
         where = "here"
     else:
@@ -104,12 +135,12 @@ class _Results(list):
 
 
 def _local(plan: SearchPlan, chunks: list[tuple[int, int]], limit: float | None,
-           progress: Callable[[int, int, int], None] | None, spent: float) -> list[ChunkResult]:
+           progress: Callable[[int, int, int], None] | None, spent: float, first: ChunkResult | None = None) -> list[ChunkResult]:
     start = time.perf_counter()
     out = _Results()
     found = 0
     for n, (a, b) in enumerate(chunks, 1):
-        out.append(evaluate_chunk(plan, a, b))
+        out.append(first if n == 1 and first is not None else evaluate_chunk(plan, a, b))
         found += out[-1].found
         if progress is not None:
             progress(n, len(chunks), found)

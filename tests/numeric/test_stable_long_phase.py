@@ -10,6 +10,8 @@ import warnings
 import numpy as np
 import pytest
 import sympy as sp
+from hypothesis import given, settings
+from hypothesis import strategies as hs
 
 import symkin
 from symkin import schemes
@@ -123,8 +125,9 @@ def test_short_phases_are_the_plain_product_and_long_ones_are_reduced():
     # no times at all: an empty result of the same shape (the long-phase test took the maximum
     # of nothing and raised ValueError)
     assert f(0.7, 0.3, 0.1, np.array([])).shape == (0,) and f(0.7, 0.3, 0.1, np.zeros((0, 3))).shape == (0, 3)
-    # a coefficient holding pi is not exact in double-double: left as it is
-    assert not any(isinstance(n, st.LongPhase) for n in sp.preorder_traversal(st.reduce_phases(sp.sin(sp.pi * w * t / (r1 + r2)), [t])))
+    # a coefficient holding pi is held in double-double (to 2^-106) and reduced; a Float is not exact: left as it is
+    assert any(isinstance(n, st.LongPhase) for n in sp.preorder_traversal(st.reduce_phases(sp.sin(sp.pi * w * t / (r1 + r2)), [t])))
+    assert not any(isinstance(n, st.LongPhase) for n in sp.preorder_traversal(st.reduce_phases(sp.sin(0.1 * w * t / (r1 + r2)), [t])))
 
 
 @pytest.mark.parametrize("backend", FLOAT_BACKENDS)
@@ -137,3 +140,45 @@ def test_float32_near_a_pole_from_float64_inputs_warns(backend):
         warnings.simplefilter("error")
         f(np.float32(0.7), np.float32(0.1), np.float32(0.3), np.float32(2.1))  # the float32 point itself: exact
         f(0.5, 0.25, 1.0, 1.0)  # far from the pole: float32 holds it
+
+
+# ---------------------------------------------------------------- exact speeds: multiples of pi, surds
+M = sp.Symbol("m", positive=True)
+CONSTANTS = [sp.pi, sp.sqrt(2), sp.pi / sp.sqrt(3), sp.E, sp.Integer(1)]
+
+
+@settings(deadline=None, max_examples=20, derandomize=True)
+@given(hs.integers(1, 2000), hs.integers(1, 2000), hs.sampled_from(CONSTANTS), hs.booleans())
+def test_phases_of_any_exact_speed_are_reduced_within_1e13_at_long_times(p, q, constant, with_input):
+    """sin(w t) and sin(w m t) for an exact speed w = p/q * constant: the phase is reduced in
+    double-double whatever the constant (the rounding of w to a float is not multiplied by
+    t = 1e6 s), against mpmath at 50 digits on the same binary inputs."""
+    w = sp.Rational(p, q) * constant
+    law, args = (sp.sin(w * M * T), [M, T]) if with_input else (sp.sin(w * T), [T])
+    t = 1e6 + np.linspace(0, 3, 25)
+    values = ([1.25] if with_input else []) + [t]
+    ref = np.array([float(x) for x in symkin.compile(law, args, backend="mpmath", digits=50)(*values)])
+    got = symkin.compile(law, args, backend="numpy")(*values)
+    assert np.max(np.abs(got - ref)) <= 1e-13
+    assert abs(symkin.compile(law, args, backend="numpy")(*[v if np.ndim(v) == 0 else v[7] for v in values]) - ref[7]) <= 1e-13
+
+
+@pytest.mark.parametrize("backend", FLOAT_BACKENDS)
+def test_the_2018_drive_at_its_exact_speed_0_8_pi_keeps_1e13_at_its_peaks(backend):
+    """Luo & Li 2018's elliptical drive at its own exact speed 4 pi/5 rad/s and e = 0.999999:
+    the phases 4 pi m t/5 in double-double (before: 2e-9 normwise, as without reduction)."""
+    from symkin.drives import EllipticalGears
+    from symkin.mechanisms.cardan import CardanSlider
+
+    e, length, w, th2, th0 = sp.Symbol("e", positive=True), sp.Symbol("l", positive=True), sp.Symbol("omega"), \
+        sp.Symbol("theta_2", real=True), sp.Symbol("theta_H0", real=True)
+    slider = CardanSlider.build(length, drive=EllipticalGears(w, e, M), guide_angle=th2, carrier_angle=th0)
+    laws = [x.subs(w, 4 * sp.pi / 5) for x in (slider.displacement, slider.velocity, slider.acceleration)]
+    args = [e, length, M, th2, th0, T]
+    k = np.arange(9)
+    t = np.concatenate([2.5 * k, 2.5 * k + 1e-6, 2.5 * k + 1e-3, 2.5 * k[1:] - 1e-3])  # the speed peaks
+    values = [0.999999, 0.02, 1.0, 0.3, 0.1, t]
+    ref = symkin.compile(laws, args, backend="mpmath", digits=50)(*values)
+    got = symkin.compile(laws, args, backend=backend, ranges={e: (0, 1)})(*values)
+    for g, r in zip(got, ref):
+        assert normwise(g, np.array([float(x) for x in r])) <= 1e-13

@@ -45,6 +45,9 @@ class Plan:
     cse: bool
     chunk: int
     threads: int | None
+    #: numba only: "eager" compiles a kernel at its first call; "auto" evaluates with the NumPy
+    #: code until the time spent there pays for the compile (see backends/numba.py, compile_pays)
+    jit: str = "eager"
 
     @property
     def dtype(self) -> Any:

@@ -13,6 +13,7 @@ import math
 import os
 import tempfile
 import threading
+import time
 import warnings
 from collections.abc import Sequence
 from pathlib import Path
@@ -26,7 +27,34 @@ from symkin.numeric.backends.base import Plan, Result, allocate, as_array, as_fl
 from symkin.numeric.backends.numpy import NumpyBackend
 from symkin.numeric.kernel import KERNEL_BLOCK, kernel_source
 
-__all__ = ["NumbaBackend", "numba_available", "kernel_cache_folder", "warn_no_numba"]
+__all__ = ["NumbaBackend", "numba_available", "kernel_cache_folder", "warn_no_numba", "compile_pays", "compile_estimate"]
+
+#: In ``jit="auto"`` (the default backend's mode) a kernel is compiled once the NumPy code has
+#: spent this many times the kernel's estimated compile time (:func:`compile_estimate`) on the
+#: calls it would serve: whatever happens next, the first use costs at most a fifth more than
+#: the NumPy path alone, and a long run of work reaches the compiled speed.
+COMPILE_PAYBACK = 5.0
+
+
+def compile_estimate(operations: int, parallel: bool) -> float:
+    """Seconds (CPU) Numba takes to compile the kernel of a law of ``operations`` operations
+    per point, with an empty cache: 0.5 s + 0.05 s per operation for the serial kernel, ten
+    times that for the parallel one (measured on the benchmark laws: serial 0.3-3 s, parallel
+    1.3-27 s; benchmarks/notes/numeric-backends.md).  Deliberately on the high side: an
+    estimate too high delays the kernel, one too low could make first use slower than NumPy."""
+    return (0.5 + 0.05 * operations) * (10.0 if parallel else 1.0)
+
+
+def compile_pays(numpy_seconds: float, operations: int, parallel: bool) -> bool:
+    """Whether a ``jit="auto"`` function compiles its (serial or parallel) kernel now, having
+    spent ``numpy_seconds`` in the NumPy code on calls that kernel would serve (small calls
+    for the serial kernel, calls of 2^15 points and more for the parallel one).
+
+    >>> compile_pays(0.4, 6, False), compile_pays(20.0, 6, False), compile_pays(20.0, 6, True)
+    (False, True, False)
+    """
+    return numpy_seconds >= COMPILE_PAYBACK * compile_estimate(operations, parallel)
+
 
 _INT64 = np.dtype(np.int64)
 _FLOAT64 = np.dtype(np.float64)
@@ -167,7 +195,6 @@ class NumbaBackend(NumpyBackend):
         self.kernels: dict[tuple[bool, tuple[bool, ...]], Any] = {}
         self.broken = False
         self.kernel_sources: dict[tuple[bool, tuple[bool, ...]], str] = {}
-        self.namespace = runtime.numba_namespace(plan.precision)
         #: the type each argument's array has in the common call (int64 for tooth numbers)
         self._wanted = tuple(_INT64 if integer else self._np_dtype for integer in self.integer_flags)
         #: argument -> (value, block of copies of it), the last scalar given there
@@ -175,11 +202,16 @@ class NumbaBackend(NumpyBackend):
         self._outputs = len(plan.stable)
         #: the key of the serial kernel of int64 and float inputs (the common small call's)
         self._serial_key = (False, (False,) * len(plan.args))
+        #: jit="auto": seconds spent in the NumPy code on the calls of the serial kernel and of the parallel one
+        self.numpy_seconds = {False: 0.0, True: 0.0}
+        self._paying: set[bool] = set()  # ... and the kernels (serial: False, parallel: True) whose compile pays
+        self._operations: int | None = None
 
     @property
     def source(self) -> str:
-        """The generated kernel source (the first kernel compiled), or a note that it is compiled on first call."""
-        return next(iter(self.kernel_sources.values()), "(compiled on first call)")
+        """The generated kernel source (the first kernel compiled), or a note of when it is compiled."""
+        when = "once the NumPy code has spent what compiling it costs" if self.plan.jit == "auto" else "on first call"
+        return next(iter(self.kernel_sources.values()), f"(compiled {when})")
 
     def _kernel(self, parallel: bool, float_integers: tuple[bool, ...]) -> Any:
         """The compiled loop and its redo pass (or None): one per law, threading and float
@@ -194,7 +226,7 @@ class NumbaBackend(NumpyBackend):
             with _NUMBA_LOCK:
                 kernel = _kernel_from_file(src, plan.precision, parallel)
                 if kernel is None:  # no writable cache folder: compiled in this process only
-                    kernel = _kernel_in_process(src, plan.precision, parallel, self.namespace)
+                    kernel = _kernel_in_process(src, plan.precision, parallel, runtime.numba_namespace(plan.precision))
                 self.kernels[key] = kernel
         return self.kernels[key]
 
@@ -233,6 +265,10 @@ class NumbaBackend(NumpyBackend):
         """Evaluate the laws at ``values`` in one fused loop; returns the broadcast shape, the outputs and whether any is not finite."""
         if self.broken:
             return super().evaluate(values, outs)
+        if self.plan.jit == "auto" and len(self._paying) < 2:
+            waited = self._numpy_until_it_pays(values, outs)
+            if waited is not None:
+                return waited
         common = self._common_call(values) if outs is None else None
         serial = self.kernels.get(self._serial_key)
         if common is not None and serial is not None and common[0] < _PARALLEL_FROM:
@@ -252,6 +288,31 @@ class NumbaBackend(NumpyBackend):
             for r, f in zip(call.results, self.evaluate_points(values, index)):
                 r[index] = f
         return call.shape, call.results, bool(bad)
+
+    def _numpy_until_it_pays(self, values: Sequence[Any], outs: Sequence[np.ndarray] | None) -> Result | None:
+        """jit="auto": the call by the NumPy code (timed) while the kernel it needs is not compiled
+        and the time spent so does not pay for compiling it (:func:`compile_pays`); else None."""
+        try:
+            n = math.prod(np.broadcast_shapes(*(np.shape(v) for v in values)))
+        except (ValueError, TypeError):
+            n = 0  # (the NumPy code says what is wrong with the inputs)
+        parallel = n >= _PARALLEL_FROM and self.plan.threads != 1
+        if parallel in self._paying:
+            return None
+        if self._operations is None:
+            import sympy as sp
+
+            self._operations = int(sum(sp.count_ops(e) for e in self.plan.stable))
+        if compile_pays(self.numpy_seconds[parallel], self._operations, parallel):
+            if not numba_available():  # (installed but not importable, a Numba built for another NumPy: NumPy, as without it)
+                self.broken = True
+            self._paying.add(parallel)
+            return None
+        start = time.process_time()
+        try:
+            return super().evaluate(values, outs)
+        finally:
+            self.numpy_seconds[parallel] += time.process_time() - start
 
     def _as_given(self, common: tuple[int, list[np.ndarray], list[int]]) -> _Call:
         """The common call (see :meth:`_common_call`) with new output arrays."""

@@ -53,7 +53,8 @@ def test_the_differential_stays_exact_near_its_pole():
     law = schemes.two_row("II").speeds({"1": W1, "4": W4}).law("H").rhs
     args = [W1, W4, *R]
     f = symkin.compile(law, args)
-    assert "_symkin_product_ratio(r_1, r_3, r_2, r_4)" in f.source  # the certified difference, and r1 r3 over it
+    # the numerator summed in double-double, over the certified difference
+    assert "_symkin_sum_" in f.source and "_symkin_product_difference(r_1, r_3, r_2, r_4)" in f.source
     scalar = [f(*map(float, x)) for x in zip([1.5] * 5, [-0.5] * 5, [1.0] * 5, [2.0] * 5, [3.0] * 5, np.linspace(1, 2, 5))]
     assert np.array_equal(f(1.5, -0.5, 1.0, 2.0, 3.0, np.linspace(1, 2, 5)), scalar)  # scalar and array agree
     rng = np.random.default_rng(9)
@@ -72,7 +73,7 @@ def test_the_differential_stays_exact_near_its_pole():
     assert np.all(np.isinf(got[~finite]) | np.isnan(got[~finite]))
     err = np.abs(got[finite] - ref[finite]) / np.abs(ref[finite])
     assert np.max(err[near[finite]]) <= 8 * U64  # near the pole: the relative accuracy of the far points
-    assert np.max(err) <= 1e-13  # (far points: zeros of the numerator make the relative error larger)
+    assert np.max(err) <= 12 * U64  # at the zeros of the numerator too (the plain numerator lost digits there: 1e-13)
 
 
 def test_tooth_arrays_take_the_exact_paths_the_bound_calls_for():

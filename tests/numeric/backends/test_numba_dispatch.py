@@ -1,0 +1,62 @@
+"""The default backend's dispatch (jit="auto"): the NumPy code first, the numba kernel once the
+time spent in NumPy pays for compiling it.  The decision is checked on given numbers (not on
+timings); the results against exact rational arithmetic on the same inputs."""
+
+from __future__ import annotations
+
+import sys
+from fractions import Fraction
+
+import numpy as np
+import pytest
+
+import symkin
+from symkin import schemes
+from symkin.numeric.backends import numba_available
+from symkin.numeric.backends.numba import COMPILE_PAYBACK, compile_estimate, compile_pays
+
+pytestmark = pytest.mark.skipif(not numba_available(), reason="needs numba")
+
+
+def law():
+    return schemes.two_row("AA", teeth=True).ratio("1", "H", fixed="4")
+
+
+def exact(z1, z2, z3, z4):
+    """i_1H^(4) of the AA train by Willis's formula: 1 - i_14^H, i_14^H = z2 z4/(z1 z3)."""
+    return [float(1 - Fraction(int(b) * int(d), int(a) * int(c))) for a, b, c, d in zip(z1, z2, z3, z4)]
+
+
+def test_the_kernel_is_compiled_once_numpy_time_is_five_times_its_compile_estimate():
+    for ops in (1, 6, 44, 274):
+        for parallel in (False, True):
+            cost = compile_estimate(ops, parallel)
+            assert not compile_pays(0.0, ops, parallel)
+            assert not compile_pays(COMPILE_PAYBACK * cost * 0.999, ops, parallel)
+            assert compile_pays(COMPILE_PAYBACK * cost, ops, parallel)
+    assert COMPILE_PAYBACK == 5.0  # at most a fifth more than NumPy alone, whatever follows
+    assert compile_estimate(6, True) > compile_estimate(6, False) > compile_estimate(1, False)
+
+
+def test_the_unnamed_default_starts_with_numpy_and_compiles_when_the_time_pays(monkeypatch):
+    monkeypatch.delenv("SYMKIN_BACKEND", raising=False)
+    f = symkin.compile(law())
+    assert f.backend == "numba" and f._plan.jit == "auto"
+    z = np.arange(20, 420)
+    values = (z, z - 1, z, z + 3)
+    assert list(f(*values)) == exact(*values)
+    ev = f._evaluator
+    assert not ev.kernels and ev.numpy_seconds[False] > 0  # NumPy did the work, timed
+    ev.numpy_seconds[False] = COMPILE_PAYBACK * compile_estimate(ev._operations, False)  # as if it had done that much
+    assert list(f(*values)) == exact(*values)
+    assert ev.kernels and "_kernel" in f.source and "numba" in sys.modules
+    assert not ev.numpy_seconds[True]  # large calls would pay for the parallel kernel on their own
+
+
+def test_a_named_backend_compiles_at_once(monkeypatch):
+    monkeypatch.delenv("SYMKIN_BACKEND", raising=False)
+    assert symkin.compile(law(), backend="numba")._plan.jit == "eager"
+    monkeypatch.setenv("SYMKIN_BACKEND", "numba")
+    assert symkin.compile(law())._plan.jit == "eager"
+    with pytest.raises(symkin.InputError, match="^jit must be 'auto' or 'eager', got 'soon'$"):
+        symkin.compile(law(), jit="soon")
