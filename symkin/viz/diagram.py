@@ -230,6 +230,16 @@ def _state_of(mech: Mechanism, state: Any) -> Any:
     return mech.state(state) if isinstance(state, str) else state
 
 
+def _engaged(mech: Mechanism, st: Any, shift: Any) -> tuple[tuple[str, ...], list[tuple[str, str]]]:
+    """The brakes and clutch pairs that hold ``st`` in drive: its own and the one-way clutches that
+    engage (:meth:`~symkin.trains.Train.engaged`); its own alone when it is free."""
+    if getattr(mech, "one_ways", ()) and shift.speeds is not None:
+        brakes, clutches = mech.engaged(st)  # type: ignore[attr-defined]
+    else:
+        brakes, clutches = st.brakes, st.clutches
+    return tuple(brakes), [(mech.link(a).name, mech.link(b).name) for a, b in clutches]
+
+
 def _controls(mech: Mechanism) -> tuple[list[str], list[tuple[str, str]]]:
     """Every brake and clutch the train's states use, in file order (links by their own names)."""
     brakes: list[str] = []
@@ -483,18 +493,27 @@ def lever_figure(mech: Mechanism, state: Any = None, *, title: str | None = None
         raise InputError("this train has no lever to draw (its tooth numbers are symbolic, or no set of meshes "
                          "shares a carrier)")
     speeds: dict[str, Any] = {}
+    free = False
+    held = {FRAME}
+    joined_pairs: list[tuple[str, str]] = []
     if st is not None:
         shift = mech.shift(st)  # type: ignore[attr-defined]
-        w_in = S.omega(mech.link(st.input).name)
-        speeds = {n: sp.cancel(v / w_in) for n, v in shift.speeds.items()}
-        speeds[FRAME] = sp.Integer(0)
-    held = {mech.link(b).name for b in st.brakes} | {FRAME} if st else {FRAME}
+        brakes, joined_pairs = _engaged(mech, st, shift)
+        held |= {mech.link(b).name for b in brakes}
+        free = shift.speeds is None  # no one-way clutch holds it in drive: no ratio, no speeds
+        if not free:
+            w_in = S.omega(mech.link(st.input).name)
+            speeds = {n: sp.cancel(v / w_in) for n, v in shift.speeds.items()}
+            speeds[FRAME] = sp.Integer(0)
     inp = mech.link(st.input).name if st else None
     out = mech.link(st.output).name if st else None
     n = len(found)
     fig = style.new_figure(min(style.PAGE, 2.4 * n + 1.2), 3.4)
-    axes = fig.subplots(1, n, squeeze=False)[0]
-    for lever, ax in zip(found, axes):
+    axes = fig.subplots(1, n, squeeze=False, sharex=True)[0]  # one speed scale: joined nodes' arrows compare
+    numeric = {nm: float(v) for nm, v in speeds.items() if not sp.sympify(v).free_symbols}
+    wmax = max([abs(numeric[nm]) for lv in found for nm in lv.positions if nm in numeric] + [1.0])
+    for index, (lever, ax) in enumerate(zip(found, axes), 1):
+        tag = f"@{index}" if n > 1 else ""  # a link on two levers (a single link joins them): one id per lever
         pos = lever.positions
         lo, hi = min(pos.values()), max(pos.values())
         span = hi - lo or 1
@@ -505,20 +524,19 @@ def lever_figure(mech: Mechanism, state: Any = None, *, title: str | None = None
         ax.yaxis.set_visible(False)
         ax.tick_params(labelsize=style.SMALL)
         ax.plot([0, 0], [0, 1], color=_INK, lw=2.2, solid_capstyle="round")
-        vals = {nm: float(speeds[nm]) for nm in pos if nm in speeds and not sp.sympify(speeds[nm]).free_symbols}
-        wmax = max([abs(v) for v in vals.values()] + [1.0])
+        vals = {nm: numeric[nm] for nm in pos if nm in numeric}
         ax.set_xlim(-2.3 * wmax, 1.4 * wmax)
         order = sorted(pos, key=lambda nm: ys[nm])
         label_y = _spread([ys[nm] for nm in order], 0.075)
         for nm, ly in zip(order, label_y):
             y = ys[nm]
             (node,) = ax.plot([-0.06 * wmax, 0.06 * wmax], [y, y], color=_INK, lw=1.2)
-            node.set_gid(f"node:{_name(nm)}")
+            node.set_gid(f"node:{_name(nm)}{tag}")
             word = _name(nm) + (" (in)" if nm == inp else " (out)" if nm == out else "")
             c = _IN if nm == inp else _OUT if nm == out else _INK
             t = ax.text(-0.95 * wmax, ly, word, fontsize=style.FONT, ha="right", va="center", color=c, fontweight="bold")
             ax.plot([-0.92 * wmax, -0.75 * wmax, -0.08 * wmax], [ly, ly, y], color="0.6", lw=0.4)  # a leader
-            t.set_gid(f"name:{_name(nm)}")
+            t.set_gid(f"name:{_name(nm)}{tag}")
             if nm in held and st is not None:
                 ax.plot([-0.3 * wmax, -0.1 * wmax], [y, y], color=_ON, lw=2.0)
                 for j in range(3):
@@ -526,7 +544,7 @@ def lever_figure(mech: Mechanism, state: Any = None, *, title: str | None = None
                     ax.plot([xx, xx - 0.05 * wmax], [y, y - 0.03], color=_ON, lw=0.7)
             if nm in vals:
                 (arrow,) = ax.plot([0, vals[nm]], [y, y], color=c if c != _INK else style.PALETTE[3], lw=1.6)
-                arrow.set_gid(f"speed:{_name(nm)}")
+                arrow.set_gid(f"speed:{_name(nm)}{tag}")
                 ax.plot([vals[nm]], [y], marker=">" if vals[nm] >= 0 else "<", color=arrow.get_color(), markersize=4)
         # spacing of neighbouring nodes, in tooth-number units, between the names and the bar
         gaps = [(a, b) for a, b in itertools.pairwise(order) if pos[b] != pos[a]]
@@ -540,7 +558,9 @@ def lever_figure(mech: Mechanism, state: Any = None, *, title: str | None = None
                 a0, b0 = (float(v) for v in line)
                 xs = [a0 + b0 * (lo + span * y) for y in (0.0, 1.0)]
                 ax.plot(xs, [0, 1], color="0.4", lw=0.7, ls="--")
-        if st is not None:
+        if n > 1:
+            ax.set_title(f"lever {index}", fontsize=style.SMALL)
+        if st is not None and not free:
             ax.set_xlabel(style.label("speed / input speed", "-"), fontsize=style.FONT)
             ax.axvline(0, color="0.85", lw=0.5, zorder=0)
         else:
@@ -550,9 +570,13 @@ def lever_figure(mech: Mechanism, state: Any = None, *, title: str | None = None
     head = title or f"{name}: lever diagram (node spacing by tooth numbers)"
     if st is not None:
         head += f"\nstate {st.name}: {_name(inp or '')} drives, {_name(out or '')} driven"
-        joined = [f"{mech.link(a).name}+{mech.link(b).name}" for a, b in st.clutches]
+        joined = [f"{_name(mech.link(a).name)}+{_name(mech.link(b).name)}" for a, b in joined_pairs]
         if joined:
             head += f", {', '.join(joined)} joined"
+        if free:
+            head += "; free: no one-way clutch holds it in drive, no ratio, no node speeds"
+    if n > 1:
+        head += "\n(a link on two levers joins them: its nodes turn at one speed)"
     fig.suptitle(head, fontsize=style.FONT)
     return style.finish(fig)
 
