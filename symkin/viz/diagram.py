@@ -50,6 +50,8 @@ __all__ = ["diagram", "scheme_figure", "lever_figure", "scheme_svg", "text_as_te
 LENGTH_UNITS = {"mm": 1.0, "cm": 0.1, "m": 0.001, "in": 1 / 25.4}
 _INK, _GREY, _ON = "#000000", "0.6", style.PALETTE[1]
 _IN, _OUT = style.PALETTE[0], style.PALETTE[2]
+#: A one-way clutch that overruns in the state shown (dashed; one that holds has the highlight colour).
+_OVERRUN = style.PALETTE[5]
 #: A gear label's box: white under the text, so that lines behind it do not cross it.
 _CLEAR = {"boxstyle": "square,pad=0.1", "facecolor": "white", "edgecolor": "none", "alpha": 0.85}
 
@@ -275,6 +277,10 @@ def scheme_figure(mech: Mechanism, state: Any = None, *, length_unit: str = "mm"
     for pair in clutches:
         x_ctrl[("K", pair)] = at + sc.W / 2
         at += sc.W
+    one_ways = tuple(getattr(mech, "one_ways", ()))
+    for ow in one_ways:
+        x_ctrl[("F", ow.name)] = at + sc.W / 2
+        at += sc.W
     x_left = -0.9 * sc.W
     height = sc.housing + sc.band
     width_in = style.PAGE
@@ -288,6 +294,8 @@ def scheme_figure(mech: Mechanism, state: Any = None, *, length_unit: str = "mm"
     ax.tick_params(labelsize=style.SMALL)
     ax.set_ylabel(style.label("radius", length_unit), fontsize=style.FONT)
     _line(ax, [x_left, at], [0, 0], k, gid="axis:main", lw=0.6, ls=(0, (8, 2, 1, 2)), color=_GREY)
+    shift = mech.shift(st) if st is not None and one_ways else None  # type: ignore[attr-defined]
+    status = dict(shift.drive.status) if shift is not None and shift.drive is not None else {}
     engaged_b = {mech.link(b).name for b in st.brakes} if st else set()
     engaged_k = {frozenset((mech.link(a).name, mech.link(b).name)) for a, b in st.clutches} if st else set()
     inp = mech.link(st.input).name if st else None
@@ -432,6 +440,28 @@ def scheme_figure(mech: Mechanism, state: Any = None, *, length_unit: str = "mm"
             reach[n].append(x)
         ax.annotate(f"K{clutches.index(pair) + 1}", ((x + sc.w / 2 + sc.gap / 2) * k, mid * k), fontsize=style.SMALL,
                     ha="left", va="center", color=c if on else "0.3")
+    for ow in one_ways:  # like a brake or a clutch, with a roller between its races: a freewheel
+        x = x_ctrl[("F", ow.name)]
+        part = status.get(ow.name)
+        c, lw, ls = {"holds": (_ON, 2.0, "-"), "overruns": (_OVERRUN, 1.2, "--")}.get(part or "", (_GREY, 1.0, "-"))
+        ends = [sc.housing if n == FRAME else sc.level[mech.link(n).name] for n in (ow.link, ow.other)]
+        ya, yb = sorted(ends)
+        mid = (ya + yb) / 2
+        h = min(sc.delta / 3, (yb - ya) / 4) if FRAME not in (ow.link, ow.other) else sc.band
+        _line(ax, [x, x], [ya, mid - h], k, gid=f"oneway:{ow.name}", color=c, lw=lw, ls=ls)
+        _line(ax, [x, x], [mid + h, yb], k, color=c, lw=lw, ls=ls)
+        for yy in (mid - h, mid + h):
+            _line(ax, [x - sc.w / 2, x + sc.w / 2], [yy, yy], k, color=c, lw=lw + 0.6)
+        _line(ax, [x - sc.w / 3, x + sc.w / 3], [mid - 0.7 * h, mid + 0.7 * h], k, color=c, lw=0.8)  # the sprag
+        ax.plot([x * k], [mid * k], marker="o", markersize=3.5, markerfacecolor="white", color=c)  # the roller
+        for n in (ow.link, ow.other):
+            if n == FRAME:
+                _ground(ax, x, sc.housing, sc.w / 2, k)
+            else:
+                reach[mech.link(n).name].append(x)
+        t = ax.text((x + sc.w / 2 + sc.gap / 2) * k, mid * k, f"{ow.name} (one-way)", fontsize=style.SMALL, ha="left",
+                    va="center", color=c if part in ("holds", "overruns") else "0.3")
+        t.set_gid(f"oneway-name:{ow.name}")
     # shafts of the links on the main axis, named at their left ends
     for L in mech.links:
         if L.kind is not LinkKind.CENTRAL:
@@ -441,23 +471,90 @@ def scheme_figure(mech: Mechanism, state: Any = None, *, length_unit: str = "mm"
         _line(ax, [x_left, max(ends)], [y, y], k, gid=f"shaft:{L.name}", color=colour(L.name),
               lw=1.6 if L.name in (inp, out) else 1.0)
         label_at[L.name] = (x_left - sc.gap / 2, y, "right")
-    if any(L.kind is LinkKind.FRAME and L.gears for L in mech.links) or brakes:
+    if any(L.kind is LinkKind.FRAME and L.gears for L in mech.links) or brakes or \
+            any(FRAME in (ow.link, ow.other) for ow in one_ways):
         label_at[FRAME] = (x_left - sc.gap / 2, sc.housing, "right")
         _line(ax, [x_left, x_left + sc.w], [sc.housing, sc.housing], k, lw=0.6, color=_GREY)
     for name, (x, y, ha) in label_at.items():
         word = _name(name) + (" (in)" if name == inp else " (out)" if name == out else "")
         t = ax.text(x * k, y * k, word, fontsize=style.FONT, ha=ha, va="center", fontweight="bold", color=colour(name))
         t.set_gid(f"link:{_name(name)}")
-    ax.set_xlim((x_left - 1.6 * sc.W) * k, (at + 0.2 * sc.W) * k)
+    ax.set_xlim((x_left - 2.2 * sc.W) * k, (at + 0.2 * sc.W) * k)
     ax.set_ylim(-0.04 * sc.R * k, (sc.housing + 1.5 * sc.band) * k)
+    shafts = {f"link:{L.name}": sc.level[L.name] for L in mech.links if L.kind is LinkKind.CENTRAL}
+    texts = [t for t in ax.texts if t.get_text()]
+    stack = sorted((t for t in texts if t.get_gid() in shafts), key=lambda t: shafts[t.get_gid()])
+    renderer = _renderer(fig)
+    tall = max([t.get_window_extent(renderer).height for t in stack] + [0.0]) * 1.15
+    tall = (ax.transData.inverted().transform((0, tall))[1] - ax.transData.inverted().transform((0, 0))[1]) / k
+    spread = False
+    for below, t in itertools.pairwise(stack):  # shaft names in the shafts' order, a line apart
+        y_text = max(t.get_position()[1] / k, below.get_position()[1] / k + tall)
+        spread = spread or y_text > t.get_position()[1] / k + 1e-9
+        t.set_y(y_text * k)
+    if _declutter(fig, ax, texts) or spread:  # names moved apart: each shaft's name on a leader to its shaft
+        for t in texts:
+            if t.get_gid() in shafts:
+                y_text = t.get_position()[1]
+                t.set_x((x_left - 0.45 * sc.W) * k)
+                _line(ax, [x_left - 0.42 * sc.W, x_left - 0.2 * sc.W, x_left], [y_text / k, y_text / k,
+                      shafts[t.get_gid()]], k, color="0.6", lw=0.4)
     name = getattr(mech, "name", "") or "mechanism"
     head = title or f"{name}: kinematic scheme (half section)"
     if st is not None:
         parts = [f"B{brakes.index(b) + 1} holds {b}" for b in brakes if b in engaged_b]
         parts += [f"K{clutches.index(p) + 1} joins {p[0]}+{p[1]}" for p in clutches if frozenset(p) in engaged_k]
+        parts += [f"{name} {part}" for name, part in status.items()]
         head += f"\nstate {st.name}: {', '.join(parts) or 'no brake or clutch'}"
+        if shift is not None and shift.speeds is None:
+            head += "; free: no one-way clutch holds it in drive, no ratio"
     ax.set_title(head, fontsize=style.FONT)
     return style.finish(fig)
+
+
+def _renderer(fig: Figure) -> Any:
+    """``fig`` drawn (laid out), and its renderer to measure text with."""
+    if not hasattr(fig.canvas, "get_renderer"):
+        from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+        FigureCanvasAgg(fig)
+    fig.canvas.draw()
+    return fig.canvas.get_renderer()  # type: ignore[attr-defined]
+
+
+def _declutter(fig: Figure, ax: Any, texts: list[Any], pad: float = 2.0) -> bool:
+    """Move overlapping texts of ``ax`` apart vertically (each pair by half its overlap, in a few
+    rounds), as drawn in ``fig``; True if any moved."""
+    renderer = _renderer(fig)
+    to_data = ax.transData.inverted()
+    floor = ax.transData.transform((0, 0))[1]  # none goes below the main axis
+    moved = False
+    for _ in range(80):
+        boxes = [t.get_window_extent(renderer) for t in texts]
+        shift = [max(0.0, floor - box.y0) for box in boxes]
+        for i, j in itertools.combinations(range(len(texts)), 2):
+            a, b = boxes[i], boxes[j]
+            if min(a.x1, b.x1) - max(a.x0, b.x0) > -pad and min(a.y1, b.y1) - max(a.y0, b.y0) > -pad:
+                push = (min(a.y1, b.y1) - max(a.y0, b.y0) + pad) / 2 + 0.5
+                up, down = (i, j) if a.y0 + a.y1 >= b.y0 + b.y1 else (j, i)
+                if boxes[down].y0 - push < floor:  # the lower one on the floor: the upper one moves the whole way
+                    shift[up] += 2 * push
+                    continue
+                shift[up] += push
+                shift[down] -= push
+        if not any(shift):
+            break
+        moved = True
+        for t, box, dy in zip(texts, boxes, shift):
+            if dy:
+                y0 = to_data.transform((box.x0, box.y0))[1]
+                y1 = to_data.transform((box.x0, box.y0 + dy))[1]
+                x, y = t.get_position() if not hasattr(t, "xyann") else t.xyann
+                if hasattr(t, "xyann"):
+                    t.xyann = (x, y + y1 - y0)
+                else:
+                    t.set_y(y + y1 - y0)
+    return moved
 
 
 def _teeth(mech: Mechanism, gear: str) -> str:
