@@ -483,7 +483,7 @@ def scheme_figure(mech: Mechanism, state: Any = None, *, length_unit: str = "mm"
     ax.set_ylim(-0.04 * sc.R * k, (sc.housing + 1.5 * sc.band) * k)
     shafts = {f"link:{L.name}": sc.level[L.name] for L in mech.links if L.kind is LinkKind.CENTRAL}
     texts = [t for t in ax.texts if t.get_text()]
-    stack = sorted((t for t in texts if t.get_gid() in shafts), key=lambda t: shafts[t.get_gid()])
+    stack = sorted((t for t in texts if t.get_gid() in shafts), key=lambda t: shafts[str(t.get_gid())])
     renderer = _renderer(fig)
     tall = max([t.get_window_extent(renderer).height for t in stack] + [0.0]) * 1.15
     tall = (ax.transData.inverted().transform((0, tall))[1] - ax.transData.inverted().transform((0, 0))[1]) / k
@@ -498,7 +498,7 @@ def scheme_figure(mech: Mechanism, state: Any = None, *, length_unit: str = "mm"
                 y_text = t.get_position()[1]
                 t.set_x((x_left - 0.45 * sc.W) * k)
                 _line(ax, [x_left - 0.42 * sc.W, x_left - 0.2 * sc.W, x_left], [y_text / k, y_text / k,
-                      shafts[t.get_gid()]], k, color="0.6", lw=0.4)
+                      shafts[str(t.get_gid())]], k, color="0.6", lw=0.4)
     name = getattr(mech, "name", "") or "mechanism"
     head = title or f"{name}: kinematic scheme (half section)"
     if st is not None:
@@ -635,7 +635,8 @@ def lever_figure(mech: Mechanism, state: Any = None, *, title: str | None = None
             ax.plot([-0.92 * wmax, -0.75 * wmax, -0.08 * wmax], [ly, ly, y], color="0.6", lw=0.4)  # a leader
             t.set_gid(f"name:{_name(nm)}{tag}")
             if nm in held and st is not None:
-                ax.plot([-0.3 * wmax, -0.1 * wmax], [y, y], color=_ON, lw=2.0)
+                (ground,) = ax.plot([-0.3 * wmax, -0.1 * wmax], [y, y], color=_ON, lw=2.0)
+                ground.set_gid(f"ground:{_name(nm)}{tag}")
                 for j in range(3):
                     xx = -0.3 * wmax + j * 0.08 * wmax
                     ax.plot([xx, xx - 0.05 * wmax], [y, y - 0.03], color=_ON, lw=0.7)
