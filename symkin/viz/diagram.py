@@ -18,8 +18,14 @@ before a number looks odd:
   the held nodes are grounded and each node's speed per unit input speed is drawn as a
   horizontal arrow: the arrow tips lie on a straight line.
 
+One-way clutches are drawn like a brake or a clutch with a roller between the races; with a
+state, one that holds is highlighted and one that overruns dashed.  Planetary sets joined by a
+single link (the ZF 8HP's four) are separate levers side by side on one speed scale; a state
+no one-way clutch holds is free and drawn without speeds.
+
 Elements carry SVG ids (``gear:NAME``, ``mesh:A-B``, ``link:NAME``, ``brake:LINK``,
-``clutch:A+B``, ``node:NAME``, ``speed:NAME``) so that a drawing can be read back.
+``clutch:A+B``, ``oneway:NAME``, ``node:NAME``, ``speed:NAME``, ``ground:NAME``; on a diagram
+of several levers ``node:NAME@K`` for lever K) so that a drawing can be read back.
 
     >>> from symkin.trains import load_train
     >>> fig = diagram(load_train("simple"), state="low")
