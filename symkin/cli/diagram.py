@@ -77,6 +77,9 @@ def run_diagram(args: Any) -> Any:
 
         shift = train.shift(state)
         w_in = S.omega(train.link(state.input).name)
-        data["speeds_per_input"] = {n: exact_json(sp.cancel(v / w_in)) for n, v in shift.speeds.items()}
+        data["speeds_per_input"] = {} if shift.speeds is None else \
+            {n: exact_json(sp.cancel(v / w_in)) for n, v in shift.speeds.items()}
+        if shift.drive is not None:  # one-way clutches: which hold, which overrun; free: no ratio, no speeds
+            data.update(free=shift.free, one_way=dict(shift.drive.status))
     title = train.name or str(args.train)
     return emit(f"{kind} of {title}{f', state {state.name}' if state else ''} written to {out}", data)

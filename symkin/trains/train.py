@@ -129,7 +129,8 @@ class ShiftTable:
 
     def __repr__(self) -> str:
         """``ShiftTable('simple planetary', low 4, reverse -3, overdrive 3/4)``, under 200 characters."""
-        return short_repr("ShiftTable", repr(self.train.name), *(f"{s.state.name} {s.ratio.rhs}" for s in self.shifts))
+        return short_repr("ShiftTable", repr(self.train.name), *(f"{s.state.name} {'free' if s.ratio is None else s.ratio.rhs}"
+                                                                        for s in self.shifts))
 
     def __iter__(self) -> Any:
         return iter(self.shifts)

@@ -18,8 +18,14 @@ before a number looks odd:
   the held nodes are grounded and each node's speed per unit input speed is drawn as a
   horizontal arrow: the arrow tips lie on a straight line.
 
+One-way clutches are drawn like a brake or a clutch with a roller between the races; with a
+state, one that holds is highlighted and one that overruns dashed.  Planetary sets joined by a
+single link (the ZF 8HP's four) are separate levers side by side on one speed scale; a state
+no one-way clutch holds is free and drawn without speeds.
+
 Elements carry SVG ids (``gear:NAME``, ``mesh:A-B``, ``link:NAME``, ``brake:LINK``,
-``clutch:A+B``, ``node:NAME``, ``speed:NAME``) so that a drawing can be read back.
+``clutch:A+B``, ``oneway:NAME``, ``node:NAME``, ``speed:NAME``, ``ground:NAME``; on a diagram
+of several levers ``node:NAME@K`` for lever K) so that a drawing can be read back.
 
     >>> from symkin.trains import load_train
     >>> fig = diagram(load_train("simple"), state="low")
@@ -50,6 +56,8 @@ __all__ = ["diagram", "scheme_figure", "lever_figure", "scheme_svg", "text_as_te
 LENGTH_UNITS = {"mm": 1.0, "cm": 0.1, "m": 0.001, "in": 1 / 25.4}
 _INK, _GREY, _ON = "#000000", "0.6", style.PALETTE[1]
 _IN, _OUT = style.PALETTE[0], style.PALETTE[2]
+#: A one-way clutch that overruns in the state shown (dashed; one that holds has the highlight colour).
+_OVERRUN = style.PALETTE[5]
 #: A gear label's box: white under the text, so that lines behind it do not cross it.
 _CLEAR = {"boxstyle": "square,pad=0.1", "facecolor": "white", "edgecolor": "none", "alpha": 0.85}
 
@@ -230,6 +238,16 @@ def _state_of(mech: Mechanism, state: Any) -> Any:
     return mech.state(state) if isinstance(state, str) else state
 
 
+def _engaged(mech: Mechanism, st: Any, shift: Any) -> tuple[tuple[str, ...], list[tuple[str, str]]]:
+    """The brakes and clutch pairs that hold ``st`` in drive: its own and the one-way clutches that
+    engage (:meth:`~symkin.trains.Train.engaged`); its own alone when it is free."""
+    if getattr(mech, "one_ways", ()) and shift.speeds is not None:
+        brakes, clutches = mech.engaged(st)  # type: ignore[attr-defined]
+    else:
+        brakes, clutches = st.brakes, st.clutches
+    return tuple(brakes), [(mech.link(a).name, mech.link(b).name) for a, b in clutches]
+
+
 def _controls(mech: Mechanism) -> tuple[list[str], list[tuple[str, str]]]:
     """Every brake and clutch the train's states use, in file order (links by their own names)."""
     brakes: list[str] = []
@@ -265,6 +283,10 @@ def scheme_figure(mech: Mechanism, state: Any = None, *, length_unit: str = "mm"
     for pair in clutches:
         x_ctrl[("K", pair)] = at + sc.W / 2
         at += sc.W
+    one_ways = tuple(getattr(mech, "one_ways", ()))
+    for ow in one_ways:
+        x_ctrl[("F", ow.name)] = at + sc.W / 2
+        at += sc.W
     x_left = -0.9 * sc.W
     height = sc.housing + sc.band
     width_in = style.PAGE
@@ -278,6 +300,8 @@ def scheme_figure(mech: Mechanism, state: Any = None, *, length_unit: str = "mm"
     ax.tick_params(labelsize=style.SMALL)
     ax.set_ylabel(style.label("radius", length_unit), fontsize=style.FONT)
     _line(ax, [x_left, at], [0, 0], k, gid="axis:main", lw=0.6, ls=(0, (8, 2, 1, 2)), color=_GREY)
+    shift = mech.shift(st) if st is not None and one_ways else None  # type: ignore[attr-defined]
+    status = dict(shift.drive.status) if shift is not None and shift.drive is not None else {}
     engaged_b = {mech.link(b).name for b in st.brakes} if st else set()
     engaged_k = {frozenset((mech.link(a).name, mech.link(b).name)) for a, b in st.clutches} if st else set()
     inp = mech.link(st.input).name if st else None
@@ -422,6 +446,28 @@ def scheme_figure(mech: Mechanism, state: Any = None, *, length_unit: str = "mm"
             reach[n].append(x)
         ax.annotate(f"K{clutches.index(pair) + 1}", ((x + sc.w / 2 + sc.gap / 2) * k, mid * k), fontsize=style.SMALL,
                     ha="left", va="center", color=c if on else "0.3")
+    for ow in one_ways:  # like a brake or a clutch, with a roller between its races: a freewheel
+        x = x_ctrl[("F", ow.name)]
+        part = status.get(ow.name)
+        c, lw, ls = {"holds": (_ON, 2.0, "-"), "overruns": (_OVERRUN, 1.2, "--")}.get(part or "", (_GREY, 1.0, "-"))
+        ends = [sc.housing if n == FRAME else sc.level[mech.link(n).name] for n in (ow.link, ow.other)]
+        ya, yb = sorted(ends)
+        mid = (ya + yb) / 2
+        h = min(sc.delta / 3, (yb - ya) / 4) if FRAME not in (ow.link, ow.other) else sc.band
+        _line(ax, [x, x], [ya, mid - h], k, gid=f"oneway:{ow.name}", color=c, lw=lw, ls=ls)
+        _line(ax, [x, x], [mid + h, yb], k, color=c, lw=lw, ls=ls)
+        for yy in (mid - h, mid + h):
+            _line(ax, [x - sc.w / 2, x + sc.w / 2], [yy, yy], k, color=c, lw=lw + 0.6)
+        _line(ax, [x - sc.w / 3, x + sc.w / 3], [mid - 0.7 * h, mid + 0.7 * h], k, color=c, lw=0.8)  # the sprag
+        ax.plot([x * k], [mid * k], marker="o", markersize=3.5, markerfacecolor="white", color=c)  # the roller
+        for n in (ow.link, ow.other):
+            if n == FRAME:
+                _ground(ax, x, sc.housing, sc.w / 2, k)
+            else:
+                reach[mech.link(n).name].append(x)
+        t = ax.text((x + sc.w / 2 + sc.gap / 2) * k, mid * k, f"{ow.name} (one-way)", fontsize=style.SMALL, ha="left",
+                    va="center", color=c if part in ("holds", "overruns") else "0.3")
+        t.set_gid(f"oneway-name:{ow.name}")
     # shafts of the links on the main axis, named at their left ends
     for L in mech.links:
         if L.kind is not LinkKind.CENTRAL:
@@ -431,23 +477,90 @@ def scheme_figure(mech: Mechanism, state: Any = None, *, length_unit: str = "mm"
         _line(ax, [x_left, max(ends)], [y, y], k, gid=f"shaft:{L.name}", color=colour(L.name),
               lw=1.6 if L.name in (inp, out) else 1.0)
         label_at[L.name] = (x_left - sc.gap / 2, y, "right")
-    if any(L.kind is LinkKind.FRAME and L.gears for L in mech.links) or brakes:
+    if any(L.kind is LinkKind.FRAME and L.gears for L in mech.links) or brakes or \
+            any(FRAME in (ow.link, ow.other) for ow in one_ways):
         label_at[FRAME] = (x_left - sc.gap / 2, sc.housing, "right")
         _line(ax, [x_left, x_left + sc.w], [sc.housing, sc.housing], k, lw=0.6, color=_GREY)
     for name, (x, y, ha) in label_at.items():
         word = _name(name) + (" (in)" if name == inp else " (out)" if name == out else "")
         t = ax.text(x * k, y * k, word, fontsize=style.FONT, ha=ha, va="center", fontweight="bold", color=colour(name))
         t.set_gid(f"link:{_name(name)}")
-    ax.set_xlim((x_left - 1.6 * sc.W) * k, (at + 0.2 * sc.W) * k)
+    ax.set_xlim((x_left - 2.2 * sc.W) * k, (at + 0.2 * sc.W) * k)
     ax.set_ylim(-0.04 * sc.R * k, (sc.housing + 1.5 * sc.band) * k)
+    shafts = {f"link:{L.name}": sc.level[L.name] for L in mech.links if L.kind is LinkKind.CENTRAL}
+    texts = [t for t in ax.texts if t.get_text()]
+    stack = sorted((t for t in texts if t.get_gid() in shafts), key=lambda t: shafts[str(t.get_gid())])
+    renderer = _renderer(fig)
+    tall = max([t.get_window_extent(renderer).height for t in stack] + [0.0]) * 1.15
+    tall = (ax.transData.inverted().transform((0, tall))[1] - ax.transData.inverted().transform((0, 0))[1]) / k
+    spread = False
+    for below, t in itertools.pairwise(stack):  # shaft names in the shafts' order, a line apart
+        y_text = max(t.get_position()[1] / k, below.get_position()[1] / k + tall)
+        spread = spread or y_text > t.get_position()[1] / k + 1e-9
+        t.set_y(y_text * k)
+    if _declutter(fig, ax, texts) or spread:  # names moved apart: each shaft's name on a leader to its shaft
+        for t in texts:
+            if t.get_gid() in shafts:
+                y_text = t.get_position()[1]
+                t.set_x((x_left - 0.45 * sc.W) * k)
+                _line(ax, [x_left - 0.42 * sc.W, x_left - 0.2 * sc.W, x_left], [y_text / k, y_text / k,
+                      shafts[str(t.get_gid())]], k, color="0.6", lw=0.4)
     name = getattr(mech, "name", "") or "mechanism"
     head = title or f"{name}: kinematic scheme (half section)"
     if st is not None:
         parts = [f"B{brakes.index(b) + 1} holds {b}" for b in brakes if b in engaged_b]
         parts += [f"K{clutches.index(p) + 1} joins {p[0]}+{p[1]}" for p in clutches if frozenset(p) in engaged_k]
+        parts += [f"{name} {part}" for name, part in status.items()]
         head += f"\nstate {st.name}: {', '.join(parts) or 'no brake or clutch'}"
+        if shift is not None and shift.speeds is None:
+            head += "; free: no one-way clutch holds it in drive, no ratio"
     ax.set_title(head, fontsize=style.FONT)
     return style.finish(fig)
+
+
+def _renderer(fig: Figure) -> Any:
+    """``fig`` drawn (laid out), and its renderer to measure text with."""
+    if not hasattr(fig.canvas, "get_renderer"):
+        from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+        FigureCanvasAgg(fig)
+    fig.canvas.draw()
+    return fig.canvas.get_renderer()  # type: ignore[attr-defined]
+
+
+def _declutter(fig: Figure, ax: Any, texts: list[Any], pad: float = 2.0) -> bool:
+    """Move overlapping texts of ``ax`` apart vertically (each pair by half its overlap, in a few
+    rounds), as drawn in ``fig``; True if any moved."""
+    renderer = _renderer(fig)
+    to_data = ax.transData.inverted()
+    floor = ax.transData.transform((0, 0))[1]  # none goes below the main axis
+    moved = False
+    for _ in range(80):
+        boxes = [t.get_window_extent(renderer) for t in texts]
+        shift = [max(0.0, floor - box.y0) for box in boxes]
+        for i, j in itertools.combinations(range(len(texts)), 2):
+            a, b = boxes[i], boxes[j]
+            if min(a.x1, b.x1) - max(a.x0, b.x0) > -pad and min(a.y1, b.y1) - max(a.y0, b.y0) > -pad:
+                push = (min(a.y1, b.y1) - max(a.y0, b.y0) + pad) / 2 + 0.5
+                up, down = (i, j) if a.y0 + a.y1 >= b.y0 + b.y1 else (j, i)
+                if boxes[down].y0 - push < floor:  # the lower one on the floor: the upper one moves the whole way
+                    shift[up] += 2 * push
+                    continue
+                shift[up] += push
+                shift[down] -= push
+        if not any(shift):
+            break
+        moved = True
+        for t, box, dy in zip(texts, boxes, shift):
+            if dy:
+                y0 = to_data.transform((box.x0, box.y0))[1]
+                y1 = to_data.transform((box.x0, box.y0 + dy))[1]
+                x, y = t.get_position() if not hasattr(t, "xyann") else t.xyann
+                if hasattr(t, "xyann"):
+                    t.xyann = (x, y + y1 - y0)
+                else:
+                    t.set_y(y + y1 - y0)
+    return moved
 
 
 def _teeth(mech: Mechanism, gear: str) -> str:
@@ -483,18 +596,27 @@ def lever_figure(mech: Mechanism, state: Any = None, *, title: str | None = None
         raise InputError("this train has no lever to draw (its tooth numbers are symbolic, or no set of meshes "
                          "shares a carrier)")
     speeds: dict[str, Any] = {}
+    free = False
+    held = {FRAME}
+    joined_pairs: list[tuple[str, str]] = []
     if st is not None:
         shift = mech.shift(st)  # type: ignore[attr-defined]
-        w_in = S.omega(mech.link(st.input).name)
-        speeds = {n: sp.cancel(v / w_in) for n, v in shift.speeds.items()}
-        speeds[FRAME] = sp.Integer(0)
-    held = {mech.link(b).name for b in st.brakes} | {FRAME} if st else {FRAME}
+        brakes, joined_pairs = _engaged(mech, st, shift)
+        held |= {mech.link(b).name for b in brakes}
+        free = shift.speeds is None  # no one-way clutch holds it in drive: no ratio, no speeds
+        if not free:
+            w_in = S.omega(mech.link(st.input).name)
+            speeds = {n: sp.cancel(v / w_in) for n, v in shift.speeds.items()}
+            speeds[FRAME] = sp.Integer(0)
     inp = mech.link(st.input).name if st else None
     out = mech.link(st.output).name if st else None
     n = len(found)
     fig = style.new_figure(min(style.PAGE, 2.4 * n + 1.2), 3.4)
-    axes = fig.subplots(1, n, squeeze=False)[0]
-    for lever, ax in zip(found, axes):
+    axes = fig.subplots(1, n, squeeze=False, sharex=True)[0]  # one speed scale: joined nodes' arrows compare
+    numeric = {nm: float(v) for nm, v in speeds.items() if not sp.sympify(v).free_symbols}
+    wmax = max([abs(numeric[nm]) for lv in found for nm in lv.positions if nm in numeric] + [1.0])
+    for index, (lever, ax) in enumerate(zip(found, axes), 1):
+        tag = f"@{index}" if n > 1 else ""  # a link on two levers (a single link joins them): one id per lever
         pos = lever.positions
         lo, hi = min(pos.values()), max(pos.values())
         span = hi - lo or 1
@@ -505,28 +627,28 @@ def lever_figure(mech: Mechanism, state: Any = None, *, title: str | None = None
         ax.yaxis.set_visible(False)
         ax.tick_params(labelsize=style.SMALL)
         ax.plot([0, 0], [0, 1], color=_INK, lw=2.2, solid_capstyle="round")
-        vals = {nm: float(speeds[nm]) for nm in pos if nm in speeds and not sp.sympify(speeds[nm]).free_symbols}
-        wmax = max([abs(v) for v in vals.values()] + [1.0])
+        vals = {nm: numeric[nm] for nm in pos if nm in numeric}
         ax.set_xlim(-2.3 * wmax, 1.4 * wmax)
         order = sorted(pos, key=lambda nm: ys[nm])
         label_y = _spread([ys[nm] for nm in order], 0.075)
         for nm, ly in zip(order, label_y):
             y = ys[nm]
             (node,) = ax.plot([-0.06 * wmax, 0.06 * wmax], [y, y], color=_INK, lw=1.2)
-            node.set_gid(f"node:{_name(nm)}")
+            node.set_gid(f"node:{_name(nm)}{tag}")
             word = _name(nm) + (" (in)" if nm == inp else " (out)" if nm == out else "")
             c = _IN if nm == inp else _OUT if nm == out else _INK
             t = ax.text(-0.95 * wmax, ly, word, fontsize=style.FONT, ha="right", va="center", color=c, fontweight="bold")
             ax.plot([-0.92 * wmax, -0.75 * wmax, -0.08 * wmax], [ly, ly, y], color="0.6", lw=0.4)  # a leader
-            t.set_gid(f"name:{_name(nm)}")
+            t.set_gid(f"name:{_name(nm)}{tag}")
             if nm in held and st is not None:
-                ax.plot([-0.3 * wmax, -0.1 * wmax], [y, y], color=_ON, lw=2.0)
+                (ground,) = ax.plot([-0.3 * wmax, -0.1 * wmax], [y, y], color=_ON, lw=2.0)
+                ground.set_gid(f"ground:{_name(nm)}{tag}")
                 for j in range(3):
                     xx = -0.3 * wmax + j * 0.08 * wmax
                     ax.plot([xx, xx - 0.05 * wmax], [y, y - 0.03], color=_ON, lw=0.7)
             if nm in vals:
                 (arrow,) = ax.plot([0, vals[nm]], [y, y], color=c if c != _INK else style.PALETTE[3], lw=1.6)
-                arrow.set_gid(f"speed:{_name(nm)}")
+                arrow.set_gid(f"speed:{_name(nm)}{tag}")
                 ax.plot([vals[nm]], [y], marker=">" if vals[nm] >= 0 else "<", color=arrow.get_color(), markersize=4)
         # spacing of neighbouring nodes, in tooth-number units, between the names and the bar
         gaps = [(a, b) for a, b in itertools.pairwise(order) if pos[b] != pos[a]]
@@ -540,7 +662,9 @@ def lever_figure(mech: Mechanism, state: Any = None, *, title: str | None = None
                 a0, b0 = (float(v) for v in line)
                 xs = [a0 + b0 * (lo + span * y) for y in (0.0, 1.0)]
                 ax.plot(xs, [0, 1], color="0.4", lw=0.7, ls="--")
-        if st is not None:
+        if n > 1:
+            ax.set_title(f"lever {index}", fontsize=style.SMALL)
+        if st is not None and not free:
             ax.set_xlabel(style.label("speed / input speed", "-"), fontsize=style.FONT)
             ax.axvline(0, color="0.85", lw=0.5, zorder=0)
         else:
@@ -550,9 +674,13 @@ def lever_figure(mech: Mechanism, state: Any = None, *, title: str | None = None
     head = title or f"{name}: lever diagram (node spacing by tooth numbers)"
     if st is not None:
         head += f"\nstate {st.name}: {_name(inp or '')} drives, {_name(out or '')} driven"
-        joined = [f"{mech.link(a).name}+{mech.link(b).name}" for a, b in st.clutches]
+        joined = [f"{_name(mech.link(a).name)}+{_name(mech.link(b).name)}" for a, b in joined_pairs]
         if joined:
             head += f", {', '.join(joined)} joined"
+        if free:
+            head += "; free: no one-way clutch holds it in drive, no ratio, no node speeds"
+    if n > 1:
+        head += "\n(a link on two levers joins them: its nodes turn at one speed)"
     fig.suptitle(head, fontsize=style.FONT)
     return style.finish(fig)
 

@@ -72,3 +72,14 @@ def test_an_unknown_length_unit_is_refused(tmp_path, capsys):
     code, _, err = _run(capsys, "diagram", "--train", "simple", "--length-unit", "furlong", "--out", str(tmp_path / "x.svg"))
     assert code == 2 and "--length-unit 'furlong': choose one of mm, cm, m, in" in err
     assert list(tmp_path.iterdir()) == []
+
+
+def test_the_json_says_which_one_way_clutch_holds_and_a_free_state_has_no_speeds(tmp_path, capsys):
+    """The hub in low: its ring pawls held out, the cage (slower than the ring it is driven by) drives
+    the hub through its pawls: ratio w_D / w_H = w_R / w_C = 1 + z_S / z_R = 4/3 (sun 18, ring 54)."""
+    out = tmp_path / "hub.svg"
+    code, text, _ = _run(capsys, "diagram", "--train", "hub-3speed", "--state", "low", "--out", str(out), "--json")
+    data = json.loads(text)
+    assert code == 0 and data["free"] is False
+    assert data["one_way"] == {"ring_pawls": "released", "cage_pawls": "holds"}
+    assert data["speeds_per_input"]["H"]["exact"] == "3/4"

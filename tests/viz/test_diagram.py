@@ -145,27 +145,52 @@ def test_a_state_highlights_its_brakes_and_clutches_and_names_input_and_output(t
 
 @pytest.mark.parametrize("name", READY)
 def test_the_lever_diagram_is_linear_in_every_state(name, tmp_path):
+    """Each lever's arrow tips on one straight line over its own nodes (the lever's linearity),
+    held nodes at rest, and a link on two levers (sets joined by a single link, as the 8HP's four
+    levers are) at one speed on both: its two arrows equally long on the shared speed scale."""
     train = load_train(name)
     for state in train.states:
         ids = _svg(diagram(train, state.name, lever=True), tmp_path / f"{name}-{state.name}.svg")
-        tips = []
+        tips: dict[str, list[tuple[float, float]]] = {}
+        length: dict[str, list[float]] = {}
         for key, group in ids.items():
             if key.startswith("speed:"):
                 (x0, y0), (x1, y1) = _points(group)[:2]
                 assert y0 == pytest.approx(y1)
-                tips.append((x1, y0))
+                link, _, lever = key[6:].partition("@")
+                tips.setdefault(lever, []).append((x1, y0))
+                length.setdefault(link, []).append(x1 - x0)
                 node = _points(ids[f"node:{key[6:]}"])
                 assert node[0][1] == pytest.approx(y0)
-        assert len(tips) >= 2
-        tips.sort(key=lambda p: p[1])
-        (xa, ya), (xb, yb) = tips[0], tips[-1]
-        for x, y in tips[1:-1]:  # every tip on the line through the outermost two
-            assert abs((x - xa) * (yb - ya) - (xb - xa) * (y - ya)) < 1e-3 * abs(yb - ya) * max(1.0, abs(xb - xa)), \
-                (state.name, x, y)
-        held = state.brakes
-        for b in held:
-            (x0, _), (x1, _) = _points(ids[f"speed:{b}"])[:2]
-            assert x1 == pytest.approx(x0)
+        assert tips
+        for lever, points in tips.items():
+            assert len(points) >= 2, (state.name, lever)
+            points.sort(key=lambda p: p[1])
+            (xa, ya), (xb, yb) = points[0], points[-1]
+            for x, y in points[1:-1]:  # every tip on the line through the outermost two
+                assert abs((x - xa) * (yb - ya) - (xb - xa) * (y - ya)) < 1e-3 * abs(yb - ya) * max(1.0, abs(xb - xa)), \
+                    (state.name, lever, x, y)
+        for link, arrows in length.items():
+            assert max(arrows) - min(arrows) < 1e-3 * max(1.0, *map(abs, arrows)), (state.name, link, arrows)
+        for b in state.brakes:
+            for arrow in length[train.link(b).name]:
+                assert arrow == pytest.approx(0, abs=1e-6)
+
+
+def test_the_8hp_s_levers_are_its_four_sets_joined_by_single_links(tmp_path):
+    """The ZF 8HP's four simple sets share one link pairwise, never two: four levers, each with
+    |S - C| : |C - R| = z_R : z_S typed from the file, joined where a link recurs."""
+    data = _file("eight-speed")
+    ids = _svg(diagram(load_train("eight-speed"), "first", lever=True), tmp_path / "8hp.svg")
+    sets = {1: ("S12", "C1", "R1", "s1", "r1"), 2: ("S12", "IN", "R2", "s2", "r2"),
+            3: ("R2", "C3", "R3", "s3", "r3"), 4: ("R3", "OUT", "C1", "s4", "r4")}
+    teeth = {g: (t if isinstance(t, int) else t["teeth"]) for link in data["links"].values()
+             for g, t in link.get("gears", {}).items()}
+    for k, (sun, carrier, ring, zs, zr) in sets.items():
+        y = {n: _points(ids[f"node:{n}@{k}"])[0][1] for n in (sun, carrier, ring)}
+        assert (y[sun] - y[carrier]) * (y[ring] - y[carrier]) < 0, k
+        assert abs(y[sun] - y[carrier]) / abs(y[carrier] - y[ring]) == pytest.approx(teeth[zr] / teeth[zs]), k
+    assert not any(key.startswith("node:") and "@" not in key for key in ids)
 
 
 def test_the_lever_s_node_spacing_is_the_tooth_numbers_of_a_simple_set(tmp_path):
