@@ -31,6 +31,7 @@ from symkin.parsing.numbers import (
     SECONDS,
     _bounded,
     _check_text,
+    exact_digits,
     parse_number,
 )
 
@@ -103,7 +104,9 @@ def parse_expression(
     except (RecursionError, MemoryError):
         raise InputError(f"{what} is nested too deeply to read; at most {MAX_DEPTH} levels are accepted") from None
     with time_limit(SECONDS, f"{what} took longer than {SECONDS:g} s to build and bound; write a simpler expression"):
-        return _Builder(allowed, what, source).build(tree.body, 0)
+        expr = _Builder(allowed, what, source).build(tree.body, 0)
+        exact_digits(expr, what)  # every exact number in it, once (each step bounded its own on the way)
+    return expr
 
 
 #: Operators of one precedence level: a chain of them (a + b - c + ...) is one level of nesting.
@@ -195,6 +198,7 @@ class _Builder:
                 terms.append(term if op is ast.Add else -term)
             total = sp.Add(*terms)  # at most MAX_LENGTH / 2 terms each below 1e300: only the total needs a bound
             self.bounded(total)
+            exact_digits(total.as_coeff_Add()[0], self.what)
             return total
         for op, right in reversed(steps):
             factor = self.build(right, depth + 1)
@@ -208,6 +212,7 @@ class _Builder:
             else:
                 self.bounded(sp.Mul(value, factor, evaluate=False))
                 value = value * factor
+            exact_digits(value.as_coeff_Mul()[0], self.what)  # a long product of exact numbers near 1
         return value
 
     def binop(self, node: ast.BinOp, depth: int) -> sp.Expr:
@@ -219,6 +224,8 @@ class _Builder:
             if (left == 0 or self.sign(left) == 0) and self.sign(right) == -1:
                 raise InputError(f"{self.what} divides by zero")
             self.bounded(sp.Pow(left, right, evaluate=False))
+            if right.is_Rational and (left.is_Rational or left.is_Mul):  # digits before SymPy multiplies them out
+                exact_digits(left, self.what, power=right)
             return left**right
         raise self.fail(f"the operator {type(node.op).__name__} is not allowed")
 
