@@ -102,7 +102,7 @@ def exact_digits(value: sp.Expr, what: str, error: type[Exception] = InputError,
     >>> exact_digits(sp.Rational(10**300 - 1, 10**300), "--length", power=1000)
     Traceback (most recent call last):
     ...
-    symkin.errors.InputError: --length holds an exact number of about 300128 digits (its numerator or denominator); at most 1000 are accepted: write it with fewer digits, or as a decimal
+    symkin.errors.InputError: --length holds an exact number of about 300000 digits (its numerator or denominator); at most 1000 are accepted: write it with fewer digits, or as a decimal
     """
     if value.is_Rational:
         numbers = [value]
@@ -111,8 +111,8 @@ def exact_digits(value: sp.Expr, what: str, error: type[Exception] = InputError,
         numbers = [a.as_coeff_Mul()[0] if a.is_Mul else a.base if a.is_Pow else a for a in numbers]
     else:
         numbers = list(value.atoms(sp.Rational))
-    bits = max((max(int(r.p).bit_length(), int(r.q).bit_length()) for r in numbers), default=0)
-    if bits > 1 and power != 1:
+    bits = max((math.log2(abs(n)) for r in numbers for n in (int(r.p), int(r.q)) if n), default=0.0)
+    if power != 1:
         bits *= math.ceil(abs(power))
     if bits > _EXACT_BITS:
         raise error(
