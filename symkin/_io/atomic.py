@@ -44,11 +44,36 @@ from pathlib import Path
 
 from symkin.errors import InputError
 
-__all__ = ["replacing", "write_atomically", "MANIFEST", "check_replaceable", "recover", "write_manifest", "WRITTEN"]
+__all__ = ["replacing", "write_atomically", "MANIFEST", "check_replaceable", "recover", "write_manifest", "PLACED",
+           "placed"]
 
-#: Every output put in place by this process, in order: what an interrupted command did write
-#: (a signal that lands after the last rename must not be reported as "nothing was written").
-WRITTEN: list[Path] = []
+#: Every output this process put in place, or was about to: its path and the inode of the new file
+#: or folder, noted before the rename.  An interrupt can land just after a rename (a signal is
+#: handled between any two steps, by whichever thread has it unblocked), so what was written is
+#: read from the disk, not from how far the code got: see :func:`placed`.
+PLACED: list[tuple[Path, int]] = []
+
+
+def placed(since: int = 0) -> list[Path]:
+    """The outputs of :data:`PLACED` from the ``since``-th on that are in place: their path holds
+    the file or folder this process built (so they are whole).
+
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     start = len(PLACED)
+    ...     with replacing(Path(d) / "a.txt") as (tmp,):
+    ...         _ = tmp.write_text("x")
+    ...     [p.name for p in placed(start)]
+    ['a.txt']
+    """
+    out = []
+    for path, inode in PLACED[since:]:
+        try:
+            if os.stat(path).st_ino == inode:
+                out.append(path)
+        except OSError:
+            pass
+    return list(dict.fromkeys(out))
 
 #: The manifest symkin writes into a folder it owns: every file's relative path and SHA-256.
 MANIFEST = ".symkin-manifest.json"
@@ -102,9 +127,8 @@ def replacing(target: str | os.PathLike[str]) -> Iterator[tuple[Path]]:
             if err.errno in _UNWRITABLE:
                 raise _unwritable(err, out, "--out") from None
             raise
-        with stop_signals_held():  # in place and recorded, or neither
-            os.replace(tmp, out)
-            WRITTEN.append(out)
+        PLACED.append((out, os.stat(tmp).st_ino))
+        os.replace(tmp, out)
     finally:
         if made:
             tmp.unlink(missing_ok=True)
@@ -383,9 +407,8 @@ def write_atomically(out: Path, build: Callable[[Path], None], *, version: str |
             write_manifest(tmp, version)
             if target.is_dir():
                 _carry(target, tmp, check_replaceable(out), out)
-        with stop_signals_held():  # in place and recorded, or neither
-            old = _swap(tmp, target)
-            WRITTEN.append(out)
+        PLACED.append((out, os.stat(tmp).st_ino))
+        old = _swap(tmp, target)
     except OSError as err:
         if err.errno in _UNWRITABLE:
             raise _unwritable(err, out, "--out") from None

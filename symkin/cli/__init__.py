@@ -224,16 +224,16 @@ def _terminate_as_interrupt() -> Iterator[None]:
 
 def _run(args: argparse.Namespace, prog: str) -> Output | int:
     """The command's output, or the exit status of its failure (reported here)."""
-    from symkin._io.atomic import WRITTEN
+    from symkin._io.atomic import PLACED, placed
 
-    before = len(WRITTEN)
+    before = len(PLACED)
     try:
         with _terminate_as_interrupt():
             return args.run(args)
     except SymkinError as err:
         return _fail(args, prog, "error", one_line(err), EXIT_USAGE)
     except KeyboardInterrupt:
-        return _fail(args, prog, "interrupted", _what_was_written(WRITTEN[before:]), 130)
+        return _fail(args, prog, "interrupted", _what_was_written(placed(before)), 130)
     except BrokenPipeError:
         return EXIT_OK
     except Exception as err:  # a bug: say so in one line, keep the traceback for debugging

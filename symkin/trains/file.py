@@ -153,13 +153,14 @@ def _read_file(path: Path) -> str:
     except OSError as err:
         raise TrainFileError(str(path), "", f"cannot be read ({err.strerror or err}); give a readable UTF-8 TOML "
                              "file") from None
-    with os.fdopen(fd, "rb") as f:
-        mode = os.fstat(fd).st_mode
+    mode = os.fstat(fd).st_mode
+    if not stat.S_ISREG(mode):
+        os.close(fd)
         if stat.S_ISDIR(mode):
             raise TrainFileError(str(path), "", "is a folder; give a train file (TOML)")
-        if not stat.S_ISREG(mode):
-            raise TrainFileError(str(path), "", "is not a regular file (a device, a pipe or a socket); give a train "
-                                 "file (TOML)")
+        raise TrainFileError(str(path), "", "is not a regular file (a device, a pipe or a socket); give a train "
+                             "file (TOML)")
+    with os.fdopen(fd, "rb") as f:
         try:
             data = f.read(MAX_FILE_BYTES + 1)
         except OSError as err:
