@@ -89,6 +89,6 @@ def parse_quantity(value: Any, unit: str, *, what: str = "value", names: Iterabl
 def _well_formed(text: str) -> bool:
     try:
         ast.parse(text.replace("^", "**"), mode="eval")
-    except SyntaxError:
+    except (SyntaxError, ValueError, RecursionError, MemoryError):  # (a byte that is not UTF-8: UnicodeEncodeError)
         return False
     return True
