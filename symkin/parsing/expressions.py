@@ -251,7 +251,7 @@ class _Builder:
             if (left == 0 or self.sign(left) == 0) and self.sign(right) == -1:
                 raise InputError(f"{self.what} divides by zero")
             self.bounded(sp.Pow(left, right, evaluate=False))
-            if right.is_Rational and (left.is_Rational or left.is_Mul):  # digits before SymPy multiplies them out
+            if right.is_Rational:  # digits before SymPy (or a later expand) multiplies them out
                 exact_digits(left, self.what, power=right)
             return left**right
         raise self.fail(f"the operator {type(node.op).__name__} is not allowed")

@@ -96,8 +96,9 @@ def _bounded(value: sp.Expr, what: str, error: type[Exception] = InputError) -> 
 
 
 def exact_digits(value: sp.Expr, what: str, error: type[Exception] = InputError, *, power: Any = 1) -> None:
-    """Refuse an expression whose exact numbers (raised to ``power``, before SymPy raises them)
-    have more than :data:`MAX_EXACT_DIGITS` digits in a numerator or a denominator.
+    """Refuse an expression whose exact numbers (raised to ``power``, before SymPy raises them:
+    a sum raised to a power is multiplied out by a later expand) have more than
+    :data:`MAX_EXACT_DIGITS` digits in a numerator or a denominator.
 
     >>> exact_digits(sp.Rational(10**300 - 1, 10**300), "--length", power=1000)
     Traceback (most recent call last):

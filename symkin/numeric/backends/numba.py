@@ -103,7 +103,7 @@ def _not_private(folder: Path) -> str:
     return ""
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def _warn_not_private(folder: str, problem: str) -> None:
     warnings.warn(
         f"the kernel cache {folder} {problem}, and a cache file there can run code when loaded: kernels are "

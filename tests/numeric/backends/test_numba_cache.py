@@ -16,10 +16,10 @@ import pytest
 
 pytest.importorskip("numba")
 
-import symkin  # noqa: E402
-from symkin.errors import SymkinWarning  # noqa: E402
-from symkin.numeric.backends import numba as numba_backend  # noqa: E402
-from symkin.numeric.backends.numba import kernel_cache_folder  # noqa: E402
+import symkin
+from symkin.errors import SymkinWarning
+from symkin.numeric.backends import numba as numba_backend
+from symkin.numeric.backends.numba import kernel_cache_folder
 
 pytestmark = pytest.mark.skipif(os.name != "posix", reason="file modes and owners are POSIX's")
 
