@@ -79,7 +79,7 @@ def kernel_cache_folder() -> Path | None:
         folder.mkdir(mode=0o700, parents=True, exist_ok=True)
     except OSError:
         return None
-    problem = _not_private(folder) or _not_private(folder / "__pycache__")
+    problem = _not_private(folder) or _not_private(_tightened(folder / "__pycache__"))
     if problem:
         _warn_not_private(str(folder), problem)
         return None
@@ -101,6 +101,16 @@ def _not_private(folder: Path) -> str:
     if os.name == "posix" and st.st_mode & 0o022:
         return "can be written by others (group or all)"
     return ""
+
+
+def _tightened(folder: Path) -> Path:
+    """``folder`` (Numba's ``__pycache__``, made with the umask's permissions: 0775 under a umask
+    of 002) without write permission for others, where it is the user's own."""
+    with contextlib.suppress(OSError, AttributeError):
+        st = folder.stat()
+        if st.st_uid == os.getuid() and st.st_mode & 0o022:
+            folder.chmod(stat.S_IMODE(st.st_mode) & ~0o022)
+    return folder
 
 
 @functools.cache

@@ -71,6 +71,18 @@ def test_a_folder_others_can_write_or_own_is_ignored_with_a_warning(problem, mak
         assert kernel_cache_folder() is None
 
 
+def test_numbas_own_subfolder_made_under_a_loose_umask_is_tightened_not_refused(tmp_path, monkeypatch):
+    folder = tmp_path / "cache"
+    (folder / "__pycache__").mkdir(parents=True)
+    folder.chmod(0o700)
+    (folder / "__pycache__").chmod(0o775)  # what Numba makes under a umask of 002
+    monkeypatch.setenv("SYMKIN_CACHE_DIR", str(folder))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert kernel_cache_folder() == folder
+    assert (folder / "__pycache__").stat().st_mode & 0o777 == 0o755
+
+
 def test_a_poisoned_entry_in_a_shared_folder_never_runs(tmp_path, monkeypatch):
     folder = tmp_path / "cache"
     folder.mkdir(mode=0o700)
