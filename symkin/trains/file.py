@@ -150,8 +150,9 @@ def _read_file(path: Path) -> str:
     would block the open), and at most :data:`MAX_FILE_BYTES` read."""
     try:
         fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_NOCTTY", 0))
-    except OSError as err:
-        raise TrainFileError(str(path), "", f"cannot be read ({err.strerror or err}); give a readable UTF-8 TOML "
+    except (OSError, ValueError) as err:  # (ValueError: a NUL in the name)
+        reason = getattr(err, "strerror", None) or err
+        raise TrainFileError(repr(str(path))[1:-1], "", f"cannot be read ({reason}); give a readable UTF-8 TOML "
                              "file") from None
     mode = os.fstat(fd).st_mode
     if not stat.S_ISREG(mode):

@@ -41,6 +41,7 @@ def test_a_folder_and_a_missing_file_are_one_line(tmp_path):
     (tmp_path / "dir.toml").mkdir()
     refused(str(tmp_path / "dir.toml"), "is a folder")
     refused(str(tmp_path / "none.toml"), "cannot be read")
+    refused("a\x00b.toml", "cannot be read")  # a NUL in the name: ValueError, exit 3 before
 
 
 def test_a_file_beyond_the_size_limit_is_refused_after_reading_only_the_limit(tmp_path, monkeypatch):
