@@ -17,6 +17,9 @@ import tempfile
 import time
 from pathlib import Path
 
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent))  # the checkout: its tests' helpers
+from tests.support.hostile import many_planets
+
 NEAR_ONE = "(1-10**-300)**1000"  # 18 characters, 300,000 digits
 SIMPLE = (Path(__file__).resolve().parent.parent / "symkin" / "trains" / "library" / "simple.toml").read_text()
 AI1 = ["AI1", "--teeth", "20,30,80", "--omega", "4=0", "--omega", "H=1"]
@@ -25,21 +28,13 @@ TRAJECTORY = ["trajectory", *AI1, "--point", "2:10,0", "--turns", "1", "--out", 
 SPEEDS = ["speeds", "--train", "{files}/TRAIN", "--omega", "S=1", "--omega", "R=0"]
 
 
-def planets(n: int) -> str:
-    lines = ['meshes = [' + ", ".join(f'["s", "p{i}"], ["p{i}", "r"]' for i in range(n)) + ']',
-             '[links.S]', 'gears = { s = 30 }', '[links.C]', '[links.R]', 'gears = { r = { teeth = 90, internal = true } }']
-    for i in range(n):
-        lines += [f'[links.P{i}]', 'carrier = "C"', f'gears = {{ p{i} = 30 }}']
-    return "\n".join(lines + ['[states.a]', 'input = "S"', 'output = "C"', 'brakes = ["R"]']) + "\n"
-
-
 def make_files(folder: Path) -> None:
     (folder / "module.toml").write_text(SIMPLE.replace("module = 1", f'module = "{NEAR_ONE}"'))
     (folder / "arm.toml").write_text(SIMPLE.replace('carrier = "C"', f'carrier = "C"\narm = "{NEAR_ONE}"'))
     (folder / "nested.toml").write_text("a = " + "[" * 1000 + "]" * 1000 + "\n")
     (folder / "dotted.toml").write_text(".".join(["a"] * 50_000) + " = 1\n")
-    (folder / "planets1000.toml").write_text(planets(1000))
-    (folder / "planets10000.toml").write_text(planets(10_000))
+    (folder / "planets1000.toml").write_text(many_planets(1000))
+    (folder / "planets10000.toml").write_text(many_planets(10_000))
     (folder / "zero.toml").symlink_to("/dev/zero")
     os.mkfifo(folder / "fifo.toml")
 

@@ -14,19 +14,11 @@ from pathlib import Path
 import pytest
 
 from symkin.trains import file as train_file
-from tests.support.hostile import run, verdict
+from tests.support.hostile import many_planets, run, verdict
 
 SIMPLE = (train_file._library() / "simple.toml").read_text(encoding="utf-8")
 NEAR_ONE = '"(1-10**-300)**1000"'
 SPEEDS = ("speeds", "--train", "TRAIN", "--omega", "S=1", "--omega", "R=0", "--json")
-
-
-def many_planets(n: int) -> str:
-    lines = ['meshes = [' + ", ".join(f'["s", "p{i}"], ["p{i}", "r"]' for i in range(n)) + ']',
-             '[links.S]', 'gears = { s = 30 }', '[links.C]', '[links.R]', 'gears = { r = { teeth = 90, internal = true } }']
-    for i in range(n):
-        lines += [f'[links.P{i}]', 'carrier = "C"', f'gears = {{ p{i} = 30 }}']
-    return "\n".join(lines + ['[states.a]', 'input = "S"', 'output = "C"', 'brakes = ["R"]']) + "\n"
 
 
 #: name -> (how to make the train file in a folder, words the one-line error holds)

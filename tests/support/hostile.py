@@ -135,6 +135,15 @@ LIMIT = 20.0
 WALL_FACTOR = 5
 
 
+def many_planets(n: int) -> str:
+    """A train file of ``n`` planets, each a link of its own on one carrier (sun 30, ring 90, state a: ring held)."""
+    lines = ['meshes = [' + ", ".join(f'["s", "p{i}"], ["p{i}", "r"]' for i in range(n)) + ']',
+             '[links.S]', 'gears = { s = 30 }', '[links.C]', '[links.R]', 'gears = { r = { teeth = 90, internal = true } }']
+    for i in range(n):
+        lines += [f'[links.P{i}]', 'carrier = "C"', f'gears = {{ p{i} = 30 }}']
+    return "\n".join(lines + ['[states.a]', 'input = "S"', 'output = "C"', 'brakes = ["R"]']) + "\n"
+
+
 def seconds_for(value: str) -> float:
     """The wall-clock bound of a run with ``value`` in it."""
     return SHAPES.get(value, LIMIT)

@@ -12,6 +12,7 @@ import pytest
 from symkin.errors import TrainFileError
 from symkin.trains import file as train_file
 from symkin.trains import load_train, read_train
+from tests.support.hostile import many_planets
 
 SIMPLE = (train_file._library() / "simple.toml").read_text(encoding="utf-8")
 
@@ -78,18 +79,9 @@ def test_dots_in_strings_and_comments_and_numbers_are_not_keys():
     assert train.name == "a." * 40 and train.shift("low").ratio.rhs == read_train(SIMPLE).shift("low").ratio.rhs
 
 
-def planets(n: int) -> str:
-    lines = ['meshes = [' + ", ".join(f'["s", "p{i}"], ["p{i}", "r"]' for i in range(n)) + ']',
-             '[links.S]', 'gears = { s = 30 }', '[links.C]', '[links.R]', 'gears = { r = { teeth = 90, internal = true } }']
-    for i in range(n):
-        lines += [f'[links.P{i}]', 'carrier = "C"', f'gears = {{ p{i} = 30 }}']
-    lines += ['[states.a]', 'input = "S"', 'output = "C"', 'brakes = ["R"]']
-    return "\n".join(lines) + "\n"
-
-
 def test_a_train_of_more_links_than_the_limit_is_refused_and_one_below_is_read():
     with pytest.raises(TrainFileError, match=r"\[links\]: 1003 links, more than the 200 symkin models"):
-        read_train(planets(1000), "many.toml")  # 16 s before (load 2.5 s, ratio 14 s)
-    train = read_train(planets(20), "twenty.toml")
+        read_train(many_planets(1000), "many.toml")  # 16 s before (load 2.5 s, ratio 14 s)
+    train = read_train(many_planets(20), "twenty.toml")
     # each planet a link of its own, all on one carrier: sun 30, ring 90, ratio 1 + 90/30 with the ring held
     assert train.shift("a").ratio.rhs == 4
