@@ -36,6 +36,7 @@ import re
 import secrets
 import shutil
 import signal
+import stat
 import tempfile
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
@@ -43,7 +44,36 @@ from pathlib import Path
 
 from symkin.errors import InputError
 
-__all__ = ["replacing", "write_atomically", "MANIFEST", "check_replaceable", "recover", "write_manifest"]
+__all__ = ["replacing", "write_atomically", "MANIFEST", "check_replaceable", "recover", "write_manifest", "PLACED",
+           "placed"]
+
+#: Every output this process put in place, or was about to: its path and the inode of the new file
+#: or folder, noted before the rename.  An interrupt can land just after a rename (a signal is
+#: handled between any two steps, by whichever thread has it unblocked), so what was written is
+#: read from the disk, not from how far the code got: see :func:`placed`.
+PLACED: list[tuple[Path, int]] = []
+
+
+def placed(since: int = 0) -> list[Path]:
+    """The outputs of :data:`PLACED` from the ``since``-th on that are in place: their path holds
+    the file or folder this process built (so they are whole).
+
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     start = len(PLACED)
+    ...     with replacing(Path(d) / "a.txt") as (tmp,):
+    ...         _ = tmp.write_text("x")
+    ...     [p.name for p in placed(start)]
+    ['a.txt']
+    """
+    out = []
+    for path, inode in PLACED[since:]:
+        try:
+            if os.stat(path).st_ino == inode:
+                out.append(path)
+        except OSError:
+            pass
+    return list(dict.fromkeys(out))
 
 #: The manifest symkin writes into a folder it owns: every file's relative path and SHA-256.
 MANIFEST = ".symkin-manifest.json"
@@ -76,6 +106,9 @@ def replacing(target: str | os.PathLike[str]) -> Iterator[tuple[Path]]:
         raise InputError(f"cannot write {out}: the folder {folder} does not exist")
     if out.is_dir():
         raise InputError(f"cannot write {out}: it is a folder; give a file name")
+    special = _special(out)
+    if special:  # (a FIFO would block the check below, and the writer waiting on it for ever)
+        raise InputError(f"cannot write {out}: it is {special}, not a file; give a file name")
     kind = _not_its_kind(out)
     if kind:
         raise InputError(f"cannot write {out}: it exists and is not {kind} (a file of yours?); choose another "
@@ -94,6 +127,7 @@ def replacing(target: str | os.PathLike[str]) -> Iterator[tuple[Path]]:
             if err.errno in _UNWRITABLE:
                 raise _unwritable(err, out, "--out") from None
             raise
+        PLACED.append((out, os.stat(tmp).st_ino))
         os.replace(tmp, out)
     finally:
         if made:
@@ -108,6 +142,18 @@ _SIGNATURES = {
     ".svg": ("an SVG image", 0, (b"<?xml", b"<svg")), ".html": ("an HTML page", 0, (b"<",)),
     ".mp4": ("an MP4 video", 4, (b"ftyp",)), ".dxf": ("a DXF drawing", 0, (b"0", b"999")),
 }
+
+
+def _special(path: Path) -> str:
+    """What ``path`` is when it exists and is neither a regular file nor a folder (links followed), else ""."""
+    try:
+        mode = path.stat().st_mode
+    except (OSError, ValueError):
+        return ""
+    if stat.S_ISREG(mode) or stat.S_ISDIR(mode):
+        return ""
+    return {stat.S_IFIFO: "a named pipe (FIFO)", stat.S_IFSOCK: "a socket", stat.S_IFCHR: "a device",
+            stat.S_IFBLK: "a device"}.get(stat.S_IFMT(mode), "not a regular file")
 
 
 def _not_its_kind(out: Path) -> str:
@@ -157,6 +203,9 @@ def _umask() -> int:
 def _hash(path: Path) -> str:
     if path.is_symlink():
         return "symlink:" + os.readlink(path)
+    mode = path.lstat().st_mode
+    if not stat.S_ISREG(mode):  # a FIFO or a device in place of a file: never opened (it could block or never end)
+        return f"special:{stat.S_IFMT(mode):o}"
     digest = hashlib.sha256()
     with open(path, "rb") as f:
         for block in iter(lambda: f.read(1 << 20), b""):
@@ -205,7 +254,8 @@ def _read_manifest(folder: Path) -> dict[str, str] | None:
 def _carry(old: Path, new: Path, added: list[str], out: Path) -> None:
     """Put the user's files of the old folder into the new one: hard links (no copy, and the old
     folder keeps its own until it is removed), or copies where links cannot be made."""
-    clashes = [a for a in added if os.path.lexists(new / a)]
+    clashes = [a for a in added if os.path.lexists(new / a)
+               or any(os.path.lexists(new / p) and not (new / p).is_dir() for p in Path(a).parents)]
     if clashes:
         raise InputError(
             f"--out {out} holds {_names(clashes)}, which you added and where the new report writes its own; "
@@ -357,6 +407,7 @@ def write_atomically(out: Path, build: Callable[[Path], None], *, version: str |
             write_manifest(tmp, version)
             if target.is_dir():
                 _carry(target, tmp, check_replaceable(out), out)
+        PLACED.append((out, os.stat(tmp).st_ino))
         old = _swap(tmp, target)
     except OSError as err:
         if err.errno in _UNWRITABLE:

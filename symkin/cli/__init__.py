@@ -226,13 +226,16 @@ def _terminate_as_interrupt() -> Iterator[None]:
 
 def _run(args: argparse.Namespace, prog: str) -> Output | int:
     """The command's output, or the exit status of its failure (reported here)."""
+    from symkin._io.atomic import PLACED, placed
+
+    before = len(PLACED)
     try:
         with _terminate_as_interrupt():
             return args.run(args)
     except SymkinError as err:
         return _fail(args, prog, "error", one_line(err), EXIT_USAGE)
     except KeyboardInterrupt:
-        return _fail(args, prog, "interrupted", "nothing was written", 130)
+        return _fail(args, prog, "interrupted", _what_was_written(placed(before)), 130)
     except BrokenPipeError:
         return EXIT_OK
     except Exception as err:  # a bug: say so in one line, keep the traceback for debugging
@@ -240,6 +243,17 @@ def _run(args: argparse.Namespace, prog: str) -> Output | int:
             raise
         return _fail(args, prog, "internal error", f"{type(err).__name__}: {one_line(err)} (set SYMKIN_DEBUG=1 for "
                      "details; please report)", EXIT_INTERNAL)
+
+
+def _what_was_written(paths: Sequence[Any]) -> str:
+    """What an interrupted command leaves: the outputs it had put in place (whole), or nothing.
+
+    >>> _what_was_written([]), _what_was_written(["report"])
+    ('nothing was written', 'report was written in full before the interrupt; nothing else was written')
+    """
+    if not paths:
+        return "nothing was written"
+    return f"{', '.join(map(str, dict.fromkeys(paths)))} was written in full before the interrupt; nothing else was written"
 
 
 def _fail(args: argparse.Namespace, prog: str, kind: str, message: str, code: int) -> int:

@@ -8,7 +8,9 @@ names and functions.  This is where the bounds on what a user types hold: at mos
 :data:`MAX_LENGTH` characters and :data:`MAX_DEPTH` levels of nesting, every number in an
 expression (irrational ones and the results of powers and functions included) 0 or between
 1e-300 and 1e300 in size, decided on intervals as it is built (:mod:`symkin._util.bounds`),
-and at most :data:`SECONDS` seconds to read one value.
+every exact number of at most :data:`MAX_EXACT_DIGITS` digits above and below its fraction bar,
+a law of t smooth and its second derivative at most :data:`MAX_LAW_SIZE` nodes, and at most
+:data:`SECONDS` seconds to read one value.
 
     >>> import symkin
     >>> symkin.parse("2*pi*sin(t)", names=("t",))
@@ -28,8 +30,8 @@ from collections.abc import Iterable, Mapping
 import sympy as sp
 
 from symkin.errors import InputError
-from symkin.parsing.expressions import CONSTANTS, FUNCTIONS, MAX_DEPTH, MAX_EXPONENT, parse_expression
-from symkin.parsing.numbers import MAX_DIGITS, MAX_LENGTH, SECONDS, parse_integer, parse_number
+from symkin.parsing.expressions import CONSTANTS, FUNCTIONS, MAX_DEPTH, MAX_EXPONENT, MAX_LAW_SIZE, parse_expression
+from symkin.parsing.numbers import MAX_DIGITS, MAX_EXACT_DIGITS, MAX_LENGTH, SECONDS, parse_integer, parse_number
 from symkin.parsing.quantities import parse_quantity
 from symkin.values import sign_of
 
@@ -45,7 +47,9 @@ __all__ = [
     "MAX_LENGTH",
     "MAX_DEPTH",
     "MAX_DIGITS",
+    "MAX_EXACT_DIGITS",
     "MAX_EXPONENT",
+    "MAX_LAW_SIZE",
     "SECONDS",
 ]
 

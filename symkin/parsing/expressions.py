@@ -16,6 +16,7 @@ allow-list of operators, names and functions, and every constant node is bounded
 from __future__ import annotations
 
 import ast
+import itertools
 from collections.abc import Callable, Iterable, Mapping
 
 import sympy as sp
@@ -31,10 +32,11 @@ from symkin.parsing.numbers import (
     SECONDS,
     _bounded,
     _check_text,
+    exact_digits,
     parse_number,
 )
 
-__all__ = ["parse_expression", "FUNCTIONS", "CONSTANTS", "MAX_DEPTH", "MAX_EXPONENT"]
+__all__ = ["parse_expression", "FUNCTIONS", "CONSTANTS", "MAX_DEPTH", "MAX_EXPONENT", "MAX_LAW_SIZE"]
 
 #: Functions a user expression may call.
 FUNCTIONS: Mapping[str, Callable[..., sp.Expr]] = {
@@ -58,6 +60,11 @@ CONSTANTS: Mapping[str, sp.Expr] = {"pi": sp.pi, "E": sp.E}
 #: Nesting allowed in an expression (a flat sum or product of many terms counts as one level).
 MAX_DEPTH = 60
 MAX_EXPONENT = 1000
+#: Nodes of the second derivative of a law of t (its acceleration), which symkin derives,
+#: simplifies and compiles: a Fourier series of 150 terms has about 900; sin nested 20 deep
+#: 5,000 (55 deep: 90,000 nodes, minutes of work downstream).  Its first derivative may have
+#: a fifth of them.
+MAX_LAW_SIZE = 6000
 
 def parse_expression(
     text: str,
@@ -74,7 +81,10 @@ def parse_expression(
         Numbers, + - * / ** (or ^), parentheses, the constants pi and E, the functions
         in :data:`FUNCTIONS`, and the names allowed below.
     names : iterable of str
-        Names allowed as symbols (``"t"`` maps to :data:`symkin.symbols.t`).
+        Names allowed as symbols.  ``"t"`` maps to :data:`symkin.symbols.t`, the time: an
+        expression in t is a law of motion, differentiated twice (velocity, acceleration), so it
+        must be smooth (``Abs`` of an expression in t is refused: its kink has no acceleration) and
+        its second derivative at most :data:`MAX_LAW_SIZE` nodes.
     symbols : mapping of str to expression, optional
         Names allowed with the value to put in their place.
     what : str
@@ -103,7 +113,28 @@ def parse_expression(
     except (RecursionError, MemoryError):
         raise InputError(f"{what} is nested too deeply to read; at most {MAX_DEPTH} levels are accepted") from None
     with time_limit(SECONDS, f"{what} took longer than {SECONDS:g} s to build and bound; write a simpler expression"):
-        return _Builder(allowed, what, source).build(tree.body, 0)
+        expr = _Builder(allowed, what, source).build(tree.body, 0)
+        exact_digits(expr, what)  # every exact number in it, once (each step bounded its own on the way)
+        if S.t in expr.free_symbols:
+            _check_law(expr, what)
+    return expr
+
+
+def _check_law(expr: sp.Expr, what: str) -> None:
+    """Refuse a law of t that is not smooth, or whose acceleration is too large to derive and compile."""
+    for kink in expr.atoms(sp.Abs):
+        if S.t in kink.free_symbols:
+            raise InputError(
+                f"{what}: {bounds.show(kink, 40)} is not smooth where {bounds.show(kink.args[0], 30)} = 0, and a law of t "
+                "is differentiated twice (velocity, acceleration); write a smooth law (sqrt(x**2 + 1e-6) rounds the kink)"
+            )
+    velocity = sp.diff(expr, S.t)  # (its size, a fifth of the limit: the acceleration then costs seconds to derive)
+    acceleration = None if _nodes(velocity, MAX_LAW_SIZE // 5) > MAX_LAW_SIZE // 5 else sp.diff(velocity, S.t)
+    if acceleration is None or _nodes(acceleration, MAX_LAW_SIZE) > MAX_LAW_SIZE:
+        raise InputError(
+            f"{what} is too involved a law of t: its second derivative has more than {MAX_LAW_SIZE} terms and "
+            "factors, which symkin derives, simplifies and compiles; write a simpler law (fewer nested functions of t)"
+        )
 
 
 #: Operators of one precedence level: a chain of them (a + b - c + ...) is one level of nesting.
@@ -165,7 +196,7 @@ class _Builder:
             return self.binop(node, depth)
         if isinstance(node, ast.Call):
             if not isinstance(node.func, ast.Name) or node.func.id not in FUNCTIONS:
-                raise self.fail(f"calling {_show(node.func)} is not allowed")
+                raise self.fail(f"calling {_show(node.func, self.source)} is not allowed")
             if node.keywords:
                 raise self.fail("functions take no keyword arguments")
             args = [self.build(a, depth + 1) for a in node.args]
@@ -176,7 +207,7 @@ class _Builder:
                 raise InputError(f"{self.what}: wrong number of arguments to {node.func.id}") from None
             self.bounded(unevaluated)
             return function(*args)
-        raise self.fail(f"{_show(node)} ({type(node).__name__.lower()}) is not allowed")
+        raise self.fail(f"{_show(node, self.source)} ({type(node).__name__.lower()}) is not allowed")
 
     def chain(self, node: ast.BinOp, depth: int) -> sp.Expr:
         """A flat chain of + and - (or of * and /): one level of nesting however long, each
@@ -195,6 +226,7 @@ class _Builder:
                 terms.append(term if op is ast.Add else -term)
             total = sp.Add(*terms)  # at most MAX_LENGTH / 2 terms each below 1e300: only the total needs a bound
             self.bounded(total)
+            exact_digits(total.as_coeff_Add()[0], self.what)
             return total
         for op, right in reversed(steps):
             factor = self.build(right, depth + 1)
@@ -208,6 +240,7 @@ class _Builder:
             else:
                 self.bounded(sp.Mul(value, factor, evaluate=False))
                 value = value * factor
+            exact_digits(value.as_coeff_Mul()[0], self.what)  # a long product of exact numbers near 1
         return value
 
     def binop(self, node: ast.BinOp, depth: int) -> sp.Expr:
@@ -219,10 +252,18 @@ class _Builder:
             if (left == 0 or self.sign(left) == 0) and self.sign(right) == -1:
                 raise InputError(f"{self.what} divides by zero")
             self.bounded(sp.Pow(left, right, evaluate=False))
+            if right.is_Rational:  # digits before SymPy (or a later expand) multiplies them out
+                exact_digits(left, self.what, power=right)
             return left**right
         raise self.fail(f"the operator {type(node.op).__name__} is not allowed")
 
 
-def _show(node: ast.AST) -> str:
-    text = ast.unparse(node)
+def _nodes(expr: sp.Expr, cap: int) -> int:
+    """The nodes of ``expr``'s tree, counted up to ``cap`` + 1."""
+    return sum(1 for _ in itertools.islice(sp.preorder_traversal(expr), cap + 1))
+
+
+def _show(node: ast.AST, source: str) -> str:
+    """The text of ``node`` as typed (never ast.unparse, which recurses: 400 chained ``~`` ran out of stack)."""
+    text = " ".join((ast.get_source_segment(source, node) or type(node).__name__).split())
     return repr(text if len(text) <= 40 else text[:37] + "...")

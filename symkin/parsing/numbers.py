@@ -16,7 +16,7 @@ import sympy as sp
 from symkin._util import bounds
 from symkin.errors import InputError
 
-__all__ = ["parse_number", "parse_integer", "MAX_LENGTH", "MAX_DIGITS", "SECONDS"]
+__all__ = ["parse_number", "parse_integer", "MAX_LENGTH", "MAX_DIGITS", "MAX_EXACT_DIGITS", "SECONDS"]
 
 MAX_LENGTH = 2000
 #: Numbers are accepted between 10^-MAX_DIGITS and 10^MAX_DIGITS in size (or 0), so every
@@ -26,6 +26,11 @@ MAX_LENGTH = 2000
 MAX_DIGITS = bounds.MAX_DIGITS
 _HUGE = sp.Integer(10) ** MAX_DIGITS
 _SAFE_BITS = int(MAX_DIGITS * math.log2(10))  # 2^996 < 10^300
+#: Digits of the numerator and of the denominator of every exact number in what a user types
+#: (the longest literal needs about 600): a number near 1 can carry any number of digits within
+#: the size bounds, ``(1 - 10**-300)**1000`` 300,000 of them, and every later step pays for them.
+MAX_EXACT_DIGITS = 1000
+_EXACT_BITS = int(MAX_EXACT_DIGITS * math.log2(10))  # 2^3321 < 10^1000
 #: Seconds the parsing and bounding of one expression may take.
 SECONDS = 3.0
 
@@ -74,9 +79,12 @@ def parse_number(text: str, *, what: str = "value") -> sp.Rational:
 
 
 def _bounded(value: sp.Expr, what: str, error: type[Exception] = InputError) -> sp.Expr:
-    """``value`` unless it is an exact number too large or too small (but not 0) to use."""
+    """``value`` unless it is an exact number too large or too small (but not 0) to use, or
+    one with more than :data:`MAX_EXACT_DIGITS` digits above or below its fraction bar."""
     if value.is_Rational and int(value.p).bit_length() <= _SAFE_BITS and int(value.q).bit_length() <= _SAFE_BITS:
         return value  # |p| and q below 2^996 < 10^300: within the bounds, no comparison needed (the common case)
+    if value.is_Rational:
+        exact_digits(value, what, error)
     if value.is_Rational and value != 0:
         size = abs(value)
         if size > _HUGE or size * _HUGE < 1:
@@ -85,6 +93,33 @@ def _bounded(value: sp.Expr, what: str, error: type[Exception] = InputError) -> 
                 f"1e{MAX_DIGITS} in size are accepted"
             )
     return value
+
+
+def exact_digits(value: sp.Expr, what: str, error: type[Exception] = InputError, *, power: Any = 1) -> None:
+    """Refuse an expression whose exact numbers (raised to ``power``, before SymPy raises them:
+    a sum raised to a power is multiplied out by a later expand) have more than
+    :data:`MAX_EXACT_DIGITS` digits in a numerator or a denominator.
+
+    >>> exact_digits(sp.Rational(10**300 - 1, 10**300), "--length", power=1000)
+    Traceback (most recent call last):
+    ...
+    symkin.errors.InputError: --length holds an exact number of about 300000 digits (its numerator or denominator); at most 1000 are accepted: write it with fewer digits, or as a decimal
+    """
+    if value.is_Rational:
+        numbers = [value]
+    elif value.is_Mul:  # what SymPy multiplies out when it raises a product to a power
+        numbers = [a for a in (value, *value.args) if a.is_Rational or (a.is_Pow and a.base.is_Rational)]
+        numbers = [a.as_coeff_Mul()[0] if a.is_Mul else a.base if a.is_Pow else a for a in numbers]
+    else:
+        numbers = list(value.atoms(sp.Rational))
+    bits = max((math.log2(abs(n)) for r in numbers for n in (int(r.p), int(r.q)) if n), default=0.0)
+    if power != 1:
+        bits *= math.ceil(abs(power))
+    if bits > _EXACT_BITS:
+        raise error(
+            f"{what} holds an exact number of about {int(bits * math.log10(2))} digits (its numerator or "
+            f"denominator); at most {MAX_EXACT_DIGITS} are accepted: write it with fewer digits, or as a decimal"
+        )
 
 
 def _repr(value: Any) -> str:

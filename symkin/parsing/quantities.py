@@ -117,6 +117,6 @@ def unit_of(text: str, unit: str) -> str | None:
 def _well_formed(text: str) -> bool:
     try:
         ast.parse(text.replace("^", "**"), mode="eval")
-    except SyntaxError:
+    except (SyntaxError, ValueError, RecursionError, MemoryError):  # (a byte that is not UTF-8: UnicodeEncodeError)
         return False
     return True

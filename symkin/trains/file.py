@@ -64,7 +64,9 @@ naming the file, the table and the key.
 from __future__ import annotations
 
 import importlib.resources
+import os
 import re
+import stat
 import sys
 from collections.abc import Mapping, Sequence
 from pathlib import Path
@@ -88,6 +90,14 @@ __all__ = ["load_train", "read_train", "ready_made", "READY_MADE", "MAX_FILE_BYT
 
 #: The largest train file read (a train of hundreds of links is a few kB).
 MAX_FILE_BYTES = 1_000_000
+#: Tables and lists inside each other (a train file needs 5: links, a link, its gears, a gear, ...).
+MAX_NESTING = 16
+#: Parts of one dotted key (``a.b.c``): TOML makes a table of each, and a key of 50,000 parts took 2 GB.
+MAX_KEY_PARTS = MAX_NESTING
+#: Keys and values in a file, all tables together (a train of 100 links has about 1,000).
+MAX_ENTRIES = 20_000
+#: Links in a train (the largest ready-made one has 8; each link is a column of the equations).
+MAX_LINKS = 200
 #: Keys each table may hold.
 _TOP = {"name", "description", "module", "meshes", "links", "states", "base", "one_way"}
 _ONE_WAY = {"links", "blocks"}
@@ -139,16 +149,7 @@ def load_train(source: str | Path) -> Train:
     """
     if isinstance(source, Path) or (isinstance(source, str) and (source.endswith(".toml") or _exists(source))):
         path = Path(source)
-        try:
-            if path.is_dir():
-                raise TrainFileError(str(path), "", "is a folder; give a train file (TOML)")
-            if path.stat().st_size > MAX_FILE_BYTES:
-                raise TrainFileError(str(path), "", f"the file is larger than {MAX_FILE_BYTES} bytes; a train file is a few kB")
-            text = path.read_text(encoding="utf-8")
-        except (OSError, UnicodeDecodeError) as err:
-            raise TrainFileError(str(path), "", f"cannot be read ({type(err).__name__}: {err}); give a readable "
-                                 "UTF-8 TOML file") from None
-        return read_train(text, str(path))
+        return read_train(_read_file(path), str(path))
     if not isinstance(source, str):
         raise TrainFileError(repr(source), "", "a train is a file path or a ready-made name")
     entry = _library() / f"{source}.toml"
@@ -156,6 +157,77 @@ def load_train(source: str | Path) -> Train:
         raise TrainFileError(source, "", f"no such file, and no ready-made train of that name; the ready-made "
                              f"trains are {', '.join(READY_MADE)}")
     return read_train(entry.read_text(encoding="utf-8"), source)
+
+
+def _read_file(path: Path) -> str:
+    """The text of a train file: a regular file only (a device such as /dev/zero, a pipe that
+    never ends, a folder refused, links followed), opened without waiting (a FIFO with no writer
+    would block the open), and at most :data:`MAX_FILE_BYTES` read."""
+    try:
+        fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_NOCTTY", 0))
+    except (OSError, ValueError) as err:  # (ValueError: a NUL in the name)
+        reason = getattr(err, "strerror", None) or err
+        raise TrainFileError(repr(str(path))[1:-1], "", f"cannot be read ({reason}); give a readable UTF-8 TOML "
+                             "file") from None
+    mode = os.fstat(fd).st_mode
+    if not stat.S_ISREG(mode):
+        os.close(fd)
+        if stat.S_ISDIR(mode):
+            raise TrainFileError(str(path), "", "is a folder; give a train file (TOML)")
+        raise TrainFileError(str(path), "", "is not a regular file (a device, a pipe or a socket); give a train "
+                             "file (TOML)")
+    with os.fdopen(fd, "rb") as f:
+        try:
+            data = f.read(MAX_FILE_BYTES + 1)
+        except OSError as err:
+            raise TrainFileError(str(path), "", f"cannot be read ({err.strerror or err}); give a readable UTF-8 TOML "
+                                 "file") from None
+    if len(data) > MAX_FILE_BYTES:
+        raise TrainFileError(str(path), "", f"the file is larger than {MAX_FILE_BYTES} bytes; a train file is a few kB")
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as err:
+        raise TrainFileError(str(path), "", f"is not UTF-8 text ({err.reason} at byte {err.start}); give a UTF-8 "
+                             "TOML file") from None
+
+
+#: TOML strings and comments (where a dot is not a key's); outside them, the text between two of
+#: = , [ ] { } or line ends holds at most one key (a number has one dot).
+_STRINGS = re.compile(r'"""[\s\S]*?"""|\'\'\'[\s\S]*?\'\'\'|"(?:\\.|[^"\\\n])*"|\'[^\'\n]*\'|#[^\n]*')
+_KEY_ENDS = re.compile(r"[=,{}\[\]\n]")
+
+
+def _check_keys(text: str, path: str) -> None:
+    """Refuse a dotted key of more than :data:`MAX_KEY_PARTS` parts before TOML reads it
+    (tomllib's time and memory grow with the square of the parts).
+
+    >>> _check_keys("a.b.c = 1\\nx = { y.z = 0.5 }\\n", "f")
+    >>> _check_keys("x = {" + "a." * 20 + "b = 1}", "f")
+    Traceback (most recent call last):
+    ...
+    symkin.errors.TrainFileError: f: a key of more than 16 dotted parts; a train file nests at most 16 tables
+    """
+    if max((part.count(".") for part in _KEY_ENDS.split(_STRINGS.sub('""', text))), default=0) >= MAX_KEY_PARTS:
+        raise TrainFileError(path, "", f"a key of more than {MAX_KEY_PARTS} dotted parts; a train file nests at "
+                             f"most {MAX_NESTING} tables")
+
+
+def _check_shape(data: Mapping[str, Any], path: str) -> None:
+    """Refuse data nested more than :data:`MAX_NESTING` deep or of more than :data:`MAX_ENTRIES` entries."""
+    entries = 0
+    stack: list[tuple[Any, int]] = [(data, 1)]
+    while stack:
+        value, depth = stack.pop()
+        if depth > MAX_NESTING:
+            raise TrainFileError(path, "", f"tables or lists nested more than {MAX_NESTING} deep; a train file needs 5")
+        children = value.values() if isinstance(value, Mapping) else value
+        for child in children:
+            entries += 1
+            if isinstance(child, (Mapping, list)):
+                stack.append((child, depth + 1))
+        if entries > MAX_ENTRIES:
+            raise TrainFileError(path, "", f"more than {MAX_ENTRIES} keys and values; a train of 100 links has about "
+                                 "1,000")
 
 
 def _exists(path: str) -> bool:
@@ -167,10 +239,17 @@ def _exists(path: str) -> bool:
 
 def read_train(text: str, path: str = "<train>") -> Train:
     """A train from the text of a train file (``path`` names it in errors)."""
+    if len(text) > MAX_FILE_BYTES:
+        raise TrainFileError(path, "", f"the text is longer than {MAX_FILE_BYTES} characters; a train file is a few kB")
+    _check_keys(text, path)
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as err:
         raise TrainFileError(path, "", f"not valid TOML ({err})") from None
+    except RecursionError:
+        raise TrainFileError(path, "", f"tables or lists nested too deeply to read; a train file nests at most "
+                             f"{MAX_NESTING} deep") from None
+    _check_shape(data, path)
     return _Reader(path, data).train()
 
 
@@ -309,6 +388,9 @@ class _Reader:
         links_table = data.get("links")
         if not isinstance(links_table, Mapping) or not links_table:
             raise self.fail("[links]", "the file names no links; add a [links.NAME] table for each link")
+        if len(links_table) > MAX_LINKS:
+            raise self.fail("[links]", f"{len(links_table)} links, more than the {MAX_LINKS} symkin models; equal planets "
+                                       "are one link with count = N")
         gear_owner: dict[str, str] = {}
         specs: dict[str, Mapping[str, Any]] = {}
         for link_name, table in links_table.items():

@@ -113,6 +113,19 @@ SHAPES: dict[str, float] = {
     "1e-300": 8.0,
     "exp(690)": 8.0,
     "exp(-690)": 8.0,
+    # exact numbers near 1 raised to a power: within the size bounds, but 300,000 digits (issue 35)
+    "(1-10**-300)**1000": 8.0,
+    "(1+1e-300)**999": 8.0,
+    "(999999/1000000)**1000": 8.0,
+    # laws of t: a kink (no acceleration), and nesting whose acceleration explodes (issue 35)
+    "Abs(t)": 8.0,
+    "t*Abs(sin(t))": 8.0,
+    "sin(" * 55 + "t" + ")" * 55: 8.0,
+    "exp(t*" * 20 + "t" + ")" * 20: 8.0,
+    # constructs whose message recursed (ast.unparse), and a byte that is not UTF-8 (issue 35)
+    "~" * 400 + "1": 8.0,
+    "x" + ".a" * 400: 8.0,
+    b"1\xff".decode("utf-8", "surrogateescape"): 8.0,
 }
 HOSTILE = HOSTILE + tuple(SHAPES)
 
@@ -120,6 +133,15 @@ HOSTILE = HOSTILE + tuple(SHAPES)
 LIMIT = 20.0
 #: A command that waits (sleeps, blocks) without using CPU is stopped after this many times LIMIT of wall clock.
 WALL_FACTOR = 5
+
+
+def many_planets(n: int) -> str:
+    """A train file of ``n`` planets, each a link of its own on one carrier (sun 30, ring 90, state a: ring held)."""
+    lines = ['meshes = [' + ", ".join(f'["s", "p{i}"], ["p{i}", "r"]' for i in range(n)) + ']',
+             '[links.S]', 'gears = { s = 30 }', '[links.C]', '[links.R]', 'gears = { r = { teeth = 90, internal = true } }']
+    for i in range(n):
+        lines += [f'[links.P{i}]', 'carrier = "C"', f'gears = {{ p{i} = 30 }}']
+    return "\n".join(lines + ['[states.a]', 'input = "S"', 'output = "C"', 'brakes = ["R"]']) + "\n"
 
 
 def seconds_for(value: str) -> float:
