@@ -30,9 +30,10 @@ or negative locks itself.
 
 from __future__ import annotations
 
+import functools
 import itertools
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -170,7 +171,9 @@ class Statics:
         puts on the train per unit input torque, ideal and with losses: ``-(T_in + T_out)``.
     pins : dict
         Planet -> ``(x, y)``: the force one planet's tooth forces put on its pin (bearing),
-        ideal, per unit input torque over the radii's unit, in its carrier's frame at t = 0.
+        ideal, per unit input torque over the radii's unit, in its carrier's frame at t = 0;
+        derived when first asked for (with symbolic tooth numbers its simplification is long,
+        and the efficiency of a synthesis does not need it).
     """
 
     mechanism: Mechanism
@@ -187,8 +190,15 @@ class Statics:
     circulating: sp.Expr
     housing: sp.Expr = sp.Integer(0)
     housing_with_losses: sp.Expr = sp.Integer(0)
-    pins: dict[str, tuple[sp.Expr, sp.Expr]] = field(default_factory=dict)
+    pin_loads: Callable[[], dict[str, tuple[sp.Expr, sp.Expr]]] | None = field(default=None, repr=False, compare=False)
     _cache: dict = field(default_factory=dict, init=False, repr=False, compare=False, hash=False)
+
+    @property
+    def pins(self) -> dict[str, tuple[sp.Expr, sp.Expr]]:
+        """Planet -> ``(x, y)``, the load on its pin (see the class's attributes), derived once when asked."""
+        if "pins" not in self._cache:
+            self._cache["pins"] = {} if self.pin_loads is None else self.pin_loads()
+        return self._cache["pins"]
 
     def __repr__(self) -> str:
         """``Statics('AI1', 1 -> H, fixed 4, eta = ...)``, under 200 characters."""
@@ -419,7 +429,7 @@ def statics(
     lossy_out = lossy_torques[out]
     housing_lossy = sp.piecewise_fold(-1 - lossy_out) if isinstance(lossy_out, sp.Piecewise) else sp.cancel(-1 - lossy_out)
     return Statics(mech, inp, out, held, pairs, speeds, torques, tuple(meshes), law, lossy_torques, etas, circulating,
-                   housing, housing_lossy, _pin_loads(mech, sides, forces, pressure_angle))
+                   housing, housing_lossy, functools.partial(_pin_loads, mech, sides, forces, pressure_angle))
 
 
 def _mesh_powers(mech: Mechanism, sides: Sequence[_Side], forces: Sequence[sp.Expr], speeds: Mapping[str, sp.Expr],
