@@ -39,7 +39,8 @@ def register(sub: Any) -> None:
     p.add_argument("--ratio", help="target ratio omega_driver/omega_driven, exact (2.4, 12/5, -3)")
     p.add_argument("--ratios", metavar="STATE=R,...",
                    help="a whole transmission: a target ratio for each named state of the train file, searched at once "
-                   "(first=4.696,second=3.130,...); every set's conditions, pruned state by state")
+                   "(first=4.696,second=3.130,...); every set's conditions, pruned state by state; each design's gear "
+                   "geometry checked as for one ratio (--allow-undercut, --min-contact-ratio)")
     p.add_argument("--absolute", action="store_true", help="with --ratios: --tolerance is absolute, not relative")
     p.add_argument("--tolerance", default="0.01", help="relative ratio tolerance (default 0.01 = 1 %%)")
     p.add_argument("--ratio-range", metavar="LO,HI", help="instead of --ratio: every ratio from LO to HI (-120,-30 for a negative range)")

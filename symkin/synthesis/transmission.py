@@ -22,6 +22,7 @@ steps between consecutive states, then by size (the largest tooth number), then 
 from __future__ import annotations
 
 import dataclasses
+import functools
 import itertools
 import time
 from collections.abc import Mapping, Sequence
@@ -243,9 +244,15 @@ def _evaluate(expr: Any, symbols: Sequence[sp.Symbol], columns: Sequence[np.ndar
     if not expr.free_symbols:
         return np.full(n, float(expr))
     used = [k for k, z in enumerate(symbols) if z in expr.free_symbols]
-    f = compile_law(expr, [symbols[k] for k in used], backend="numpy", on_pole="return")
+    f = _compiled(expr, tuple(symbols[k] for k in used))
     with np.errstate(all="ignore"):
         return np.asarray(f(*[np.asarray(columns[k], dtype=float) for k in used]), dtype=float) * np.ones(n)
+
+
+@functools.lru_cache(maxsize=256)
+def _compiled(expr: sp.Expr, symbols: tuple[sp.Symbol, ...]) -> Any:
+    """``expr`` compiled once per process (every chunk of a search, on a Dask worker too, prunes with the same laws)."""
+    return compile_law(expr, list(symbols), backend="numpy", on_pole="return")
 
 
 def _extend(partial: np.ndarray, n: int) -> np.ndarray:
@@ -299,7 +306,7 @@ def _plan(targets: dict[str, sp.Rational], laws: dict[str, sp.Expr],
         s = min(remaining, key=lambda s: (len(new_groups(s)), remaining.index(s)))
         remaining.remove(s)
         new = new_groups(s)
-        assigned += new
+        assigned.extend(new)
         plan.append((s, tuple(new)))
     return tuple(plan)
 
