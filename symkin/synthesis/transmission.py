@@ -42,7 +42,7 @@ from symkin.values import as_rational
 
 __all__ = ["TransmissionDesign", "TransmissionResult", "synthesize_transmission"]
 
-#: Partial designs kept between two states at most (beyond it the search says to tighten the target).
+#: Partial designs of one chunk between two states at most (beyond it the search says to tighten the target).
 MAX_PARTIAL = 2_000_000
 #: The relative tolerance on every ratio unless one is given (1 %).
 DEFAULT_TOLERANCE = sp.Rational(1, 100)
@@ -161,12 +161,12 @@ def synthesize_transmission(train: Mechanism, ratios: Mapping[str, Any], *, tole
     if not len(partial) or lead == len(search.plan):
         designs, where = _exact_chunk(_rows(search, partial), search), "this process"
         kept += [len(partial)] * (len(search.plan) - lead)
-    elif scheduler is None:
-        kept_after, designs = _chunk(search, np.arange(n)[:, None], lead, time_limit - (time.perf_counter() - began))
-        kept += kept_after
-        where = "this process"
     else:
-        parts, where = _dask(search, n, lead, time_limit - (time.perf_counter() - began), scheduler, workers)
+        seconds = time_limit - (time.perf_counter() - began)
+        if scheduler is None:  # in chunks here too: the partial designs held at once are one chunk's
+            parts, where = [_chunk(search, start, lead, seconds) for start in _starts(n, CHUNKS_PER_WORKER)], "this process"
+        else:
+            parts, where = _dask(search, n, lead, seconds, scheduler, workers)
         kept += [sum(col) for col in zip(*(k for k, _ in parts))]
         designs = [d for _, part in parts for d in part]
     order = [s for s, _ in search.plan]
@@ -357,8 +357,15 @@ def _chunk(search: _Search, start: np.ndarray, lead: int, seconds: float) -> tup
     return kept, _exact_chunk(_rows(search, partial), search)
 
 
-#: Chunks per Dask worker (the first group's tuples split into contiguous ranges).
+#: Chunks per Dask worker, and in the calling process (the first group's tuples split into contiguous ranges;
+#: :data:`MAX_PARTIAL` bounds each chunk's partial designs).
 CHUNKS_PER_WORKER = 4
+
+
+def _starts(n: int, count: int) -> list[np.ndarray]:
+    """The first group's ``n`` tuples in ``count`` contiguous ranges (the partial designs each chunk starts from)."""
+    size = -(-n // max(1, count))
+    return [np.arange(a, min(a + size, n))[:, None] for a in range(0, n, size)]
 
 
 def _dask(search: _Search, n: int, lead: int, seconds: float, scheduler: str,
@@ -369,8 +376,7 @@ def _dask(search: _Search, n: int, lead: int, seconds: float, scheduler: str,
 
     client, cluster, where, count = _client(scheduler, workers)
     try:
-        size = -(-n // max(1, CHUNKS_PER_WORKER * count))
-        starts = [np.arange(a, min(a + size, n))[:, None] for a in range(0, n, size)]
+        starts = _starts(n, CHUNKS_PER_WORKER * count)
         shared = client.scatter(search, broadcast=True)
         futures = client.map(_chunk, [shared] * len(starts), starts, lead=lead, seconds=seconds, pure=False)
         return client.gather(futures), f"{where}, {len(starts)} chunks"
