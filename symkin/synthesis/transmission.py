@@ -25,7 +25,7 @@ import dataclasses
 import functools
 import itertools
 import time
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -132,9 +132,9 @@ def synthesize_transmission(train: Mechanism, ratios: Mapping[str, Any], *, tole
         Seconds; a longer search raises :class:`~symkin.errors.TimeLimitError`.
     scheduler, workers : optional
         Run the search on Dask (``"local"``: a local cluster of ``workers`` processes, or a
-        scheduler's address): the first group's tuples in contiguous chunks (four per worker),
-        each pruned state by state and evaluated exactly in a task, merged in order; the result
-        is the same as without.
+        scheduler's address): the partial designs, once there are enough, in contiguous chunks
+        (four per worker), each pruned state by state and evaluated exactly in a task, merged in
+        order; the result is the same as without (which runs four chunks in turn).
     """
     began = time.perf_counter()
     if not ratios:
@@ -154,21 +154,13 @@ def synthesize_transmission(train: Mechanism, ratios: Mapping[str, Any], *, tole
             raise InputError(f"no tooth numbers of {', '.join(map(str, g))} meet their set's conditions within "
                              f"{lo} <= z <= {hi}; widen the limits")
     search = _Search(tuple(groups), tuple(tables), laws, targets, tol, absolute, _plan(targets, laws, groups))
-    # states that bring in no group (a direct drive) first, here; then the first group's tuples in chunks
-    lead = next((j for j, (_, new) in enumerate(search.plan) if new), len(search.plan))
-    partial, kept = _prune(search, np.zeros((1, 0), dtype=np.int64), 0, lead, time_limit)
-    n = len(tables[search.assigned[0]]) if search.assigned else 0
-    if not len(partial) or lead == len(search.plan):
-        designs, where = _exact_chunk(_rows(search, partial), search), "this process"
-        kept += [len(partial)] * (len(search.plan) - lead)
+    deadline = time.time() + time_limit - (time.perf_counter() - began)  # wall clock: Dask workers keep it too
+    if scheduler is None:
+        kept, designs, _ = _search(search, CHUNKS_PER_WORKER, deadline,
+                                   lambda starts, lead: [_chunk(search, p, lead, deadline) for p in starts])
+        where = "this process"
     else:
-        seconds = time_limit - (time.perf_counter() - began)
-        if scheduler is None:  # in chunks here too: the partial designs held at once are one chunk's
-            parts, where = [_chunk(search, start, lead, seconds) for start in _starts(n, CHUNKS_PER_WORKER)], "this process"
-        else:
-            parts, where = _dask(search, n, lead, seconds, scheduler, workers)
-        kept += [sum(col) for col in zip(*(k for k, _ in parts))]
-        designs = [d for _, part in parts for d in part]
+        kept, designs, where = _dask(search, deadline, scheduler, workers)
     order = [s for s, _ in search.plan]
     designs.sort(key=lambda d: (d.error, d.step_error, max(d.teeth.values()), sum(d.teeth.values())))
     kept_designs = tuple(designs if top is None else designs[:top])
@@ -311,11 +303,10 @@ def _plan(targets: dict[str, sp.Rational], laws: dict[str, sp.Expr],
     return tuple(plan)
 
 
-def _prune(search: _Search, partial: np.ndarray, first: int, last: int, seconds: float) -> tuple[np.ndarray, list[int]]:
+def _prune(search: _Search, partial: np.ndarray, first: int, last: int, deadline: float) -> tuple[np.ndarray, list[int]]:
     """The partial designs (index rows into the tables) after states ``first`` to ``last`` of the plan, and how
     many each state kept; a partial design's columns are the groups in ``search.assigned`` order, those it
     has already are not added again."""
-    began = time.perf_counter()
     assigned = search.assigned
     kept = []
     for s, new in search.plan[first:last]:
@@ -329,7 +320,7 @@ def _prune(search: _Search, partial: np.ndarray, first: int, last: int, seconds:
         partial = partial[_within(search.laws[s], search.targets[s], search.tol, search.absolute, list(search.groups),
                                   list(search.tables), assigned[:partial.shape[1]], partial)]
         kept.append(len(partial))
-        if time.perf_counter() - began > seconds:
+        if time.time() > deadline:
             raise TimeLimitError(f"the search ran past its time limit after state {s} ({len(partial)} partial "
                                  "designs); narrow the limits or the tolerance")
     return partial, kept
@@ -350,36 +341,51 @@ def _rows(search: _Search, partial: np.ndarray) -> list[dict[sp.Symbol, int]]:
     return rows
 
 
-def _chunk(search: _Search, start: np.ndarray, lead: int, seconds: float) -> tuple[list[int], list[TransmissionDesign]]:
-    """One chunk of the search: partial designs ``start`` (some of the first group's tuples) pruned by every state
-    from ``lead`` on, then evaluated exactly; how many each state kept, and the designs in the search's order."""
-    partial, kept = _prune(search, start, lead, len(search.plan), seconds)
+def _chunk(search: _Search, start: np.ndarray, lead: int, deadline: float) -> tuple[list[int], list[TransmissionDesign]]:
+    """One chunk of the search: partial designs ``start`` pruned by every state from ``lead`` on, then evaluated
+    exactly; how many each state kept, and the designs in the search's order."""
+    partial, kept = _prune(search, start, lead, len(search.plan), deadline)
     return kept, _exact_chunk(_rows(search, partial), search)
 
 
-#: Chunks per Dask worker, and in the calling process (the first group's tuples split into contiguous ranges;
-#: :data:`MAX_PARTIAL` bounds each chunk's partial designs).
+#: Chunks per Dask worker, and in the calling process (:data:`MAX_PARTIAL` bounds each chunk's partial designs).
 CHUNKS_PER_WORKER = 4
 
 
-def _starts(n: int, count: int) -> list[np.ndarray]:
-    """The first group's ``n`` tuples in ``count`` contiguous ranges (the partial designs each chunk starts from)."""
-    size = -(-n // max(1, count))
-    return [np.arange(a, min(a + size, n))[:, None] for a in range(0, n, size)]
+def _search(search: _Search, count: int, deadline: float,
+            run: Callable[[list[np.ndarray], int], list[tuple[list[int], list[TransmissionDesign]]]]
+            ) -> tuple[list[int], list[TransmissionDesign], int]:
+    """The search in ``count`` chunks: states are taken here until at least ``count`` partial designs are left,
+    these are split into ``count`` contiguous chunks that ``run(chunks, next state)`` prunes by the remaining
+    states and evaluates exactly (here or on Dask), merged in order; how many each state kept, the designs in
+    the order of the search in one piece, and the number of chunks."""
+    partial, kept, j = np.zeros((1, 0), dtype=np.int64), [], 0
+    while j < len(search.plan) and 0 < len(partial) < count:
+        partial, k = _prune(search, partial, j, j + 1, deadline)
+        kept += k
+        j += 1
+    if j == len(search.plan) or not len(partial):
+        return kept + [len(partial)] * (len(search.plan) - j), _exact_chunk(_rows(search, partial), search), 0
+    parts = run(np.array_split(partial, count), j)
+    kept += [sum(col) for col in zip(*(k for k, _ in parts))]
+    return kept, [d for _, part in parts for d in part], len(parts)
 
 
-def _dask(search: _Search, n: int, lead: int, seconds: float, scheduler: str,
-          workers: int | None) -> tuple[list[tuple[list[int], list[TransmissionDesign]]], str]:
-    """The chunks of the search on Dask, merged in order: the first group's ``n`` tuples in contiguous ranges,
-    so that the designs come in the order of the search in one process."""
+def _dask(search: _Search, deadline: float, scheduler: str,
+          workers: int | None) -> tuple[list[int], list[TransmissionDesign], str]:
+    """:func:`_search` on Dask, four chunks per worker (``client.map``, the search scattered once to each)."""
     from symkin.synthesis.runner import _client
 
     client, cluster, where, count = _client(scheduler, workers)
     try:
-        starts = _starts(n, CHUNKS_PER_WORKER * count)
         shared = client.scatter(search, broadcast=True)
-        futures = client.map(_chunk, [shared] * len(starts), starts, lead=lead, seconds=seconds, pure=False)
-        return client.gather(futures), f"{where}, {len(starts)} chunks"
+
+        def run(starts: list[np.ndarray], lead: int) -> list[tuple[list[int], list[TransmissionDesign]]]:
+            futures = client.map(_chunk, [shared] * len(starts), starts, lead=lead, deadline=deadline, pure=False)
+            return client.gather(futures)
+
+        kept, designs, chunks = _search(search, CHUNKS_PER_WORKER * count, deadline, run)
+        return kept, designs, f"{where}, {chunks} chunks"
     finally:
         client.close()
         if cluster is not None:
