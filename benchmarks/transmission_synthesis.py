@@ -1,12 +1,12 @@
 """How long does a whole transmission take to synthesise, here and on Dask (issue 33)?
 
-    python benchmarks/transmission_synthesis.py [--rounds 3] [--workers 2]
+    python benchmarks/transmission_synthesis.py [--rounds 3] [--workers 2] [--case widest]
 
 The ready-made eight-speed (ZF 8HP layout) with every tooth number unknown, the 8HP's published
 ratio set, three planets per set, in four sizes: the 8HP target (within 0.0005 absolute, z <= 120)
 and larger searches (within 0.005, 0.01 and 0.02, z <= 150). Each is run in this process and on a local Dask
-cluster of ``--workers`` processes (the pruned search split into chunks of the first group's
-tuples), each round in a fresh process, the rounds interleaved so that both modes see the same
+cluster of ``--workers`` processes (the pruned search split into chunks of partial designs,
+four per worker), each round in a fresh process, the rounds interleaved so that both modes see the same
 load. Prints the median wall times side by side (the cluster's start-up apart), the designs
 found and the partial designs kept after each state, and asserts that both modes give the same
 designs. benchmarks/notes/transmission.md holds a run.
@@ -62,12 +62,15 @@ def main() -> None:
     parser = argparse.ArgumentParser()
     parser.add_argument("--rounds", type=int, default=3)
     parser.add_argument("--workers", type=int, default=2)
+    parser.add_argument("--case", action="append", help="run only this case (8HP target, larger, larger still, widest)")
     parser.add_argument("--child", nargs=3, metavar=("TOLERANCE", "ZMAX", "WORKERS"))
     args = parser.parse_args()
     if args.child:
         child(args.child[0], int(args.child[1]), int(args.child[2]))
         return
     for name, tolerance, zmax in CASES:
+        if args.case and name not in args.case:
+            continue
         runs: dict[int, list[dict]] = {0: [], args.workers: []}
         for _ in range(args.rounds):
             for workers in runs:
