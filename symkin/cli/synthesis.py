@@ -39,7 +39,8 @@ def register(sub: Any) -> None:
     p.add_argument("--ratio", help="target ratio omega_driver/omega_driven, exact (2.4, 12/5, -3)")
     p.add_argument("--ratios", metavar="STATE=R,...",
                    help="a whole transmission: a target ratio for each named state of the train file, searched at once "
-                   "(first=4.696,second=3.130,...); every set's conditions, pruned state by state")
+                   "(first=4.696,second=3.130,...); every set's conditions, pruned state by state; each design's gear "
+                   "geometry checked as for one ratio (--allow-undercut, --min-contact-ratio)")
     p.add_argument("--absolute", action="store_true", help="with --ratios: --tolerance is absolute, not relative")
     p.add_argument("--tolerance", default="0.01", help="relative ratio tolerance (default 0.01 = 1 %%)")
     p.add_argument("--ratio-range", metavar="LO,HI", help="instead of --ratio: every ratio from LO to HI (-120,-30 for a negative range)")
@@ -114,14 +115,7 @@ def run_synthesize(args: Any) -> Any:
     mesh = "default"
     if args.efficiency is not None and args.efficiency != "default":
         mesh = parse_number(args.efficiency, what="--efficiency")
-    eps_min = None if args.min_contact_ratio is None else parse_number(args.min_contact_ratio, what="--min-contact-ratio")
-    if eps_min is not None and not eps_min > 0:
-        raise InputError(f"--min-contact-ratio must be positive, got {args.min_contact_ratio}")
-    # designs the geometry may leave out: ask the search for more, so that --top are left (4 times as many)
-    filtering = eps_min is not None or (not args.allow_undercut and args.zmin is not None)
-    wanted = top
-    if filtering and top is not None:
-        top = 4 * top
+    eps_min, wanted, top = _geometry_limits(args, top)
     bar = Progress(enabled=not args.quiet)
     try:
         result = synthesize(
@@ -150,8 +144,7 @@ def run_synthesize(args: Any) -> Any:
     data = result.to_json()
     geometry = [_design_geometry(d) for d in result.designs]
     examined = len(geometry)
-    keep = [i for i, g in enumerate(geometry) if g is None or (
-        (args.allow_undercut or not g["undercut"]) and (eps_min is None or g["contact_ratio_min"] >= eps_min))]
+    keep = _makeable(geometry, args.allow_undercut, eps_min)
     left_out = len(geometry) - len(keep)
     keep = keep[:wanted]
     result = dataclasses.replace(result, designs=tuple(result.designs[i] for i in keep))
@@ -183,10 +176,15 @@ def _design_geometry(design: Any) -> dict[str, Any] | None:
     """A design's gear geometry with the shifts its centre distances need (symkin geometry --choose-shifts):
     the least contact ratio, the shifts, whether a gear is undercut, the problems; None without one
     (a train without a module in mm, a bevel train)."""
+    return _train_geometry(design.train)
+
+
+def _train_geometry(build: Any) -> dict[str, Any] | None:
+    """:func:`_design_geometry` of the train ``build()`` gives."""
     from symkin.geometry import coaxial_shifts, train_geometry
 
     try:
-        train = design.train()
+        train = build()
         shifts = coaxial_shifts(train)
         geo = train_geometry(train, shifts=shifts)
     except SymkinError:
@@ -196,6 +194,33 @@ def _design_geometry(design: Any) -> dict[str, Any] | None:
     return {"shifts": {g: shifts[g] for g in geo.gears if g in shifts and shifts[g] != 0},
             "contact_ratio_min": min(float(m.pair.contact_ratio) for m in geo.meshes),
             "undercut": any(g.undercut for g in geo.gears.values()), "problems": geo.problems}
+
+
+def _geometry_limits(args: Any, top: int | None) -> tuple[Any, int | None, int | None]:
+    """--min-contact-ratio, the designs wanted (--top) and how many to ask the search for: designs the geometry
+    may leave out (undercut, a low contact ratio) are made up for by asking for 4 times as many."""
+    from symkin.parsing import parse_number
+
+    eps_min = None if args.min_contact_ratio is None else parse_number(args.min_contact_ratio, what="--min-contact-ratio")
+    if eps_min is not None and not eps_min > 0:
+        raise InputError(f"--min-contact-ratio must be positive, got {args.min_contact_ratio}")
+    filtering = eps_min is not None or (not args.allow_undercut and args.zmin is not None)
+    return eps_min, top, (4 * top if filtering and top is not None else top)
+
+
+def _makeable(geometry: list[Any], allow_undercut: bool, eps_min: Any) -> list[int]:
+    """The indices of the designs the geometry keeps: none undercut (unless allowed), every contact ratio at least
+    ``eps_min``; a design without geometry (no module, bevel gears) is kept."""
+    return [i for i, g in enumerate(geometry) if g is None or (
+        (allow_undercut or not g["undercut"]) and (eps_min is None or g["contact_ratio_min"] >= eps_min))]
+
+
+def _geometry_line(g: dict[str, Any] | None) -> str | None:
+    """A design's least contact ratio and shifts, as printed under it."""
+    if g is None:
+        return None
+    return f"least contact ratio {g['contact_ratio_min']:.3f}" + ("; profile shifts " + ", ".join(
+        f"{n} {float(x):+.4f}" for n, x in g["shifts"].items()) if g["shifts"] else "")
 
 
 def _geometry_json(geometry: dict[str, Any] | None) -> dict[str, Any] | None:
@@ -251,12 +276,13 @@ def _transmission(args: Any) -> Any:
     train = load_train(args.train)
     for state in ratios:
         train.state(state)  # raises with the states' names
+    top = None if args.top.strip().lower() == "all" else int(parse_integer(args.top, what="--top"))
+    eps_min, wanted, top = _geometry_limits(args, top)
     result = synthesize_transmission(
         train, ratios, tolerance=parse_number(args.tolerance, what="--tolerance"), absolute=args.absolute,
         planets=None if args.planets.strip().lower() == "file" else int(parse_integer(args.planets, what="--planets")),
         zmin=None if args.zmin is None else int(parse_integer(args.zmin, what="--zmin")),
-        zmax=int(parse_integer(args.zmax, what="--zmax")),
-        top=None if args.top.strip().lower() == "all" else int(parse_integer(args.top, what="--top")),
+        zmax=int(parse_integer(args.zmax, what="--zmax")), top=top,
         time_limit=float(parse_number(args.time_limit, what="--time-limit")), scheduler=args.scheduler,
         workers=None if args.workers is None else int(parse_integer(args.workers, what="--workers")),
         pressure_angle=parse_number(args.pressure_angle, what="--pressure-angle"),
@@ -267,7 +293,21 @@ def _transmission(args: Any) -> Any:
         raise InputError(f"no design gives every state its ratio within the tolerance (kept after each state: "
                          f"{', '.join(f'{s} {n}' for s, n in zip(result.order, result.kept))}); widen the tolerance or "
                          "the limits")
-    return emit(result.text(), result.to_json())
+    # the gear geometry of every design, as for one ratio: undercut left out unless allowed, --min-contact-ratio
+    geometry = [_train_geometry(lambda d=d: result.train(d)) for d in result.designs]
+    keep = _makeable(geometry, args.allow_undercut, eps_min)
+    left_out = len(geometry) - len(keep)
+    keep = keep[:wanted]
+    examined = len(geometry)
+    result = dataclasses.replace(result, designs=tuple(result.designs[i] for i in keep))
+    geometry = [geometry[i] for i in keep]
+    data = result.to_json()
+    for d, g in zip(data["designs"], geometry):
+        d["geometry"] = _geometry_json(g)
+    notes = _geometry_notes(result, geometry, (left_out, examined), eps_min, args.allow_undercut)
+    data["notes"] = notes
+    text = result.text([_geometry_line(g) for g in geometry]) + "".join(f"\nnote: {n}" for n in notes)
+    return emit(text, data)
 
 
 def _efficiency(design: Any, mesh: Any) -> Any:
@@ -308,10 +348,9 @@ def _text(result: Any, checks: list[Any], latex: bool, etas: list[Any] | None = 
         if etas is not None:
             row += "  efficiency" if i == 0 else f"  {efficiency_text(etas[i - 1]):>10}"
         lines.append(f"  {row}  {mark}")
-        g = None if geometry is None or i == 0 else geometry[i - 1]
+        g = None if geometry is None or i == 0 else _geometry_line(geometry[i - 1])
         if g is not None:
-            lines.append(f"      least contact ratio {g['contact_ratio_min']:.3f}" + ("; profile shifts " + ", ".join(
-                f"{n} {float(x):+.4f}" for n, x in g["shifts"].items()) if g["shifts"] else ""))
+            lines.append(f"      {g}")
     lines.append("check: each train built with its teeth; ratio derived again, coaxiality and planet positions from "
                  "the model, the least gap between planet copies measured" +
                  ("; efficiency from each train's statics (basic-train method), not a ranking key" if etas else "") +

@@ -22,9 +22,10 @@ steps between consecutive states, then by size (the largest tooth number), then 
 from __future__ import annotations
 
 import dataclasses
+import functools
 import itertools
 import time
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -41,7 +42,7 @@ from symkin.values import as_rational
 
 __all__ = ["TransmissionDesign", "TransmissionResult", "synthesize_transmission"]
 
-#: Partial designs kept between two states at most (beyond it the search says to tighten the target).
+#: Partial designs of one chunk between two states at most (beyond it the search says to tighten the target).
 MAX_PARTIAL = 2_000_000
 #: The relative tolerance on every ratio unless one is given (1 %).
 DEFAULT_TOLERANCE = sp.Rational(1, 100)
@@ -79,19 +80,26 @@ class TransmissionResult:
     seconds: float
     where: str = "this process"
 
-    def text(self) -> str:
-        """The search and the designs as ``symkin synthesize --ratios`` prints them."""
+    def train(self, design: TransmissionDesign) -> Any:
+        """The train built with ``design``'s tooth numbers (for its geometry, statics, drawings)."""
+        return _built(self.problem, design.teeth)
+
+    def text(self, extra: Sequence[str | None] = ()) -> str:
+        """The search and the designs as ``symkin synthesize --ratios`` prints them (``extra``: a line more
+        under each design, such as its geometry)."""
         tol = f"+- {float_text(self.tolerance)}" + ("" if self.absolute else " (relative)")
         lines = [f"{self.problem.train.name or 'train'}: {len(self.targets)} states at once, "
                  + ", ".join(f"{k} {float_text(v)}" for k, v in self.targets.items()) + f" {tol}"]
         lines.append("groups of tooth numbers (tuples meeting their sets' conditions): " + "; ".join(
             f"{', '.join(g)} ({n})" for g, n in zip(self.groups, self.candidates)))
         lines.append("pruned state by state: " + ", ".join(f"{s} {n}" for s, n in zip(self.order, self.kept)))
-        lines.append(f"{self.found} design{'s' * (self.found != 1)} in {self.seconds:.2f} s (exact ratios: {self.where})")
-        for d in self.designs:
+        lines.append(f"{self.found} design{'s' * (self.found != 1)} in {self.seconds:.2f} s (search: {self.where})")
+        for d, more in itertools.zip_longest(self.designs, extra[:len(self.designs)]):
             lines.append("  " + " ".join(f"{k}={v}" for k, v in d.teeth.items()))
             lines.append("    " + ", ".join(f"{k} {float_text(v)}" for k, v in d.ratios.items())
                          + f"; largest error {float_text(d.error)}, steps {float_text(d.step_error)}")
+            if more:
+                lines.append(f"    {more}")
         return "\n".join(lines)
 
     def to_json(self) -> dict[str, Any]:
@@ -123,9 +131,10 @@ def synthesize_transmission(train: Mechanism, ratios: Mapping[str, Any], *, tole
     time_limit : float
         Seconds; a longer search raises :class:`~symkin.errors.TimeLimitError`.
     scheduler, workers : optional
-        Evaluate the designs that pass the floating-point pruning exactly, in chunks, on Dask
-        (``"local"``: a local cluster of ``workers`` processes, or a scheduler's address); the
-        result is the same as without.
+        Run the search on Dask (``"local"``: a local cluster of ``workers`` processes, or a
+        scheduler's address): the partial designs, once there are enough, in contiguous chunks
+        (four per worker), each pruned state by state and evaluated exactly in a task, merged in
+        order; the result is the same as without (which runs four chunks in turn).
     """
     began = time.perf_counter()
     if not ratios:
@@ -144,40 +153,15 @@ def synthesize_transmission(train: Mechanism, ratios: Mapping[str, Any], *, tole
         if not len(t):
             raise InputError(f"no tooth numbers of {', '.join(map(str, g))} meet their set's conditions within "
                              f"{lo} <= z <= {hi}; widen the limits")
-    # states in the order that brings in the fewest new groups; partial designs as index rows into the tables
-    order: list[str] = []
-    assigned: list[int] = []
-    partial = np.zeros((1, 0), dtype=np.int64)
-    remaining = list(targets)
-    kept: list[int] = []
-    while remaining:
-        def new_groups(s: str) -> list[int]:
-            used = {i for i, g in enumerate(groups) if set(g) & laws[s].free_symbols}
-            return sorted(used - set(assigned))
-        s = min(remaining, key=lambda s: (len(new_groups(s)), remaining.index(s)))
-        remaining.remove(s)
-        for i in new_groups(s):
-            partial = _extend(partial, len(tables[i]))
-            assigned.append(i)
-            if len(partial) > MAX_PARTIAL:
-                raise InputError(f"state {s}: {len(partial)} partial designs before its ratio prunes them; name states "
-                                 "whose ratios involve fewer sets first, or narrow the limits")
-        partial = partial[_within(laws[s], targets[s], tol, absolute, groups, tables, assigned, partial)]
-        order.append(s)
-        kept.append(len(partial))
-        if time.perf_counter() - began > time_limit:
-            raise TimeLimitError(f"the search ran past {time_limit:.0f} s after state {s} ({len(partial)} partial "
-                                 "designs); narrow the limits or the tolerance")
-    free = [i for i in range(len(groups)) if i not in assigned]  # groups no ratio names: their least tuple
-    rows: list[dict[sp.Symbol, int]] = []
-    for row in partial:
-        values: dict[sp.Symbol, int] = {}
-        for col, i in enumerate(assigned):
-            values.update(zip(groups[i], (int(x) for x in tables[i][row[col]])))
-        for i in free:
-            values.update(zip(groups[i], (int(x) for x in tables[i][0])))
-        rows.append(values)
-    designs, where = _exact(rows, laws, targets, tol, absolute, scheduler, workers)
+    search = _Search(tuple(groups), tuple(tables), laws, targets, tol, absolute, _plan(targets, laws, groups))
+    deadline = time.time() + time_limit - (time.perf_counter() - began)  # wall clock: Dask workers keep it too
+    if scheduler is None:
+        kept, designs, _ = _search(search, CHUNKS_PER_WORKER, deadline,
+                                   lambda starts, lead: [_chunk(search, p, lead, deadline) for p in starts])
+        where = "this process"
+    else:
+        kept, designs, where = _dask(search, deadline, scheduler, workers)
+    order = [s for s, _ in search.plan]
     designs.sort(key=lambda d: (d.error, d.step_error, max(d.teeth.values()), sum(d.teeth.values())))
     kept_designs = tuple(designs if top is None else designs[:top])
     for d in kept_designs:
@@ -252,9 +236,15 @@ def _evaluate(expr: Any, symbols: Sequence[sp.Symbol], columns: Sequence[np.ndar
     if not expr.free_symbols:
         return np.full(n, float(expr))
     used = [k for k, z in enumerate(symbols) if z in expr.free_symbols]
-    f = compile_law(expr, [symbols[k] for k in used], backend="numpy", on_pole="return")
+    f = _compiled(expr, tuple(symbols[k] for k in used))
     with np.errstate(all="ignore"):
         return np.asarray(f(*[np.asarray(columns[k], dtype=float) for k in used]), dtype=float) * np.ones(n)
+
+
+@functools.lru_cache(maxsize=256)
+def _compiled(expr: sp.Expr, symbols: tuple[sp.Symbol, ...]) -> Any:
+    """``expr`` compiled once per process (every chunk of a search, on a Dask worker too, prunes with the same laws)."""
+    return compile_law(expr, list(symbols), backend="numpy", on_pole="return")
 
 
 def _extend(partial: np.ndarray, n: int) -> np.ndarray:
@@ -277,31 +267,134 @@ def _within(law: sp.Expr, target: sp.Rational, tol: sp.Rational, absolute: bool,
     return np.abs(value - float(target)) <= bound * (1 + 1e-9) + 1e-12
 
 
-#: Designs evaluated exactly per Dask task.
-CHUNK = 256
+@dataclass(frozen=True)
+class _Search:
+    """What every chunk of the search needs (sent once to each Dask worker)."""
+
+    groups: tuple[tuple[sp.Symbol, ...], ...]
+    tables: tuple[np.ndarray, ...]
+    laws: dict[str, sp.Expr]
+    targets: dict[str, sp.Rational]
+    tol: sp.Rational
+    absolute: bool
+    plan: tuple[tuple[str, tuple[int, ...]], ...]
+
+    @property
+    def assigned(self) -> list[int]:
+        """The groups in the order the states bring them in (the columns of a partial design)."""
+        return [i for _, new in self.plan for i in new]
 
 
-def _exact(rows: list[dict[sp.Symbol, int]], laws: dict[str, sp.Expr], targets: dict[str, sp.Rational], tol: sp.Rational,
-           absolute: bool, scheduler: str | None, workers: int | None) -> tuple[list[TransmissionDesign], str]:
-    """The designs of ``rows`` that meet every ratio exactly: here, or in chunks on Dask (merged in order)."""
-    if scheduler is None:
-        return _exact_chunk(rows, laws, targets, tol, absolute), "this process"
+def _plan(targets: dict[str, sp.Rational], laws: dict[str, sp.Expr],
+          groups: list[tuple[sp.Symbol, ...]]) -> tuple[tuple[str, tuple[int, ...]], ...]:
+    """The states in the order that brings in the fewest new groups, each with the groups it brings in."""
+    assigned: list[int] = []
+    remaining = list(targets)
+    plan = []
+    while remaining:
+        def new_groups(s: str) -> list[int]:
+            used = {i for i, g in enumerate(groups) if set(g) & laws[s].free_symbols}
+            return sorted(used - set(assigned))
+        s = min(remaining, key=lambda s: (len(new_groups(s)), remaining.index(s)))
+        remaining.remove(s)
+        new = new_groups(s)
+        assigned.extend(new)
+        plan.append((s, tuple(new)))
+    return tuple(plan)
+
+
+def _prune(search: _Search, partial: np.ndarray, first: int, last: int, deadline: float) -> tuple[np.ndarray, list[int]]:
+    """The partial designs (index rows into the tables) after states ``first`` to ``last`` of the plan, and how
+    many each state kept; a partial design's columns are the groups in ``search.assigned`` order, those it
+    has already are not added again."""
+    assigned = search.assigned
+    kept = []
+    for s, new in search.plan[first:last]:
+        for i in new:
+            if assigned.index(i) < partial.shape[1]:
+                continue
+            partial = _extend(partial, len(search.tables[i]))
+            if len(partial) > MAX_PARTIAL:
+                raise InputError(f"state {s}: {len(partial)} partial designs before its ratio prunes them; name states "
+                                 "whose ratios involve fewer sets first, or narrow the limits")
+        partial = partial[_within(search.laws[s], search.targets[s], search.tol, search.absolute, list(search.groups),
+                                  list(search.tables), assigned[:partial.shape[1]], partial)]
+        kept.append(len(partial))
+        if time.time() > deadline:
+            raise TimeLimitError(f"the search ran past its time limit after state {s} ({len(partial)} partial "
+                                 "designs); narrow the limits or the tolerance")
+    return partial, kept
+
+
+def _rows(search: _Search, partial: np.ndarray) -> list[dict[sp.Symbol, int]]:
+    """Each partial design's tooth numbers (groups no ratio names: their least tuple)."""
+    assigned = search.assigned
+    free = [i for i in range(len(search.groups)) if i not in assigned]
+    rows: list[dict[sp.Symbol, int]] = []
+    for row in partial:
+        values: dict[sp.Symbol, int] = {}
+        for col, i in enumerate(assigned):
+            values.update(zip(search.groups[i], (int(x) for x in search.tables[i][row[col]])))
+        for i in free:
+            values.update(zip(search.groups[i], (int(x) for x in search.tables[i][0])))
+        rows.append(values)
+    return rows
+
+
+def _chunk(search: _Search, start: np.ndarray, lead: int, deadline: float) -> tuple[list[int], list[TransmissionDesign]]:
+    """One chunk of the search: partial designs ``start`` pruned by every state from ``lead`` on, then evaluated
+    exactly; how many each state kept, and the designs in the search's order."""
+    partial, kept = _prune(search, start, lead, len(search.plan), deadline)
+    return kept, _exact_chunk(_rows(search, partial), search)
+
+
+#: Chunks per Dask worker, and in the calling process (:data:`MAX_PARTIAL` bounds each chunk's partial designs).
+CHUNKS_PER_WORKER = 4
+
+
+def _search(search: _Search, count: int, deadline: float,
+            run: Callable[[list[np.ndarray], int], list[tuple[list[int], list[TransmissionDesign]]]]
+            ) -> tuple[list[int], list[TransmissionDesign], int]:
+    """The search in ``count`` chunks: states are taken here until at least ``count`` partial designs are left,
+    these are split into ``count`` contiguous chunks that ``run(chunks, next state)`` prunes by the remaining
+    states and evaluates exactly (here or on Dask), merged in order; how many each state kept, the designs in
+    the order of the search in one piece, and the number of chunks."""
+    partial, kept, j = np.zeros((1, 0), dtype=np.int64), [], 0
+    while j < len(search.plan) and 0 < len(partial) < count:
+        partial, k = _prune(search, partial, j, j + 1, deadline)
+        kept += k
+        j += 1
+    if j == len(search.plan) or not len(partial):
+        return kept + [len(partial)] * (len(search.plan) - j), _exact_chunk(_rows(search, partial), search), 0
+    parts = run(np.array_split(partial, count), j)
+    kept += [sum(col) for col in zip(*(k for k, _ in parts))]
+    return kept, [d for _, part in parts for d in part], len(parts)
+
+
+def _dask(search: _Search, deadline: float, scheduler: str,
+          workers: int | None) -> tuple[list[int], list[TransmissionDesign], str]:
+    """:func:`_search` on Dask, four chunks per worker (``client.map``, the search scattered once to each)."""
     from symkin.synthesis.runner import _client
 
-    client, cluster, where, _ = _client(scheduler, workers)
+    client, cluster, where, count = _client(scheduler, workers)
     try:
-        chunks = [rows[k:k + CHUNK] for k in range(0, len(rows), CHUNK)]
-        futures = client.map(_exact_chunk, chunks, laws=laws, targets=targets, tol=tol, absolute=absolute, pure=False)
-        return [d for part in client.gather(futures) for d in part], f"{where}, {len(chunks)} chunks"
+        shared = client.scatter(search, broadcast=True)
+
+        def run(starts: list[np.ndarray], lead: int) -> list[tuple[list[int], list[TransmissionDesign]]]:
+            futures = client.map(_chunk, [shared] * len(starts), starts, lead=lead, deadline=deadline, pure=False)
+            return client.gather(futures)
+
+        kept, designs, chunks = _search(search, CHUNKS_PER_WORKER * count, deadline, run)
+        return kept, designs, f"{where}, {chunks} chunks"
     finally:
         client.close()
         if cluster is not None:
             cluster.close()
 
 
-def _exact_chunk(rows: list[dict[sp.Symbol, int]], laws: dict[str, sp.Expr], targets: dict[str, sp.Rational],
-                 tol: sp.Rational, absolute: bool) -> list[TransmissionDesign]:
-    return [d for d in (_design(v, laws, targets, tol, absolute) for v in rows) if d is not None]
+def _exact_chunk(rows: list[dict[sp.Symbol, int]], search: _Search) -> list[TransmissionDesign]:
+    return [d for d in (_design(v, search.laws, search.targets, search.tol, search.absolute) for v in rows)
+            if d is not None]
 
 
 def _design(values: dict[sp.Symbol, int], laws: dict[str, sp.Expr], targets: dict[str, sp.Rational], tol: sp.Rational,
@@ -318,14 +411,19 @@ def _design(values: dict[sp.Symbol, int], laws: dict[str, sp.Expr], targets: dic
     return TransmissionDesign({str(z): v for z, v in values.items()}, ratios, max(errors), max(steps, default=sp.Integer(0)))
 
 
-def _recheck(train: Any, problem: Problem, design: TransmissionDesign) -> None:
-    """Build the train with the design's numbers and solve every state again: the same exact ratios."""
+def _built(problem: Problem, teeth: Mapping[str, int]) -> Any:
+    """The problem's train with the tooth numbers ``teeth`` (unknown name -> number)."""
     links = []
     for L in problem.train.links:
-        gears = tuple(Gear.from_teeth(g.name, design.teeth[str(g.teeth)], internal=g.internal, module=g.module)
+        gears = tuple(Gear.from_teeth(g.name, teeth[str(g.teeth)], internal=g.internal, module=g.module)
                       if isinstance(g.teeth, sp.Symbol) else g for g in L.gears)
         links.append(dataclasses.replace(L, gears=gears))
-    built: Any = dataclasses.replace(problem.train, links=tuple(links))
+    return dataclasses.replace(problem.train, links=tuple(links))
+
+
+def _recheck(train: Any, problem: Problem, design: TransmissionDesign) -> None:
+    """Build the train with the design's numbers and solve every state again: the same exact ratios."""
+    built = _built(problem, design.teeth)
     for s, ratio in design.ratios.items():
         again = built.shift(s).ratio.rhs
         if again != ratio:  # pragma: no cover - a failure of the search, not of the input

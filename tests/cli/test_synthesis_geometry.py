@@ -1,9 +1,13 @@
-"""``symkin synthesize`` reports each design's gear geometry and leaves out what cannot be made:
+"""``symkin synthesize`` (one ratio or a whole transmission, --ratios) reports each design's gear geometry and leaves
+out what cannot be made:
 undercut gears (unless --allow-undercut) and contact ratios below --min-contact-ratio."""
 
 from __future__ import annotations
 
 import json
+import math
+
+import pytest
 
 from symkin.cli import main
 from symkin.geometry import gear_geometry, pair_geometry
@@ -51,3 +55,46 @@ def test_ravigneaux_designs_come_with_contact_ratios(capsys):
     data = json.loads(capsys.readouterr().out)
     assert code == 0 and len(data["designs"]) == 2
     assert all(1.2 < d["geometry"]["contact_ratio_min"] < 2 for d in data["designs"])
+
+
+# A whole transmission (--ratios): the same geometry checks on every design.
+LOW_OVERDRIVE = ("synthesize", "--train", "simple", "--ratios", "low=4,overdrive=0.75", "--tolerance", "0", "--absolute",
+                 "--planets", "3", "--quiet", "--json")
+
+
+def textbook_contact_ratio(z1: int, z2: int, internal: bool = False) -> float:
+    """Unshifted spur gears of module 1 and the 20 degree rack (Niemann and Winter; Shigley): the length of
+    contact over the base pitch, ra = r + m (an internal gear's tip circle r - m)."""
+    alpha = math.radians(20)
+    r1, r2 = z1 / 2, z2 / 2
+    a = r2 - r1 if internal else r1 + r2
+    reach1 = math.sqrt((r1 + 1) ** 2 - (r1 * math.cos(alpha)) ** 2)
+    reach2 = math.sqrt(((r2 - 1) if internal else (r2 + 1)) ** 2 - (r2 * math.cos(alpha)) ** 2)
+    length = reach1 - reach2 + a * math.sin(alpha) if internal else reach1 + reach2 - a * math.sin(alpha)
+    return length / (math.pi * math.cos(alpha))
+
+
+def test_a_transmission_with_a_12_tooth_sun_is_refused_unless_undercut_is_allowed(capsys):
+    assert main([*LOW_OVERDRIVE, "--zmin", "12", "--zmax", "60", "--allow-undercut"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["designs"][0]["teeth"] == {"z_s": 12, "z_p": 12, "z_r": 36}  # 1 + 36/12 = 4, 36/48 = 0.75
+    assert data["designs"][0]["geometry"]["undercut"] is True
+    assert any(n.startswith("design 1: gear s: undercut") for n in data["notes"])
+    assert main([*LOW_OVERDRIVE, "--zmin", "12", "--zmax", "60"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert [d["teeth"]["z_s"] for d in data["designs"]] == [18]  # 12 and 15 undercut even shifted
+    assert "2 of the best 3 designs were left out for undercut (a larger --top or --zmin lists others)" in data["notes"]
+
+
+def test_a_transmission_gives_each_design_its_least_contact_ratio(capsys):
+    assert main([*LOW_OVERDRIVE, "--zmax", "80"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert [d["teeth"]["z_s"] for d in data["designs"]] == [18, 21, 24]
+    for d in data["designs"]:
+        s, p, r = d["teeth"]["z_s"], d["teeth"]["z_p"], d["teeth"]["z_r"]
+        hand = min(textbook_contact_ratio(s, p), textbook_contact_ratio(p, r, internal=True))
+        assert d["geometry"]["shifts"] == {} and d["geometry"]["contact_ratio_min"] == pytest.approx(hand, abs=1e-12)
+    assert main([*LOW_OVERDRIVE[:-1], "--zmax", "80", "--min-contact-ratio", "1.55"]) == 0
+    out = capsys.readouterr().out
+    assert "z_s=18" not in out and "z_s=21" in out and "least contact ratio 1.5" in out
+    assert "note: 1 of the best 3 designs was left out for undercut or a contact ratio below 31/20" in out
