@@ -24,6 +24,7 @@ from __future__ import annotations
 import dataclasses
 import functools
 import itertools
+import os
 import time
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
@@ -134,7 +135,9 @@ def synthesize_transmission(train: Mechanism, ratios: Mapping[str, Any], *, tole
         Run the search on Dask (``"local"``: a local cluster of ``workers`` processes, or a
         scheduler's address): the partial designs, once there are enough, in contiguous chunks
         (four per worker), each pruned state by state and evaluated exactly in a task, merged in
-        order; the result is the same as without (which runs four chunks in turn).
+        order; the result is the same as without (which runs four chunks in turn). ``"auto"``: the
+        first chunk timed here, the others on a local cluster only where their projected time pays
+        for starting one, else here.
     """
     began = time.perf_counter()
     if not ratios:
@@ -159,6 +162,8 @@ def synthesize_transmission(train: Mechanism, ratios: Mapping[str, Any], *, tole
         kept, designs, _ = _search(search, CHUNKS_PER_WORKER, deadline,
                                    lambda starts, lead: [_chunk(search, p, lead, deadline) for p in starts])
         where = "this process"
+    elif scheduler == "auto":
+        kept, designs, where = _auto(search, deadline, workers)
     else:
         kept, designs, where = _dask(search, deadline, scheduler, workers)
     order = [s for s, _ in search.plan]
@@ -390,6 +395,36 @@ def _dask(search: _Search, deadline: float, scheduler: str,
         client.close()
         if cluster is not None:
             cluster.close()
+
+
+def _auto(search: _Search, deadline: float, workers: int | None) -> tuple[list[int], list[TransmissionDesign], str]:
+    """:func:`_search` here, its first chunk timed: the other chunks go to a local Dask cluster only where
+    their projected time pays for starting one (:func:`symkin.synthesis.runner.cluster_pays`); the
+    chunks and their order are the same either way, so the designs are too."""
+    from symkin.synthesis.runner import _client, cluster_pays
+
+    n = workers or os.cpu_count() or 1
+    where = ["this process"]
+
+    def run(starts: list[np.ndarray], lead: int) -> list[tuple[list[int], list[TransmissionDesign]]]:
+        began = time.perf_counter()
+        first = _chunk(search, starts[0], lead, deadline)
+        projected = (time.perf_counter() - began) * (len(starts) - 1)
+        if not cluster_pays(projected, n):
+            where[0] = f"this process (a local cluster of {n} would not pay: about {projected:.2g} s of search left)"
+            return [first, *(_chunk(search, p, lead, deadline) for p in starts[1:])]
+        client, cluster, where[0], _ = _client("local", n)
+        try:
+            shared = client.scatter(search, broadcast=True)
+            rest = client.gather(client.map(_chunk, [shared] * (len(starts) - 1), starts[1:], lead=lead,
+                                            deadline=deadline, pure=False))
+        finally:
+            client.close()
+            cluster.close()
+        return [first, *rest]
+
+    kept, designs, _ = _search(search, CHUNKS_PER_WORKER * n, deadline, run)
+    return kept, designs, where[0]
 
 
 def _exact_chunk(rows: list[dict[sp.Symbol, int]], search: _Search) -> list[TransmissionDesign]:

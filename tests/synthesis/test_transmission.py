@@ -76,3 +76,16 @@ def test_the_search_distributed_on_dask_gives_the_same_designs_in_the_same_order
     assert here.found > 20 and len(here.designs) == 20 and there.designs == here.designs  # the same designs, the same order
     assert (there.found, there.kept, there.order) == (here.found, here.kept, here.order)
     assert "Dask scheduler" in there.where and "8 chunks" in there.where and here.where == "this process"
+
+
+def test_auto_stays_here_when_a_cluster_would_not_pay_and_finds_the_same_designs(monkeypatch):
+    # 'auto' times the first chunk here; the search of a few tenths of a second cannot pay for a cluster
+    # (cluster_pays: the time saved must exceed the cluster's cost), so no Dask is started
+    from symkin.synthesis import runner
+
+    monkeypatch.setattr(runner, "_client", lambda *a: pytest.fail("auto started a cluster for a short search"))
+    kw = dict(tolerance=sp.Rational(3, 100), zmax=80, top=20)
+    here = synthesize_transmission(load_train("simpson"), TARGETS, **kw)
+    auto = synthesize_transmission(load_train("simpson"), TARGETS, scheduler="auto", **kw)
+    assert auto.designs == here.designs and (auto.found, auto.kept, auto.order) == (here.found, here.kept, here.order)
+    assert auto.where.startswith("this process (a local cluster of") and "would not pay" in auto.where
