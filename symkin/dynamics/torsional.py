@@ -32,7 +32,7 @@ from __future__ import annotations
 
 import itertools
 import math
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Any
 
@@ -77,12 +77,36 @@ def torsional_model(train: Mechanism, state: Any = None, *, pressure_angle: Any 
     values : mapping of symbol name to value, optional
         Numbers for the symbols left (``{"J_S": 0.01, "k_s_p": 5e8}``).
     """
-    from symkin.kinematics import contact_condition
-
     held, joined, _ = state_constraints(train, state)
     alpha = as_expr(pressure_angle, what="pressure angle", unit="rad")
     length = as_expr(length, what="length (metres per model length unit)")
-    # the bodies and their coordinates
+    bodies, chains = _bodies(train, held, joined)
+    coordinates = tuple(dict.fromkeys(v for v in bodies.values() if v != 0))
+    if not coordinates:
+        raise InputError("every link is held: the train has no coordinate to vibrate; release a brake")
+    rates = {c: sp.Symbol(f"d{c.name}") for c in coordinates}
+
+    def turn(link: str, index: tuple[int, ...]) -> sp.Expr:
+        if link == FRAME:
+            return sp.Integer(0)
+        return bodies[(link, index[: len(chains[link])])]
+
+    T = _kinetic_energy(train, bodies, rates, turn, chains, length)
+    V = _mesh_energy(train, turn, chains, alpha, length)
+    for L in train.moving_links:  # the shafts holding links to the frame
+        if L.stiffness is not None:
+            V += L.stiffness * turn(L.name, ()) ** 2 / 2
+    u = [rates[c] for c in coordinates]
+    T, V = by_name(T, values), by_name(V, values)
+    M = sp.ImmutableMatrix(len(u), len(u), lambda i, j: sp.expand(sp.diff(T, u[i], u[j])))
+    K = sp.ImmutableMatrix(len(u), len(u), lambda i, j: sp.expand(sp.diff(V, coordinates[i], coordinates[j])))
+    return TorsionalModel(train, tuple(c.name.removeprefix("varphi_") for c in coordinates), tuple(coordinates), M, K)
+
+
+def _bodies(train: Mechanism, held: dict[str, Any], joined: Any) -> tuple[dict[Body, Any], dict[str, Any]]:
+    """Every body (a link, or one copy of a planet) and its coordinate: 0 where a brake holds it,
+    one shared coordinate for the links a clutch joins, one for each copy of a planet; and each
+    link's chain of carriers."""
     parent = {L.name: L.name for L in train.moving_links}
 
     def root(n: str) -> str:
@@ -111,17 +135,13 @@ def torsional_model(train: Mechanism, state: Any = None, *, pressure_angle: Any 
             else:
                 label = L.name + ("" if all(arm.count == 1 for arm in chain) else "_" + "".join(str(i + 1) for i in index))
                 bodies[(L.name, index)] = S.angle(label)
-    coordinates = tuple(dict.fromkeys(v for v in bodies.values() if v != 0))
-    if not coordinates:
-        raise InputError("every link is held: the train has no coordinate to vibrate; release a brake")
-    rates = {c: sp.Symbol(f"d{c.name}") for c in coordinates}
+    return bodies, chains
 
-    def turn(link: str, index: tuple[int, ...]) -> sp.Expr:
-        if link == FRAME:
-            return sp.Integer(0)
-        return bodies[(link, index[: len(chains[link])])]
 
-    # kinetic energy: spins, and the planets' centres moving with their carriers' coordinates
+def _kinetic_energy(train: Mechanism, bodies: Mapping[Body, Any], rates: Mapping[sp.Symbol, sp.Symbol],
+                    turn: Callable[[str, tuple[int, ...]], sp.Expr], chains: Mapping[str, Any], length: sp.Expr) -> sp.Expr:
+    """The kinetic energy: the bodies' spins, and the planets' centres moving with their carriers'
+    coordinates (each copy at its place at t = 0)."""
     T = sp.Integer(0)
     for (link, index), theta in bodies.items():
         L = train.link(link)
@@ -144,7 +164,15 @@ def torsional_model(train: Mechanism, state: Any = None, *, pressure_angle: Any 
             vx -= w * arm.length * length * sp.sin(psi)
             vy += w * arm.length * length * sp.cos(psi)
         T += mass_of(train, link) * (vx ** 2 + vy ** 2) / 2
-    # potential energy: meshes and shafts
+    return T
+
+
+def _mesh_energy(train: Mechanism, turn: Callable[[str, tuple[int, ...]], sp.Expr], chains: Mapping[str, Any],
+                 alpha: sp.Expr, length: sp.Expr) -> sp.Expr:
+    """The potential energy of the mesh springs: one for each copy of the deepest planet of a mesh,
+    its deflection the mesh's contact condition in turns along the line of action."""
+    from symkin.kinematics import contact_condition
+
     V = sp.Integer(0)
     for mesh in train.meshes:
         geo = train.mesh_geometry(mesh)
@@ -157,14 +185,7 @@ def torsional_model(train: Mechanism, state: Any = None, *, pressure_angle: Any 
             for n in names:
                 d += relative.coeff(S.omega(n)) * turn(n, _index_for(chains, n, deepest, index))
             V += mesh_stiffness(mesh) * (sp.cos(alpha) * length * d) ** 2 / 2
-    for L in train.moving_links:
-        if L.stiffness is not None:
-            V += L.stiffness * turn(L.name, ()) ** 2 / 2
-    u = [rates[c] for c in coordinates]
-    T, V = by_name(T, values), by_name(V, values)
-    M = sp.ImmutableMatrix(len(u), len(u), lambda i, j: sp.expand(sp.diff(T, u[i], u[j])))
-    K = sp.ImmutableMatrix(len(u), len(u), lambda i, j: sp.expand(sp.diff(V, coordinates[i], coordinates[j])))
-    return TorsionalModel(train, tuple(c.name.removeprefix("varphi_") for c in coordinates), tuple(coordinates), M, K)
+    return V
 
 
 def _index_for(chains: Mapping[str, Any], link: str, deepest: str, index: tuple[int, ...]) -> tuple[int, ...]:

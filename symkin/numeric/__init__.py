@@ -219,10 +219,8 @@ def compile(
     jit : {"auto", "eager"}, optional
         For the numba backend: ``"eager"`` compiles a kernel at its first call; ``"auto"``
         evaluates with the NumPy code until the time spent there pays for compiling the kernel
-        (five times its estimated compile time: first use costs at most a fifth more than
-        NumPy alone; ``symkin.numeric.backends.numba.compile_pays``).  Default: ``"auto"``
-        where the backend is not named (neither ``backend=`` nor ``$SYMKIN_BACKEND``), else
-        ``"eager"``.
+        (docs/numerics.md, "First use").  Default: ``"auto"`` where the backend is not named
+        (neither ``backend=`` nor ``$SYMKIN_BACKEND``), else ``"eager"``.
 
     Returns
     -------
@@ -239,14 +237,7 @@ def compile(
     >>> mpmath.nstr(f(0.5), 30)   # mpf values carry 30 digits; print them with nstr
     '0.958851077208406000546575870431'
     """
-    if jit is None:
-        jit = "auto" if backend is None and not os.environ.get(BACKEND_VARIABLE, "").strip() else "eager"
-    if jit not in ("auto", "eager"):
-        raise InputError(f"jit must be 'auto' or 'eager', got {jit!r}")
-    if backend is None:
-        backend = default_backend()
-    if backend not in BACKENDS:
-        raise InputError(f"unknown backend {backend!r}; choose one of {', '.join(BACKENDS)}")
+    backend, jit = _backend_and_jit(backend, jit)
     exprs, names = _exprs(laws)
     args = _arguments(exprs, args)
     if reduce_phase is None:  # time, by its name: phases of t are reduced unless asked not to
@@ -256,11 +247,7 @@ def compile(
         reduce_phase=tuple(reduce_phase), chunk=chunk, threads=threads, on_pole=on_pole, jit=jit,
     )
     spec = _Spec(tuple(exprs), tuple(names), args, tuple(sorted((k, _hashable(v)) for k, v in options.items())))
-    cls = BACKENDS[backend]
-    if backend == "numba" and jit == "eager" and not numba_available():
-        warn_no_numba()
-        cls = BACKENDS["numpy"]
-    _check_options(cls, backend, precision, digits, chunk)
+    cls = _backend_class(backend, jit, precision, digits, chunk)
     applied: list[str] = []
     rewritten = exprs
     if cls.floats:
@@ -272,6 +259,32 @@ def compile(
     )
     notes = [note for name, note in RULE_NOTES.items() if name in applied]
     return NumericFunction(cls(plan), plan, cls.key, notes, spec, on_pole=on_pole)
+
+
+def _backend_and_jit(backend: str | None, jit: str | None) -> tuple[str, str]:
+    """The backend and the jit mode that run a compiled law: as given, checked, or the defaults
+    (:func:`default_backend`; ``"auto"`` where no backend is named, neither ``backend=`` nor
+    ``$SYMKIN_BACKEND``, else ``"eager"``)."""
+    if jit is None:
+        jit = "auto" if backend is None and not os.environ.get(BACKEND_VARIABLE, "").strip() else "eager"
+    if jit not in ("auto", "eager"):
+        raise InputError(f"jit must be 'auto' or 'eager', got {jit!r}")
+    if backend is None:
+        backend = default_backend()
+    if backend not in BACKENDS:
+        raise InputError(f"unknown backend {backend!r}; choose one of {', '.join(BACKENDS)}")
+    return backend, jit
+
+
+def _backend_class(backend: str, jit: str, precision: str, digits: Any, chunk: Any) -> type[Backend]:
+    """The class of ``backend`` (NumPy's, with one notice, for an eager numba without numba
+    installed), its options checked."""
+    cls = BACKENDS[backend]
+    if backend == "numba" and jit == "eager" and not numba_available():
+        warn_no_numba()
+        cls = BACKENDS["numpy"]
+    _check_options(cls, backend, precision, digits, chunk)
+    return cls
 
 
 def _arguments(exprs: Sequence[sp.Expr], args: Any) -> tuple[sp.Symbol, ...]:

@@ -260,3 +260,29 @@ def test_the_tests_mirror_the_package():
         if not any(stem == n or stem.startswith(n + "_") for n in names):
             stray.append(str(path.relative_to(ROOT)))
     assert not stray, "test files that name no module of symkin at their path:\n" + "\n".join(stray)
+
+
+#: The house limits of issue 30: a module of symkin/ is at most this many lines long (as ``wc -l``
+#: counts them), a function (its def to its last line, docstring included) at most this many.
+MAX_MODULE_LINES, MAX_FUNCTION_LINES = 800, 100
+
+
+def test_no_module_or_function_of_symkin_is_over_the_house_limits():
+    # a module past 800 lines holds two subjects, a function past 100 several steps: split them where
+    # their logic splits (benchmarks/layout.py lists the longest)
+    long_modules, long_functions = [], []
+    for path in MODULES.values():
+        text = path.read_text()
+        name = path.relative_to(ROOT).as_posix()
+        lines = len(text.splitlines())
+        if lines > MAX_MODULE_LINES:
+            long_modules.append(f"{name} ({lines} lines)")
+        for node in ast.walk(ast.parse(text, name)):
+            if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
+                length = (node.end_lineno or node.lineno) - node.lineno + 1
+                if length > MAX_FUNCTION_LINES:
+                    long_functions.append(f"{name}:{node.name} (line {node.lineno}, {length} lines)")
+    assert not long_modules and not long_functions, (
+        f"modules over {MAX_MODULE_LINES} lines: {', '.join(long_modules) or 'none'}; "
+        f"functions over {MAX_FUNCTION_LINES} lines: {', '.join(long_functions) or 'none'}"
+    )
