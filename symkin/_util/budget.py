@@ -15,7 +15,7 @@ timer (``ITIMER_PROF``, signal SIGPROF) of the main thread, which interrupts Sym
 pure-Python work wherever it is, at no cost per call; an outer budget (one of these blocks
 inside another) is kept and re-armed.  SIGALRM and the real-time timer are left alone, so a
 test harness's or a user's alarm is not touched.  A profiler that samples with SIGPROF or
-``ITIMER_PROF`` (yappi, some statistical profilers) conflicts with these budgets: it should
+``ITIMER_PROF`` (vmprof, gperftools' CPU profiler) conflicts with these budgets: it should
 not run together with them.  The interrupt is raised again every 0.1 s of CPU time until the
 work has stopped, since one can land where Python drops exceptions (a weakref callback) or
 in a bare ``except``.  Work inside one C call (a large integer product, say) is not
