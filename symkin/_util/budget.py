@@ -1,4 +1,4 @@
-"""Bounded symbolic work: simplification with a size and a time budget.
+"""Bounded symbolic work: simplification with a size and a time budget (CPU time).
 
 SymPy's ``simplify`` can take minutes, or practically forever, on a large expression,
 and the size of many expressions symkin simplifies depends on what a user typed (an
@@ -7,9 +7,16 @@ angle such as ``(sin(1) + cos(1) + tan(1) + sqrt(3))**30``, a custom mechanism).
 simplification when its time is up, and then returns the expression as it was, with a
 :class:`~symkin.errors.SimplificationBudgetWarning`: the law stays exact, only less tidy.
 
-The time limit uses the interval timer (SIGALRM) of the main thread, which interrupts
-SymPy's pure-Python work wherever it is, at no cost per call; an outer timer (a test
-harness's, say) is kept and re-armed.  The interrupt is raised again every 0.1 s until the
+The time limit counts the CPU time of the process (all its threads), not the time on the
+clock: on a loaded machine the same work gets the same budget, so whether a law is simplified,
+or a value refused, does not depend on what else the machine is doing, and a block that
+waits (on a sleep, a file, a lock) uses none of it.  It is kept by the profiling interval
+timer (``ITIMER_PROF``, signal SIGPROF) of the main thread, which interrupts SymPy's
+pure-Python work wherever it is, at no cost per call; an outer budget (one of these blocks
+inside another) is kept and re-armed.  SIGALRM and the real-time timer are left alone, so a
+test harness's or a user's alarm is not touched.  A profiler that samples with SIGPROF or
+``ITIMER_PROF`` (vmprof, gperftools' CPU profiler) conflicts with these budgets: it should
+not run together with them.  The interrupt is raised again every 0.1 s of CPU time until the
 work has stopped, since one can land where Python drops exceptions (a weakref callback) or
 in a bare ``except``.  Work inside one C call (a large integer product, say) is not
 interrupted.  Off the main thread (a Dask worker, a Jupyter background thread, a web
@@ -48,7 +55,7 @@ from symkin.values import as_rational
 
 __all__ = ["simplify_within", "time_limit", "seconds_limit", "SECONDS", "MAX_OPS"]
 
-#: Default time budget of one simplification, seconds.
+#: Default time budget of one simplification, CPU seconds of the process.
 SECONDS = 2.0
 #: Default size budget: expressions with more operations than this are not simplified.
 MAX_OPS = 4000
@@ -72,7 +79,8 @@ def simplify_within(
     ----------
     expr : sympy expression (or anything ``simplifier`` takes)
     seconds : float or None
-        Time budget; None for no time limit.  Kept in the main thread only (see above).
+        Time budget in CPU seconds of the process; None for no time limit.  Kept in the main
+        thread only (see above).
     max_ops : int or None
         Largest :func:`sympy.count_ops` of an expression that is simplified at all.
     simplifier : callable
@@ -108,7 +116,7 @@ def simplify_within(
             return simplifier(expr)
     except _OutOfTime:
         warnings.warn(
-            f"simplifying {what} took longer than {seconds:g} s; it is kept as derived (exact, not simplified)",
+            f"simplifying {what} took longer than {seconds:g} s of CPU time; it is kept as derived (exact, not simplified)",
             SimplificationBudgetWarning,
             stacklevel=2,
         )
@@ -117,16 +125,17 @@ def simplify_within(
 
 @contextmanager
 def time_limit(seconds: float, message: str, error: type[Exception] = InputError) -> Iterator[None]:
-    """Run the block for at most ``seconds``; past them, raise ``error(message)``.
+    """Run the block for at most ``seconds`` of CPU time; past them, raise ``error(message)``.
 
     For work whose time follows what a user typed (evaluating an expression, deciding a
     sign) and that has no useful partial result: the user gets a one-line error instead of a
-    hang.  The block is interrupted as :func:`simplify_within` is: by a timer signal, in the
-    main thread only (elsewhere the block runs to its end).
+    hang.  The block is interrupted as :func:`simplify_within` is: by a CPU-time timer signal,
+    in the main thread only (elsewhere the block runs to its end).  Time the block spends
+    waiting (a sleep, a read) does not count.
 
-    >>> import time
     >>> with time_limit(0.05, "the angle took too long to evaluate; simplify it"):
-    ...     time.sleep(1)
+    ...     while True:
+    ...         _ = sum(range(1000))
     Traceback (most recent call last):
     ...
     symkin.errors.InputError: the angle took too long to evaluate; simplify it
@@ -152,12 +161,13 @@ def seconds_limit(value: Any) -> float | None:
     return float(limit)
 
 
-#: Seconds between repeated interrupts once the time is up (until the block has stopped).
+#: CPU seconds between repeated interrupts once the time is up (until the block has stopped).
 _REFIRE = 0.1
 
 
 @contextmanager
 def _time_limit(seconds: float) -> Iterator[None]:
+    """Interrupt the block with :class:`_OutOfTime` once it has used ``seconds`` of the process's CPU time."""
     if threading.current_thread() is not threading.main_thread() or not hasattr(signal, "setitimer"):
         yield  # no signals here: no time limit
         return
@@ -168,18 +178,20 @@ def _time_limit(seconds: float) -> Iterator[None]:
         if active[0]:
             raise _OutOfTime
 
-    outer_left, outer_interval = signal.getitimer(signal.ITIMER_REAL)
-    start = time.monotonic()
-    previous = signal.signal(signal.SIGALRM, expire)
+    # an outer budget (this block nested in another's) is kept: the inner one ends at the latest when
+    # the outer one does, and the outer one is re-armed with the CPU time it has left
+    outer_left, outer_interval = signal.getitimer(signal.ITIMER_PROF)
+    start = time.process_time()
+    previous = signal.signal(signal.SIGPROF, expire)
     # then again every _REFIRE s: an interrupt that lands where Python drops exceptions (a __del__, a
     # weakref or gc callback: "Exception ignored in ...") or that a bare except swallows is raised again
-    signal.setitimer(signal.ITIMER_REAL, min(seconds, outer_left) if outer_left > 0 else seconds, _REFIRE)
+    signal.setitimer(signal.ITIMER_PROF, min(seconds, outer_left) if outer_left > 0 else seconds, _REFIRE)
     try:
         yield
     finally:
         active[0] = False  # a repeat that lands from here on is ignored
-        signal.setitimer(signal.ITIMER_REAL, 0)
-        signal.signal(signal.SIGALRM, previous)
-        if outer_left > 0:  # re-arm the outer timer with what is left of it (at least a moment)
-            left = outer_left - (time.monotonic() - start)
-            signal.setitimer(signal.ITIMER_REAL, max(left, 1e-6), outer_interval)
+        signal.setitimer(signal.ITIMER_PROF, 0)
+        signal.signal(signal.SIGPROF, previous)
+        if outer_left > 0:  # re-arm the outer budget with what is left of it (at least a moment)
+            left = outer_left - (time.process_time() - start)
+            signal.setitimer(signal.ITIMER_PROF, max(left, 1e-6), outer_interval)

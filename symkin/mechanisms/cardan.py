@@ -247,7 +247,7 @@ class StrokeTimes:
 
 
 
-#: Seconds a simplification only for the text of a result may take (the tidier form of an
+#: CPU seconds a simplification only for the text of a result may take (the tidier form of an
 #: angle the description prints); a decision keeps the full budget of simplify_within.
 _DISPLAY_SECONDS = 0.5
 

@@ -88,7 +88,7 @@ __all__ = [
     "plain_form",
 ]
 
-#: Seconds each rewriting rule may take on one law (:func:`stable_form`).
+#: CPU seconds each rewriting rule may take on one law (:func:`stable_form`): the same on a loaded machine.
 RULE_SECONDS = 2.0
 
 _MAX_OPS = 600  # rules that expand or factor skip larger expressions (cost grows fast)

@@ -10,7 +10,7 @@ expression (irrational ones and the results of powers and functions included) 0 
 1e-300 and 1e300 in size, decided on intervals as it is built (:mod:`symkin._util.bounds`),
 every exact number of at most :data:`MAX_EXACT_DIGITS` digits above and below its fraction bar,
 a law of t smooth and its second derivative at most :data:`MAX_LAW_SIZE` nodes, and at most
-:data:`SECONDS` seconds to read one value.
+:data:`SECONDS` seconds of CPU time to read one value.
 
     >>> import symkin
     >>> symkin.parse("2*pi*sin(t)", names=("t",))

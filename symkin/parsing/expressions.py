@@ -112,7 +112,7 @@ def parse_expression(
         raise InputError(f"{what} {text!r} is not a valid expression") from None
     except (RecursionError, MemoryError):
         raise InputError(f"{what} is nested too deeply to read; at most {MAX_DEPTH} levels are accepted") from None
-    with time_limit(SECONDS, f"{what} took longer than {SECONDS:g} s to build and bound; write a simpler expression"):
+    with time_limit(SECONDS, f"{what} took longer than {SECONDS:g} s of CPU time to build and bound; write a simpler expression"):
         expr = _Builder(allowed, what, source).build(tree.body, 0)
         exact_digits(expr, what)  # every exact number in it, once (each step bounded its own on the way)
         if S.t in expr.free_symbols:

@@ -31,7 +31,7 @@ _SAFE_BITS = int(MAX_DIGITS * math.log2(10))  # 2^996 < 10^300
 #: the size bounds, ``(1 - 10**-300)**1000`` 300,000 of them, and every later step pays for them.
 MAX_EXACT_DIGITS = 1000
 _EXACT_BITS = int(MAX_EXACT_DIGITS * math.log2(10))  # 2^3321 < 10^1000
-#: Seconds the parsing and bounding of one expression may take.
+#: CPU seconds the parsing and bounding of one expression may take (the process's CPU time, not the clock's).
 SECONDS = 3.0
 
 #: 1,5 (a decimal comma, read by Python as a tuple) and 1e (an exponent without digits).

@@ -281,6 +281,7 @@ def _alarm(seconds: float) -> Iterator[None]:
     # ITIMER_PROF counts this process's CPU time (all its threads), not the wall clock; a wall-clock
     # alarm at WALL_FACTOR times the limit still stops a command that waits without working.  An
     # outer wall-clock timer (pytest-timeout's per-test limit) is put back with what is left of it.
+    # symkin's own time budgets (ITIMER_PROF too) keep this timer as their outer one and re-arm it.
     outer_left, outer_interval = signal.getitimer(signal.ITIMER_REAL)
     start = time.monotonic()
     previous = {sig: signal.signal(sig, handler) for sig in (signal.SIGPROF, signal.SIGALRM)}

@@ -323,7 +323,7 @@ class StageErrorModel:
         lo = as_rational(lower, what="the lower ratio bound")
         hi = as_rational(upper, what="the upper ratio bound")
         with time_limit(POSITIVE_SECONDS, f"deciding whether the stage error model {self.expr} is positive took "
-                        f"longer than {POSITIVE_SECONDS:g} s; write a simpler model"):
+                        f"longer than {POSITIVE_SECONDS:g} s of CPU time; write a simpler model"):
             found = _positive_on(self.expr, U, lo, hi)
         if found is not None:
             at, problem = found
@@ -334,7 +334,7 @@ class StageErrorModel:
             )
 
 
-#: Seconds :meth:`StageErrorModel.check_positive` may take to decide.
+#: CPU seconds :meth:`StageErrorModel.check_positive` may take to decide.
 POSITIVE_SECONDS = 3.0
 
 
