@@ -70,7 +70,8 @@ def test_a_busy_block_is_interrupted_after_about_its_budget_of_cpu_time():
         with time_limit(0.3, "too long"):
             _busy()
     used = time.process_time() - start
-    assert 0.29 <= used < 1.5  # the timer counts the same CPU time that process_time reads
+    # the timer counts the same CPU time that process_time reads, in the kernel's ticks (a few ms either way)
+    assert 0.25 <= used < 1.5
 
 
 def test_an_alarm_of_the_caller_is_left_alone():
@@ -104,7 +105,7 @@ def test_an_outer_budget_survives_an_inner_one_and_still_fires():
             left = signal.getitimer(signal.ITIMER_PROF)[0]
             assert 0 < left < 0.45  # re-armed with what was left of it (the timer counts in ticks of a few ms)
             _busy()
-    assert 0.39 <= time.process_time() - start < 1.5
+    assert 0.35 <= time.process_time() - start < 1.5  # (CPU time is counted in ticks of a few ms)
     assert signal.getitimer(signal.ITIMER_PROF)[0] == 0
 
 

@@ -61,7 +61,7 @@ def test_a_hang_is_stopped_by_the_time_limit(tmp_path, monkeypatch):
 
     monkeypatch.setattr(gears, "run_ratio", forever)
     outcome = run(COMMANDS["ratio"].argv, tmp_path, limit=0.3)
-    assert outcome.hung and 0.29 <= outcome.seconds < 5
+    assert outcome.hung and 0.25 <= outcome.seconds < 5  # CPU time, counted in ticks of a few ms
 
 
 # ---- huge tooth numbers: exact, quick, and the same as the closed form typed here

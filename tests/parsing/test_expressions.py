@@ -271,4 +271,4 @@ def test_a_time_budget_stops_work_that_follows_a_users_expression(monkeypatch):
     start = time.process_time()
     with pytest.raises(InputError, match="took longer than 0.3 s of CPU time"):
         parse_expression("sin(2) + 1")
-    assert 0.29 <= time.process_time() - start < 3
+    assert 0.25 <= time.process_time() - start < 3  # CPU time, counted in ticks of a few ms
