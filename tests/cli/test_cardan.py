@@ -82,6 +82,9 @@ BAD = [
     (["--length", "0.02", "--speed", "1", "--order", "2"], "belong to the elliptical drive"),
     (["--length", "0.02", "--angle-law", "t"], "has no known period; give --t-end"),
     (["--length", "0.02", "--angle-law", "__import__('os')", "--t-end", "1"], "not allowed"),
+    # a slider beyond floats: the refusal names the column (it said "law 1"), v = 2 l w, 10^600
+    (["--length", "1e300", "--speed", "1e300"], "the slider's velocity v holds a number of about 10^600"),
+    (["--length", "0.02", "--speed", "1", "-e", "(1+10**-300)**(1/2)"], "[0, 1)"),
 ]
 
 
