@@ -21,7 +21,7 @@ import sympy as sp
 
 from symkin import symbols as S
 from symkin.errors import InputError, UnsupportedError
-from symkin.values import as_expr
+from symkin.values import as_expr, sign_of
 
 __all__ = ["Drive", "ConstantSpeed", "AngleLaw", "SpeedLaw", "EllipticalGears", "as_drive"]
 
@@ -187,7 +187,9 @@ class EllipticalGears(Drive):
     def __post_init__(self) -> None:
         object.__setattr__(self, "omega", _positive(self.omega, "driver speed of the elliptical gears"))
         e = _as_expr(self.eccentricity, "eccentricity")
-        if e.is_number and not (e >= 0 and e < 1):
+        # signs to many digits (sign_of): SymPy's e < 1 is undecided for sqrt(1 - 10**-300) (a TypeError)
+        if e.is_number and not (sign_of(e, what="the eccentricity") in (0, 1)
+                                and sign_of(1 - e, what="the eccentricity") == 1):
             raise InputError(f"the eccentricity must lie in [0, 1), got {self.eccentricity}; 0 gives circular gears")
         object.__setattr__(self, "eccentricity", e)
         object.__setattr__(self, "order", _positive(self.order, "order of the elliptical gears"))

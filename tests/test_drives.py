@@ -109,3 +109,12 @@ def test_a_drive_without_closed_inverse_says_so():
 
     with pytest.raises(UnsupportedError):
         AngleLaw(t**2).time_of_angle(1)
+
+
+def test_an_eccentricity_within_1e_300_of_1_is_decided_by_its_digits():
+    # SymPy leaves sqrt(1 - 10**-300) < 1 undecided (a TypeError); 1 - e is 5e-301 and 1 + e - 2 is 5e-301 above
+    tiny = sp.Rational(1, 10**300)
+    assert EllipticalGears(1, sp.sqrt(1 - tiny)).eccentricity == sp.sqrt(1 - tiny)
+    for e in (sp.sqrt(1 + tiny), -tiny, sp.Integer(1)):
+        with pytest.raises(InputError, match=r"must lie in \[0, 1\)"):
+            EllipticalGears(1, e)

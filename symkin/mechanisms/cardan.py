@@ -567,7 +567,9 @@ class CardanSlider:
         x, y = self.pin_position
         names = ("s", "v", "a", "x", "y", "deviation")
         exprs = [self.displacement, self.velocity, self.acceleration, x, y, self.deviation]
-        out = dict(zip(names, on_grid(exprs, ts, values, what="evaluate the mechanism")))
+        words = ("the slider's displacement s", "the slider's velocity v", "the slider's acceleration a",
+                 "the pin's x", "the pin's y", "the pin's distance from the guide")
+        out = dict(zip(names, on_grid(exprs, ts, values, what="evaluate the mechanism", names=words)))
         out["t"] = ts
         return out
 

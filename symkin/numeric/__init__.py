@@ -349,9 +349,12 @@ def _refuse_constants_beyond_floats(exprs: Sequence[sp.Expr], names: Sequence[st
 
 
 def _constants(e: sp.Expr) -> sp.Expr:
-    """``e`` with every function of numbers alone replaced by its value (a Float of 30
-    digits): float code then never meets an integer too large for a float inside a sine."""
-    found = [n for n in sp.preorder_traversal(e) if isinstance(n, sp.Function) and not n.free_symbols]
+    """``e`` with every function of numbers alone, and every power of numbers alone holding an
+    integer beyond int64, replaced by its value (a Float of 30 digits): float code then never
+    meets an integer too large for NumPy (``sqrt(10**40 + 1)``, ``cos(10**30)``), which takes
+    Python integers beyond int64 as objects with no ``sqrt`` or ``cos``."""
+    found = [n for n in sp.preorder_traversal(e)
+             if not n.free_symbols and (isinstance(n, sp.Function) or (n.is_Pow and _beyond_int64(n)))]
     if not found:
         return e
     values = {}
@@ -360,6 +363,11 @@ def _constants(e: sp.Expr) -> sp.Expr:
         if value.is_Float:
             values[n] = value
     return e.xreplace(values) if values else e
+
+
+def _beyond_int64(e: sp.Expr) -> bool:
+    """Whether ``e`` holds an exact number whose numerator or denominator int64 cannot hold."""
+    return any(max(abs(int(r.p)), int(r.q)) >= 2**63 for r in e.atoms(sp.Rational))
 
 
 def _hashable(v: Any) -> Any:

@@ -26,6 +26,7 @@ import sympy as sp
 
 from symkin import symbols as S
 from symkin.errors import InputError
+from symkin.laws import Law
 from symkin.numeric import compile
 from symkin.values import as_float, as_values, substitute
 
@@ -92,7 +93,8 @@ def as_times(times: Any) -> np.ndarray:
 
 
 def on_grid(
-    exprs: Sequence[Any], t: Any, values: Mapping[Any, Any] | None = None, *, what: str = "sample the laws"
+    exprs: Sequence[Any], t: Any, values: Mapping[Any, Any] | None = None, *, what: str = "sample the laws",
+    names: Sequence[str] | None = None,
 ) -> list[np.ndarray]:
     """Each expression in :data:`symkin.symbols.t` evaluated on the grid ``t``.
 
@@ -100,8 +102,9 @@ def on_grid(
     left without one is an :class:`~symkin.errors.InputError` that names it (and says it
     was needed to ``what``).  The laws are compiled together by :func:`symkin.compile`
     (shared subexpressions, stable forms); a non-finite value anywhere on the grid raises
-    :class:`~symkin.errors.PoleError`.  Returns one float64 array per expression, of the
-    grid's shape.
+    :class:`~symkin.errors.PoleError`.  ``names`` (one per expression) name the laws in a
+    refusal ("the slider's acceleration a holds a number of about 10^600").  Returns one
+    float64 array per expression, of the grid's shape.
     """
     grid = t if isinstance(t, np.ndarray) and t.dtype == np.float64 else as_times(t)
     subs = as_values(values)
@@ -111,6 +114,8 @@ def on_grid(
         raise InputError(f"give values for {', '.join(sorted(map(str, free)))} to {what}")
     if not laws:
         return []
+    if names is not None:
+        laws = [Law(sp.Symbol(name), law) for name, law in zip(names, laws, strict=True)]
     f = compile(laws, [S.t], backend="numpy", on_pole="raise")
     out = f(grid)
     columns = out if isinstance(out, tuple) else (out,)

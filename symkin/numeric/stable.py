@@ -566,7 +566,8 @@ def reduce_phases(expr: sp.Expr, times: Iterable[sp.Symbol]) -> sp.Expr:
                 continue
             coeff, factors = term.as_coeff_mul()
             if coeff.is_Rational and len(factors) <= 3 and all(f.is_Symbol for f in factors):
-                new_terms.append(ReducedPhase(coeff.p, coeff.q, *factors))
+                ratio = _float_exact_ratio(coeff)
+                new_terms.append(ReducedPhase(*ratio, *factors) if ratio else term)
                 continue
             long = _long_phase(term, times)
             if long is None:
@@ -575,6 +576,26 @@ def reduce_phases(expr: sp.Expr, times: Iterable[sp.Symbol]) -> sp.Expr:
         return node.func(sp.Add(*new_terms))
 
     return expr.replace(lambda n: isinstance(n, (sin, cos, tan)), rewrite)
+
+
+#: The largest integer every float holds exactly next to its neighbours (p and q of a reduced phase are floats).
+_EXACT_FLOAT_INTEGER = 2**53
+
+
+def _float_exact_ratio(coeff: sp.Rational) -> tuple[int, int] | None:
+    """``coeff`` as integers ``(p, q)`` that floats hold exactly (the reduced phase computes in
+    floats): itself when both are below 2^53, else the correctly rounded float of ``coeff`` as a
+    ratio (an integer below 2^53 over a power of 2, or a whole float over 1); None where that
+    power of 2 has no float (a coefficient below about 1e-292: its phase needs no reduction).
+
+    >>> _float_exact_ratio(sp.Rational(3, 7)), _float_exact_ratio(1 - sp.Rational(1, 10**300))
+    ((3, 7), (1, 1))
+    """
+    p, q = int(coeff.p), int(coeff.q)
+    if abs(p) <= _EXACT_FLOAT_INTEGER and q <= _EXACT_FLOAT_INTEGER:
+        return p, q
+    m, d = (p / q).as_integer_ratio()  # p / q: Python's true division of integers is correctly rounded
+    return (m, d) if d.bit_length() <= 1000 else None
 
 
 def _long_phase(term: sp.Expr, times: set[sp.Symbol]) -> sp.Expr | None:

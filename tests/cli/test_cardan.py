@@ -82,6 +82,9 @@ BAD = [
     (["--length", "0.02", "--speed", "1", "--order", "2"], "belong to the elliptical drive"),
     (["--length", "0.02", "--angle-law", "t"], "has no known period; give --t-end"),
     (["--length", "0.02", "--angle-law", "__import__('os')", "--t-end", "1"], "not allowed"),
+    # a slider beyond floats: the refusal names the column (it said "law 1"), v = 2 l w, 10^600
+    (["--length", "1e300", "--speed", "1e300"], "the slider's velocity v holds a number of about 10^600"),
+    (["--length", "0.02", "--speed", "1", "-e", "(1+10**-300)**(1/2)"], "[0, 1)"),
 ]
 
 
@@ -105,3 +108,33 @@ def test_m_is_no_longer_the_order(capsys):
     with pytest.raises(SystemExit):
         run(capsys, "--length", "0.02", "--speed", "1", "-e", "0.3", "-m", "2")
     assert "unrecognized arguments: -m" in capsys.readouterr().err
+
+
+# exact values beyond int64 (issue 35): sqrt(10**40 + 1) reached NumPy's sqrt as a Python integer (exit 3), and
+# a speed of 900 digits near 1 was refused as "law 0 holds a number of about 10^900"; both are ordinary floats.
+@pytest.mark.parametrize("length, speed", [
+    ("sqrt(10**40+1)", "1"),
+    ("(1-10**-300)**(1/2)", "1"),
+    ("(1-10**-300)**3", "1"),
+    ("1", "(1-10**-300)**3"),
+    ("2", "sqrt(10**40+1)/10**20"),
+    ("(2+cos(10**30))*sqrt(10**30+7)", "(1+10**-30)**(1/3)"),
+])
+def test_exact_values_beyond_int64_give_the_50_digit_slider(capsys, length, speed):
+    mpmath = pytest.importorskip("mpmath")
+    times = [0.0, 0.5, 1.0, 2.5, 4.0]
+    code, out, err = run(capsys, "--length", length, "--speed", speed, "--times", ",".join(map(str, times)), "--json")
+    assert code == 0, err
+    columns = json.loads(out)["columns"]
+    # the textbook slider (guide and carrier at 0): s = 2 l cos(w t), v = -2 l w sin(w t), a = -2 l w^2 cos(w t),
+    # with l and w typed as mpmath expressions at 50 digits
+    with mpmath.workdps(50):
+        env = {"sqrt": mpmath.sqrt, "cos": mpmath.cos, "mpf": mpmath.mpf}
+        l, w = (eval(text.replace("10**", "mpf(10)**").replace("1/2", "mpf(1)/2").replace("1/3", "mpf(1)/3"), env)
+                for text in (length, speed))
+        for i, t in enumerate(times):
+            wt = w * mpmath.mpf(t)
+            want = {"s": 2 * l * mpmath.cos(wt), "v": -2 * l * w * mpmath.sin(wt), "a": -2 * l * w**2 * mpmath.cos(wt)}
+            scale = float(2 * l * max(w, w**2))  # the amplitude: near a zero of cos or sin, digits count against it
+            for key, value in want.items():
+                assert abs(columns[key][i] - float(value)) <= 4e-16 * scale, (key, t)

@@ -350,6 +350,24 @@ def test_reduced_phase_keeps_digits_at_a_million_turns():
         assert np.max(np.abs(numba_reduced(*values) - ref)) <= 5e-16
 
 
+
+@pytest.mark.parametrize("law", [
+    sp.sqrt(10**40 + 1) * sp.cos(S.t),  # NumPy's sqrt met a Python integer beyond int64 (TypeError)
+    sp.sqrt(1 - sp.Rational(1, 10**300)) * sp.sin(S.t) + sp.cbrt(sp.Integer(10**30 + 7)),
+    sp.cos((1 - sp.Rational(1, 10**300)) ** 3 * S.t),  # a reduced phase of 900-digit integers (refused as 10^900)
+    sp.sin(sp.Rational(10**20 + 1, 10**19 - 3) * S.t),  # p and q beyond 2^53, not beyond floats
+    sp.cos(sp.Rational(1, 10**299) * S.t) + sp.sin(sp.Rational(3, 10**298) * S.t),  # no float power of 2 as q
+])
+@pytest.mark.parametrize("backend", ["numpy", pytest.param("numba", marks=pytest.mark.skipif(not HAS_NUMBA, reason="numba"))])
+def test_exact_constants_beyond_int64_are_evaluated_as_floats(law, backend):
+    t = np.array([0.0, 0.5, 1.0, 2.5, 40.0, 1e3])
+    got = symkin.compile(law, [S.t], backend=backend)(t)
+    want = np.array([float(law.subs(S.t, sp.Float(ti, 50)).evalf(50)) for ti in t])  # mpmath under SymPy, 50 digits
+    scale = np.max(np.abs(want))  # the amplitude (each law reaches it at t = 0 or 0.5 to within 2)
+    # the coefficient rounded to a float moves a phase w t by up to |w t| 2^-53: within 3e-13 at t = 1000 and w = 10
+    assert np.all(np.abs(got - want) <= 8e-16 * scale * np.maximum(1, 10 * t))
+
+
 # ---------------------------------------------------------------- the function
 def test_function_states_order_precision_backend_and_pickles():
     f = symkin.compile(symkin.Law(S.omega("H"), differential_law()), [W1, W4, R[0], R[1], R[2]], precision="float32")
