@@ -632,7 +632,6 @@ def sum_source(name: str, poly: Any, params: Any) -> str | None:
                 split[x] = (x, "0.0")
         return split[x]
 
-    acc = err = None
     for k, (negative, chain) in enumerate(terms):
         if not chain:
             chain = ["1.0"]
@@ -653,17 +652,16 @@ def sum_source(name: str, poly: Any, params: Any) -> str | None:
             lines.append(f"    _e{k} = {lo}")
             q, lo = r, f"_e{k}"
         sign = "-" if negative else ""
-        if acc is None:
+        if k == 0:
             lines.append(f"    _s = {sign}{q}")
             lines.append(f"    _err = {sign}({lo})" if lo else "    _err = 0.0 * _s")
-            acc = err = True
             continue
         lines.append(f"    _b = {sign}{q}")
         lines.append("    _t = _s + _b")
         lines.append("    _bb = _t - _s")
         lines.append("    _err = _err + ((_s - (_t - _bb)) + (_b - _bb))" + (f" {'-' if negative else '+'} {lo}" if lo else ""))
         lines.append("    _s = _t")
-    if acc is None:
+    if not terms:
         return None
     lines += ["    _h = _s + _err", "    _bb = _h - _s", "    return _h, (_s - (_h - _bb)) + (_err - _bb)"]
     return "\n".join([f"def {name}({', '.join(names.values())}):", *lines]) + "\n"
