@@ -721,16 +721,16 @@ def compensated_sum(value: Any, bound: Any, fn: Any, *args: Any) -> Any:
     if count == keep.size:
         return value
     shape = value.shape
-    args = [np.asarray(x, np.float64) for x in args]
+    floats = [np.asarray(x, np.float64) for x in args]
     if keep.size <= _GATHER_FROM or 2 * count <= keep.size:
         # a small call (the operations' calls cost more than their work) or most points cancel:
         # the compensated sum of every point, without the gathers and the scatter
-        out = np.array(np.broadcast_to(fn(*args)[0], shape), dtype=np.float64)  # (a point's value of arrays of 1)
+        out = np.array(np.broadcast_to(fn(*floats)[0], shape), dtype=np.float64)  # (a point's value of arrays of 1)
         np.copyto(out, value, where=keep)  # (certified points: the plain sum, as below)
         return out
     redo = ~keep
     value = np.array(value, dtype=np.float64)  # (a fresh array: the caller's temporaries are not written)
-    parts = [a if a.ndim == 0 else (a if a.shape == shape else np.broadcast_to(a, shape))[redo] for a in args]
+    parts = [a if a.ndim == 0 else (a if a.shape == shape else np.broadcast_to(a, shape))[redo] for a in floats]
     value[redo] = fn(*parts)[0]
     return value
 
