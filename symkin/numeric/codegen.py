@@ -118,7 +118,7 @@ def phase_sources(exprs: Sequence[sp.Expr]) -> dict[str, str]:
     """The double-double source of every :class:`LongPhase` coefficient and every
     :class:`CompensatedSum` in ``exprs``, by function name (see
     :func:`symkin.numeric.runtime.dd_source`)."""
-    from symkin.numeric.runtime import dd_source
+    from symkin.numeric.runtime import dd_source, sum_source
 
     out: dict[str, str] = {}
     for e in exprs:
@@ -128,7 +128,8 @@ def phase_sources(exprs: Sequence[sp.Expr]) -> dict[str, str]:
                 out[node.name] = dd_source(node.name, plain_form(coeff), syms)
             elif isinstance(node, CompensatedSum) and node.name not in out:
                 _key, poly, *syms = node.args
-                out[node.name] = dd_source(node.name, plain_form(poly), syms)
+                poly = plain_form(poly)
+                out[node.name] = sum_source(node.name, poly, syms) or dd_source(node.name, poly, syms)
     return out
 
 

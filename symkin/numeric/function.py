@@ -97,6 +97,9 @@ class NumericFunction:
         # (the float backends: one float64 point in Python floats, or None for the array path)
         self._scalar: Any = getattr(evaluator, "evaluate_scalar", None)
         self._scalar_typed = bool(getattr(evaluator, "scalar_types_checked", False))
+        # the common scalar call's own function (numpy, numba), built at the first call; False: none
+        self._entry_builder: Any = getattr(evaluator, "scalar_entry", None)
+        self._entry: Any = None if self._entry_builder is not None else False
         lines = [
             f"Compiled {', '.join(self.outputs)} ({self.backend}, {self.precision}).",
             "",
@@ -138,6 +141,14 @@ class NumericFunction:
         if len(values) != len(self.args):
             raise InputError(f"this function takes {len(self.args)} arguments ({', '.join(self.args)}), got {len(values)}")
         if out is None:
+            if self._entry is not False and not (values and type(values[0]) is np.ndarray):
+                entry = self._entry
+                if entry is None:
+                    entry = self._entry = self._entry_builder() or False
+                if entry is not False:  # the float backends' common scalar call: one generated function
+                    r = entry(values)
+                    if r is not None:
+                        return r
             # (the float backends' scalar path checks the types itself: no loop here)
             if (not (values and type(values[0]) is np.ndarray) if self._scalar_typed else (
                     self._scalar is not None and not any(isinstance(v, _ARRAYS) for v in values))):

@@ -159,10 +159,11 @@ class CompensatedSum(_Deferred):
     by the float64 backends in double-double arithmetic and rounded once.
 
     Arguments: a key (an integer digest of ``p``, naming the generated code), ``p``, and its
-    symbols in order.  Each term's product is split exactly (Dekker) and the terms summed in
-    double-double, so the float64 result is within one rounding and 2^-104 of the sum of the
-    terms' magnitudes of the exact ``p`` of the binary inputs: a few units in the last place
-    unless the terms cancel to 2^-50 of their size.  Holds while the inputs are below 2^995
+    symbols in order.  Each term's product is split exactly (Dekker's TwoProduct, every input
+    split once) and the terms summed error-free (Sum2 of Ogita, Rump & Oishi), so the float64
+    result is within one rounding and a few units of ``n^2 2^-106`` (``n`` terms) of the sum of
+    the terms' magnitudes of the exact ``p`` of the binary inputs: a few units in the last place
+    unless the terms cancel to 2^-45 of their size (:func:`symkin.numeric.runtime.sum_source`).  Holds while the inputs are below 2^995
     and the products above 2^-969 in magnitude; float32 evaluates the plain ``p``.
     """
 

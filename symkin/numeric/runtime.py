@@ -24,7 +24,7 @@ from typing import Any
 import mpmath
 import numpy as np
 
-__all__ = ["exact_ratio", "reduced_phase", "product_difference", "long_phase", "dd_source", "TWO_PI_PARTS", "NAMESPACE"]
+__all__ = ["exact_ratio", "reduced_phase", "product_difference", "long_phase", "dd_source", "sum_source", "TWO_PI_PARTS", "NAMESPACE"]
 
 _SPLIT = 134217729.0  # 2^27 + 1, Dekker's splitter for float64
 
@@ -593,6 +593,80 @@ def dd_source(name: str, coeff: Any, params: Any) -> str:
     return "\n".join(head + writer.lines + [f"    return {ch}, {cl}"]) + "\n"
 
 
+def sum_source(name: str, poly: Any, params: Any) -> str | None:
+    """Python source of ``name(*params)``: the polynomial ``poly`` of ``params`` (integer
+    coefficients) as ``(hi, lo)``, error-free up to the last additions (issue 34): every input
+    split once (Veltkamp), each term's product chain by TwoProduct (Dekker) with its rounding
+    errors carried as a low part, the terms' high parts added by TwoSum and the errors in one
+    float sum (Sum2 of Ogita, Rump & Oishi 2005).  Its error before the final rounding is a few
+    units of ``n^2 2^-106`` of the sum of the terms' magnitudes (``n`` the terms).  Plain
+    arithmetic only (no calls): the same source serves NumPy arrays, Python floats and Numba.
+    Half the operations of :func:`dd_source`'s double-double products.  None where a
+    coefficient is not an integer below 2^26 (:func:`dd_source` then)."""
+    import sympy as sp
+
+    names = {p: f"p{k}" for k, p in enumerate(params)}
+    lines = [f"    {v} = _f64({v})" for v in names.values()]
+    terms = []
+    for t in sp.Add.make_args(sp.expand(poly)):
+        c, factors = t.as_coeff_mul()
+        if not c.is_Integer or abs(c) >= 2**26:
+            return None
+        chain = [f"{float(abs(c))!r}"] if abs(c) != 1 else []
+        for f in factors:
+            base, e = f.as_base_exp()
+            if base not in names or not e.is_Integer or e < 1:
+                return None
+            chain += [names[base]] * int(e)
+        terms.append((c < 0, chain))
+    split = {}  # each input split once: (hi, lo)
+
+    def halves(x: str) -> tuple[str, str]:
+        if x not in split:
+            if x[0] == "p":
+                lines.append(f"    _c = {_SPLIT!r} * {x}")
+                lines.append(f"    {x}h = _c - (_c - {x})")
+                lines.append(f"    {x}l = {x} - {x}h")
+                split[x] = (f"{x}h", f"{x}l")
+            else:  # a coefficient below 2^26: exact in 26 bits, its own high half
+                split[x] = (x, "0.0")
+        return split[x]
+
+    for k, (negative, chain) in enumerate(terms):
+        if not chain:
+            chain = ["1.0"]
+        q, lo = chain[0], None
+        for j, g in enumerate(chain[1:]):
+            gh, gl = halves(g)
+            if not q.startswith("_q"):  # an input or the coefficient: split once
+                qh, ql = halves(q)
+            else:  # a fresh product: split here
+                lines.append(f"    _c = {_SPLIT!r} * {q}")
+                lines.append(f"    _h = _c - (_c - {q})")
+                lines.append(f"    _l = {q} - _h")
+                qh, ql = "_h", "_l"
+            r = f"_q{k}_{j}"
+            lines.append(f"    {r} = {q} * {g}")
+            e = f"((({qh} * {gh} - {r}) + {qh} * {gl} + {ql} * {gh}) + {ql} * {gl})"
+            lo = e if lo is None else f"({e} + {lo} * {g})"
+            lines.append(f"    _e{k} = {lo}")
+            q, lo = r, f"_e{k}"
+        sign = "-" if negative else ""
+        if k == 0:
+            lines.append(f"    _s = {sign}{q}")
+            lines.append(f"    _err = {sign}({lo})" if lo else "    _err = 0.0 * _s")
+            continue
+        lines.append(f"    _b = {sign}{q}")
+        lines.append("    _t = _s + _b")
+        lines.append("    _bb = _t - _s")
+        lines.append("    _err = _err + ((_s - (_t - _bb)) + (_b - _bb))" + (f" {'-' if negative else '+'} {lo}" if lo else ""))
+        lines.append("    _s = _t")
+    if not terms:
+        return None
+    lines += ["    _h = _s + _err", "    _bb = _h - _s", "    return _h, (_s - (_h - _bb)) + (_err - _bb)"]
+    return "\n".join([f"def {name}({', '.join(names.values())}):", *lines]) + "\n"
+
+
 class _DoubleDouble:
     """The statements of :func:`dd_source`: each operation into a fresh pair ``(hK, lK)``."""
 
@@ -628,22 +702,35 @@ class _DoubleDouble:
         raise ValueError(f"not a rational function of the inputs: {e}")
 
 
+_GATHER_FROM = 4096  # points: below this the compensated sum is evaluated at every point (see compensated_sum)
+
+
 def compensated_sum(value: Any, bound: Any, fn: Any, *args: Any) -> Any:
     """A :class:`~symkin.numeric.stable.CompensatedSum` for the NumPy code: the plain sum
     ``value`` where ``|value| >= bound`` (a bound the printer derives from the sum of the
     terms' magnitudes: there the plain sum is within 8 units of 2^-53, see
     :func:`symkin.numeric.codegen.compensated_bound`), and elsewhere (where the terms cancel,
-    and at nan) ``fn``, the double-double sum, at those points only."""
+    and at nan) ``fn``, the error-free sum (:func:`sum_source`), at those points only (at every
+    point for a small call or where most points cancel; the certified points keep the plain sum)."""
     if type(value) is not np.ndarray or value.ndim == 0:
         if abs(value) >= bound:
             return value
         return fn(*(np.float64(a) for a in args))[0]
-    redo = ~(np.abs(value) >= bound)
-    if not redo.any():
+    keep = np.abs(value) >= bound
+    count = int(np.count_nonzero(keep))
+    if count == keep.size:
         return value
     shape = value.shape
+    floats = [np.asarray(x, np.float64) for x in args]
+    if keep.size <= _GATHER_FROM or 2 * count <= keep.size:
+        # a small call (the operations' calls cost more than their work) or most points cancel:
+        # the compensated sum of every point, without the gathers and the scatter
+        out = np.array(np.broadcast_to(fn(*floats)[0], shape), dtype=np.float64)  # (a point's value of arrays of 1)
+        np.copyto(out, value, where=keep)  # (certified points: the plain sum, as below)
+        return out
+    redo = ~keep
     value = np.array(value, dtype=np.float64)  # (a fresh array: the caller's temporaries are not written)
-    parts = [a if np.ndim(a) == 0 else np.broadcast_to(a, shape)[redo] for a in (np.asarray(x, np.float64) for x in args)]
+    parts = [a if a.ndim == 0 else (a if a.shape == shape else np.broadcast_to(a, shape))[redo] for a in floats]
     value[redo] = fn(*parts)[0]
     return value
 

@@ -220,6 +220,43 @@ class NumpyBackend(Backend):
             return None
         return self._scalar_results(out)
 
+    def scalar_entry(self) -> Any:
+        """A function of the call's values for the common scalar call, or None: every input a
+        Python float or a NumPy float64 number (tooth numbers: Python integers), the outputs
+        as NumPy float64 numbers, one bare number for one law; :meth:`evaluate_scalar`'s
+        answer for any other point (its types, conversions and checks, once).  Generated once,
+        so a call pays one type test per input and no loop (issue 34: scalar call overhead)."""
+        code = self._scalar_code
+        if code is None:
+            code = self._scalar_code = self._build_scalar()
+        if code is False:
+            return None
+        names = [f"v{k}" for k in range(len(self.plan.args))]
+        tests = [f"type({v}) is int and -_BIG < {v} < _BIG" if integer else f"(type({v}) is float or type({v}) is _f64)"
+                 for v, integer in zip(names, self.integer_flags)]
+        point = [f"float({v})" if integer else v for v, integer in zip(names, self.integer_flags)]
+        point += [v for v, integer in zip(names, self.integer_flags) if integer]
+        n = len(self.plan.stable)
+        outs = [f"r{k}" for k in range(n)]
+        finite = " and ".join(f"type({r}) is float and {r} - {r} == 0.0" for r in outs)  # (inf - inf, nan - nan: nan)
+        back = "_slow(values)" if n > 1 else "(None if (p := _slow(values)) is None else p[0])"
+        result = f"({', '.join(f'_f64({r})' for r in outs)},)" if n > 1 else "_f64(r0)"
+        lines = [
+            "def _entry(values):",
+            f"    {', '.join(names)}{',' if len(names) == 1 else ''} = values" if names else "    pass",
+            f"    if {' and '.join(tests) or 'True'}:",
+            "        try:",
+            f"            {', '.join(outs)}{',' if n == 1 else ''} = _code({', '.join(point)})",
+            "        except (ArithmeticError, ValueError, TypeError):",
+            f"            return {back}",
+            f"        if {finite}:",
+            f"            return {result}",
+            f"    return {back}",
+        ]
+        ns = {"_code": code, "_f64": np.float64, "_slow": self.evaluate_scalar, "_BIG": _FLOAT_INT}
+        exec(compile("\n".join(lines) + "\n", "<symkin scalar entry>", "exec"), ns)  # generated here, no user text
+        return ns["_entry"]
+
     def _scalar_arguments(self, values: Sequence[Any]) -> list[Any] | None:
         """The scalar code's arguments: every value as a float, then each tooth number's exact
         integer value; None for a value of another type (the array path converts or refuses it)."""
