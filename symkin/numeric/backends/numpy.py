@@ -239,7 +239,8 @@ class NumpyBackend(Backend):
         n = len(self.plan.stable)
         outs = [f"r{k}" for k in range(n)]
         finite = " and ".join(f"type({r}) is float and {r} - {r} == 0.0" for r in outs)  # (inf - inf, nan - nan: nan)
-        back = "_slow(values)" if n > 1 else "(None if (p := _slow(values)) is None else p[0])"
+        # (several outputs come back as a tuple, as from every other path: callers test for one)
+        back = f"(None if (p := _slow(values)) is None else {'tuple(p)' if n > 1 else 'p[0]'})"
         result = f"({', '.join(f'_f64({r})' for r in outs)},)" if n > 1 else "_f64(r0)"
         lines = [
             "def _entry(values):",

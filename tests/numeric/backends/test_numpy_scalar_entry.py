@@ -47,3 +47,16 @@ def test_other_scalars_take_the_general_path():
     assert float(f(20.0, 31, 40, np.int64(70))) == float(f(20, 31, 40, 70))  # floats and NumPy integers as tooth numbers
     with pytest.warns(symkin.errors.PoleWarning):
         assert not np.isfinite(f(20, 40, 40, 20))  # a pole: reported by the array path
+
+
+@pytest.mark.parametrize("backend", ["numpy"] + (["numba"] if numba_available() else []))
+def test_several_outputs_come_back_as_a_tuple_on_every_scalar_path(backend):
+    # a constant output is not a float in the generated code, so the call goes the general way: its answer is still a
+    # tuple of numbers, as from the fast path and from arrays (the synthesis tells one output from several by it)
+    r1, r2, r3 = (S.radius(i) for i in "123")
+    f = symkin.compile([r1 * r2 + 1, 3 + 0 * r1, r1 / r3], [r1, r2, r3], backend=backend)
+    for point in ((2.0, 3.0, 4.0), (np.float64(2.0), np.float64(3.0), np.float64(4.0)), (2, 3, 4)):
+        got = f(*point)
+        assert type(got) is tuple and [float(v) for v in got] == [7.0, 3.0, 0.5]
+    arrays = f(np.array([2.0]), np.array([3.0]), np.array([4.0]))
+    assert type(arrays) is tuple and [a.shape for a in arrays] == [(1,)] * 3
