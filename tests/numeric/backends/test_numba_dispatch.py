@@ -4,7 +4,9 @@ timings); the results against exact rational arithmetic on the same inputs."""
 
 from __future__ import annotations
 
+import itertools
 import sys
+import types
 from fractions import Fraction
 
 import numpy as np
@@ -12,6 +14,7 @@ import pytest
 
 import symkin
 from symkin import schemes
+from symkin.numeric.backends import numba as numba_backend
 from symkin.numeric.backends import numba_available
 from symkin.numeric.backends.numba import COMPILE_PAYBACK, compile_estimate, compile_pays
 
@@ -40,13 +43,17 @@ def test_the_kernel_is_compiled_once_numpy_time_is_five_times_its_compile_estima
 
 def test_the_unnamed_default_starts_with_numpy_and_compiles_when_the_time_pays(monkeypatch):
     monkeypatch.delenv("SYMKIN_BACKEND", raising=False)
+    # the NumPy time is read from a clock that advances 1 ms a reading: the kernel's CPU clock may count in ticks of
+    # a few ms, so a short call can measure 0 (the test failed so, now and then)
+    clock = itertools.count()
+    monkeypatch.setattr(numba_backend, "time", types.SimpleNamespace(process_time=lambda: next(clock) * 1e-3))
     f = symkin.compile(law())
     assert f.backend == "numba" and f._plan.jit == "auto"
     z = np.arange(20, 420)
     values = (z, z - 1, z, z + 3)
     assert list(f(*values)) == exact(*values)
     ev = f._evaluator
-    assert not ev.kernels and ev.numpy_seconds[False] > 0  # NumPy did the work, timed
+    assert not ev.kernels and ev.numpy_seconds[False] == pytest.approx(1e-3)  # NumPy did the work, timed
     ev.numpy_seconds[False] = COMPILE_PAYBACK * compile_estimate(ev._operations, False)  # as if it had done that much
     assert list(f(*values)) == exact(*values)
     assert ev.kernels and "_kernel" in f.source and "numba" in sys.modules
