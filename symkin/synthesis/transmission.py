@@ -376,20 +376,23 @@ def _search(search: _Search, count: int, deadline: float,
     return kept, [d for _, part in parts for d in part], len(parts)
 
 
+def _on_dask(client: Any, search: _Search, starts: list[np.ndarray], lead: int,
+             deadline: float) -> list[tuple[list[int], list[TransmissionDesign]]]:
+    """The chunks ``starts`` pruned and evaluated on ``client``'s workers (``client.map``, the search
+    scattered once to each), in their order."""
+    shared = client.scatter(search, broadcast=True)
+    return client.gather(client.map(_chunk, [shared] * len(starts), starts, lead=lead, deadline=deadline, pure=False))
+
+
 def _dask(search: _Search, deadline: float, scheduler: str,
           workers: int | None) -> tuple[list[int], list[TransmissionDesign], str]:
-    """:func:`_search` on Dask, four chunks per worker (``client.map``, the search scattered once to each)."""
+    """:func:`_search` on Dask, four chunks per worker."""
     from symkin.synthesis.runner import _client
 
     client, cluster, where, count = _client(scheduler, workers)
     try:
-        shared = client.scatter(search, broadcast=True)
-
-        def run(starts: list[np.ndarray], lead: int) -> list[tuple[list[int], list[TransmissionDesign]]]:
-            futures = client.map(_chunk, [shared] * len(starts), starts, lead=lead, deadline=deadline, pure=False)
-            return client.gather(futures)
-
-        kept, designs, chunks = _search(search, CHUNKS_PER_WORKER * count, deadline, run)
+        kept, designs, chunks = _search(search, CHUNKS_PER_WORKER * count, deadline,
+                                        lambda starts, lead: _on_dask(client, search, starts, lead, deadline))
         return kept, designs, f"{where}, {chunks} chunks"
     finally:
         client.close()
@@ -415,13 +418,10 @@ def _auto(search: _Search, deadline: float, workers: int | None) -> tuple[list[i
             return [first, *(_chunk(search, p, lead, deadline) for p in starts[1:])]
         client, cluster, where[0], _ = _client("local", n)
         try:
-            shared = client.scatter(search, broadcast=True)
-            rest = client.gather(client.map(_chunk, [shared] * (len(starts) - 1), starts[1:], lead=lead,
-                                            deadline=deadline, pure=False))
+            return [first, *_on_dask(client, search, starts[1:], lead, deadline)]
         finally:
             client.close()
             cluster.close()
-        return [first, *rest]
 
     kept, designs, _ = _search(search, CHUNKS_PER_WORKER * n, deadline, run)
     return kept, designs, where[0]
