@@ -7,7 +7,7 @@ code on floats for one point, :class:`ExactPrinter` rational arithmetic on
 :class:`fractions.Fraction`.
 
     >>> import sympy as sp
-    >>> from symkin.numeric.stable import ExactRatio
+    >>> from symkin.numeric.nodes import ExactRatio
     >>> z = sp.Symbol("z", integer=True)
     >>> FloatPrinter().doprint(ExactRatio(z - 1, z) + sp.Rational(1, 3))
     '_symkin_exact_ratio(z - 1, z) + 1/3'
@@ -22,8 +22,7 @@ import sympy as sp
 from sympy.printing.numpy import NumPyPrinter
 from sympy.printing.pycode import PythonCodePrinter
 
-from symkin.numeric.runtime import LONG_PHASE
-from symkin.numeric.stable import (
+from symkin.numeric.nodes import (
     CompensatedSum,
     ExactRatio,
     Group,
@@ -32,6 +31,7 @@ from symkin.numeric.stable import (
     ReducedPhase,
     plain_form,
 )
+from symkin.numeric.runtime import LONG_PHASE
 
 __all__ = ["FloatPrinter", "ScalarPrinter", "ExactPrinter", "abs_bound", "phase_sources", "product_ratios"]
 

@@ -39,8 +39,8 @@ from string import Template
 import sympy as sp
 
 from symkin.numeric.codegen import FLOAT_TWIN, FloatPrinter, abs_bound, phase_sources
+from symkin.numeric.nodes import CompensatedSum, ExactRatio, LongPhase, ProductDifference, ReducedPhase
 from symkin.numeric.runtime import EXACT_FLOATS
-from symkin.numeric.stable import CompensatedSum, ExactRatio, LongPhase, ProductDifference, ReducedPhase
 
 __all__ = ["kernel_source", "KERNEL_BLOCK"]
 

@@ -706,7 +706,7 @@ _GATHER_FROM = 4096  # points: below this the compensated sum is evaluated at ev
 
 
 def compensated_sum(value: Any, bound: Any, fn: Any, *args: Any) -> Any:
-    """A :class:`~symkin.numeric.stable.CompensatedSum` for the NumPy code: the plain sum
+    """A :class:`~symkin.numeric.nodes.CompensatedSum` for the NumPy code: the plain sum
     ``value`` where ``|value| >= bound`` (a bound the printer derives from the sum of the
     terms' magnitudes: there the plain sum is within 8 units of 2^-53, see
     :func:`symkin.numeric.codegen.compensated_bound`), and elsewhere (where the terms cancel,

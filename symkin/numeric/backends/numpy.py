@@ -4,7 +4,7 @@
 
 Tooth numbers are given to the generated code twice: as floats where the law uses them as
 numbers, and as integers (int64, or Python integers where a bound says int64 could
-overflow) inside :class:`~symkin.numeric.stable.ExactRatio`.
+overflow) inside :class:`~symkin.numeric.nodes.ExactRatio`.
 """
 
 from __future__ import annotations
@@ -31,7 +31,7 @@ from symkin.numeric.backends.base import (
     lambdify_source,
 )
 from symkin.numeric.codegen import FloatPrinter, ScalarPrinter, phase_sources, product_ratios
-from symkin.numeric.stable import ExactRatio
+from symkin.numeric.nodes import ExactRatio
 
 __all__ = ["NumpyBackend", "Int64Bound"]
 

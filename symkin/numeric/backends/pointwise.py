@@ -15,7 +15,7 @@ import sympy as sp
 
 from symkin.errors import InputError, PoleError
 from symkin.numeric.backends.base import Backend, Plan, Result, lambdify_source
-from symkin.numeric.stable import plain_form
+from symkin.numeric.nodes import plain_form
 
 __all__ = ["PointwiseBackend"]
 
