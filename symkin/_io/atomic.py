@@ -37,7 +37,6 @@ import secrets
 import shutil
 import signal
 import stat
-import tempfile
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
@@ -113,12 +112,12 @@ def replacing(target: str | os.PathLike[str]) -> Iterator[tuple[Path]]:
     if kind:
         raise InputError(f"cannot write {out}: it exists and is not {kind} (a file of yours?); choose another "
                          "name, or remove it first")
+    # the name is this process's (its id and a random part) and known before the file exists: an
+    # interrupt at any step leaves nothing that the cleanup below does not remove
     tmp = folder / f".{out.stem}.partial-{os.getpid()}-{secrets.token_hex(4)}{out.suffix}"
-    made = False
     try:
         try:
             os.close(os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666))  # the umask applies: an ordinary file
-            made = True
         except OSError as err:
             raise InputError(f"cannot write to {folder}: {err.strerror}; choose a writable folder") from None
         try:
@@ -130,8 +129,7 @@ def replacing(target: str | os.PathLike[str]) -> Iterator[tuple[Path]]:
         PLACED.append((out, os.stat(tmp).st_ino))
         os.replace(tmp, out)
     finally:
-        if made:
-            tmp.unlink(missing_ok=True)
+        tmp.unlink(missing_ok=True)
 
 
 #: What a file of each suffix symkin writes holds at a given offset: an existing target that
@@ -178,7 +176,10 @@ STOP_SIGNALS = frozenset({signal.SIGINT, signal.SIGTERM})
 @contextmanager
 def stop_signals_held() -> Iterator[None]:
     """Ctrl-C and SIGTERM held back (on POSIX) while the block runs, delivered at its end: for
-    steps that must not be cut in two, such as making a folder and registering its removal.
+    steps that must not be cut in two, such as forking a pool's workers (a fork inherits the
+    mask, so a worker starts with them held too).  The mask is the calling thread's: in a
+    process that runs other threads one of them can take the signal, so hold it only where
+    the process runs one thread (as :func:`symkin.papers.reproduce` forks only then).
 
     >>> with stop_signals_held():
     ...     pass
@@ -191,12 +192,6 @@ def stop_signals_held() -> Iterator[None]:
         yield
     finally:
         signal.pthread_sigmask(signal.SIG_SETMASK, held)
-
-
-def _umask() -> int:
-    mask = os.umask(0)
-    os.umask(mask)
-    return mask
 
 
 # --------------------------------------------------------------------------- the manifest
@@ -391,17 +386,16 @@ def write_atomically(out: Path, build: Callable[[Path], None], *, version: str |
     parent = target.parent
     if not parent.is_dir():
         raise InputError(f"cannot write {out}: its parent folder {parent} does not exist")
-    tmp: Path | None = None
+    # the name is known before the folder exists, so an interrupt at any step leaves nothing the
+    # cleanup below does not remove; os.mkdir applies the umask (a report is an ordinary folder)
+    tmp = parent / f".{target.name}.partial-{os.getpid()}-{secrets.token_hex(4)}"
     old: Path | None = None
     try:
-        # a Ctrl-C between making the folder and this try's cleanup would leave the folder behind
-        with stop_signals_held():
-            try:
-                recover(out)
-                tmp = Path(tempfile.mkdtemp(prefix=f".{target.name}.partial-{os.getpid()}-", dir=parent))
-                os.chmod(tmp, 0o777 & ~_umask())  # mkdtemp makes the folder private; a report is an ordinary folder
-            except OSError as err:
-                raise InputError(f"cannot write to {parent}: {err.strerror}; choose a writable --out") from None
+        try:
+            recover(out)
+            os.mkdir(tmp)
+        except OSError as err:
+            raise InputError(f"cannot write to {parent}: {err.strerror}; choose a writable --out") from None
         build(tmp)
         if version is not None:
             write_manifest(tmp, version)
@@ -414,7 +408,7 @@ def write_atomically(out: Path, build: Callable[[Path], None], *, version: str |
             raise _unwritable(err, out, "--out") from None
         raise
     finally:
-        if old is None and tmp is not None:
+        if old is None:
             shutil.rmtree(tmp, ignore_errors=True)
     if old is not None:
         shutil.rmtree(old, ignore_errors=True)

@@ -557,17 +557,16 @@ def test_the_worker_processes_end_when_the_run_is_killed(tmp_path):
 
 
 _CTRL_C_AT_THE_FOLDER = """
-import os, pathlib, signal, sys, tempfile
+import os, pathlib, signal, sys
 from symkin._io.atomic import write_atomically
 parent = pathlib.Path(sys.argv[1])
-made = tempfile.mkdtemp
+made = os.mkdir
 
-def mkdtemp_then_ctrl_c(*args, **kwargs):
-    folder = made(*args, **kwargs)
+def mkdir_then_ctrl_c(*args, **kwargs):
+    made(*args, **kwargs)
     os.kill(os.getpid(), signal.SIGINT)  # Ctrl-C the moment the folder exists
-    return folder
 
-tempfile.mkdtemp = mkdtemp_then_ctrl_c
+os.mkdir = mkdir_then_ctrl_c
 try:
     write_atomically(parent / "report", lambda tmp: (tmp / "a.txt").write_text("x"))
     print("not interrupted")
@@ -577,8 +576,8 @@ except KeyboardInterrupt:
 
 
 def test_a_ctrl_c_the_moment_the_partial_folder_exists_leaves_nothing(tmp_path):
-    # the folder is made and its removal registered with Ctrl-C held back: a Ctrl-C between the
-    # two (a loaded machine's scheduling made the signal test meet it) left .report.partial-*
+    # a Ctrl-C between making the folder and registering its removal (a loaded machine's
+    # scheduling made the signal test meet it) left .report.partial-*: the name is now known first
     proc = subprocess.run([sys.executable, "-c", _CTRL_C_AT_THE_FOLDER, str(tmp_path)], capture_output=True, text=True,
                           timeout=60)
     assert proc.stdout.strip() == "[]", (proc.stdout, proc.stderr)
