@@ -59,9 +59,26 @@ def parse_quantity(value: Any, unit: str, *, what: str = "value", names: Iterabl
     """
     if is_quantity(value):
         return as_expr(value, what=what, unit=unit)
-    s = _check_text(value, what)
+    return _read(_check_text(value, what), unit, what, names)[0]
+
+
+def unit_of(text: str, unit: str) -> str | None:
+    """The unit a user typed after a number (``"rpm"`` in ``"300 rpm"``), a unit of ``unit``'s
+    kind, or None for a bare number (or text that is not a quantity).
+
+    >>> unit_of("300 rpm", "rad/s"), unit_of("2*pi", "rad/s"), unit_of("90deg/s", "rad/s")
+    ('rpm', None, 'deg/s')
+    """
     try:
-        return parse_expression(s, names=names, what=what)
+        return _read(_check_text(text, "value"), unit, "value", ())[1]
+    except InputError:
+        return None
+
+
+def _read(s: str, unit: str, what: str, names: Iterable[str]) -> tuple[sp.Expr, str | None]:
+    """The value of ``s`` in ``unit`` and the unit as typed (None for a bare number)."""
+    try:
+        return parse_expression(s, names=names, what=what), None
     except InputError as plain:
         error = plain
     # a well-formed expression that was refused (out of range, a name not allowed) has no unit; nor has
@@ -80,38 +97,10 @@ def parse_quantity(value: Any, unit: str, *, what: str = "value", names: Iterabl
                 refused = err
             continue
         try:  # a number, then what must be a unit (_unit_factor checks its allow-list first)
-            return magnitude * _unit_factor(unit_text, unit, what=what)
+            return magnitude * _unit_factor(unit_text, unit, what=what), unit_text
         except InputError as err:
             error = err
     raise refused or error
-
-
-def unit_of(text: str, unit: str) -> str | None:
-    """The unit a user typed after a number (``"rpm"`` in ``"300 rpm"``), a unit of ``unit``'s
-    kind, or None for a bare number (or text that is not a quantity).
-
-    >>> unit_of("300 rpm", "rad/s"), unit_of("2*pi", "rad/s"), unit_of("90deg/s", "rad/s")
-    ('rpm', None, 'deg/s')
-    """
-    try:
-        s = _check_text(text, "value")
-    except InputError:
-        return None
-    try:
-        parse_expression(s, what="value")
-        return None
-    except InputError:
-        pass
-    for m in _UNIT_START.finditer(s):
-        number, unit_text = s[: m.start()].strip(), s[m.end():].strip()
-        try:
-            if number:
-                parse_expression(number, what="value")
-                _unit_factor(unit_text, unit, what="value")
-                return unit_text
-        except InputError:
-            continue
-    return None
 
 
 def _well_formed(text: str) -> bool:
