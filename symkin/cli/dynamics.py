@@ -39,7 +39,7 @@ def register(sub: Any) -> None:
         help="torsional natural frequencies and mode shapes of a train",
         description="A purely rotational lumped-parameter model of a train file: every link a rotational coordinate "
         "(each of count planets its own), each mesh a spring (its stiffness, N/m) along its line of action between "
-        "the base circles (pressure angle 20 degrees), each main-axis link's shaft stiffness (N m/rad) to the frame; "
+        "the base circles (the pressure angle of the gears in the file, 20 degrees where it gives none), each main-axis link's shaft stiffness (N m/rad) to the frame; "
         "brakes hold links, clutches join them. Prints the natural frequencies (Hz; rigid-body modes as 0) and the "
         "mode shapes by link (normalised to the largest entry).",
         run=run_modes,

@@ -22,8 +22,10 @@ import sympy as sp
 from symkin import symbols as S
 from symkin.errors import InputError
 from symkin.model import FRAME, LinkKind, Mechanism
+from symkin.values import as_expr
 
-__all__ = ["MILLIMETRE", "Arm", "inertia_of", "mass_of", "carrier_chain", "multiplicity", "pinion_distance", "by_name"]
+__all__ = ["MILLIMETRE", "Arm", "inertia_of", "mass_of", "carrier_chain", "multiplicity", "pinion_distance", "by_name",
+           "mesh_pressure_angle", "working_pressure_angle"]
 
 #: Metres per millimetre: the model's lengths (module in mm, ISO 54) in SI.
 MILLIMETRE = sp.Rational(1, 1000)
@@ -59,6 +61,56 @@ def by_name(expr: Any, values: Mapping[Any, Any] | None) -> Any:
                 raise InputError(f"{sym.name} is a mass property or a stiffness: give it a value of 0 or more, "
                                  f"got {given[sym.name]}")
     return expr.xreplace(swap)
+
+
+#: The pressure angle of a gear whose train file gives none (degrees): the standard basic rack's (ISO 53).
+PRESSURE_ANGLE = 20
+
+
+def mesh_pressure_angle(mech: Mechanism, mesh: Any, given: Any = None) -> sp.Expr:
+    """A mesh's pressure angle (rad), the one of its base circles: ``given`` (radians, or a pint
+    angle) when given, else the ``pressure_angle`` its gears' tooth forms in the train file
+    declare (degrees; 20 for a gear that declares none), which must agree."""
+    if given is not None:
+        return as_expr(given, what="pressure angle", unit="rad")
+    forms = {g: dict(keys) for g, keys in getattr(mech, "tooth_forms", ())}
+    declared = {g: forms.get(g, {}).get("pressure_angle", PRESSURE_ANGLE) for g in (mesh.a, mesh.b)}
+    if declared[mesh.a] != declared[mesh.b]:
+        raise InputError(f"gears {mesh.a} and {mesh.b} mesh but have different pressure angles ({declared[mesh.a]} and "
+                         f"{declared[mesh.b]} degrees; {PRESSURE_ANGLE} where the train file gives none); give both the "
+                         "same pressure_angle")
+    return sp.pi * sp.Rational(declared[mesh.a]) / 180
+
+
+def working_pressure_angle(mech: Mechanism, mesh: Any, given: Any = None) -> sp.Expr:
+    """A mesh's working pressure angle (rad), the angle of its line of action to the common
+    tangent of its working circles.
+
+    The pressure angle is ``given`` (radians, or a pint angle) for every mesh when given, else the
+    ``pressure_angle`` its gears' tooth forms in the train file declare (degrees; 20 for a gear
+    that declares none).  A mesh at a working centre distance a_w other than the reference a of
+    its pitch circles (a profile-shifted mesh) keeps its base circles, so its working angle is
+    acos(a cos(alpha) / a_w).
+
+    >>> from symkin.trains import read_train
+    >>> train = read_train('''
+    ... module = 1
+    ... meshes = [{ gears = ["a", "b"], centre_distance = 31 }]
+    ... [links.A]
+    ... gears = { a = { teeth = 20, pressure_angle = 25 } }
+    ... [links.B]
+    ... carrier = "frame"
+    ... gears = { b = { teeth = 40, pressure_angle = 25 } }
+    ... ''')
+    >>> sp.cos(working_pressure_angle(train, train.meshes[0]))
+    30*cos(5*pi/36)/31
+    """
+    alpha = mesh_pressure_angle(mech, mesh, given)
+    if getattr(mesh, "centre_distance", None) is None:
+        return alpha
+    ga, gb = mech.gear(mesh.a), mech.gear(mesh.b)
+    reference = abs(ga.radius - gb.radius) if ga.internal or gb.internal else ga.radius + gb.radius
+    return sp.acos(reference * sp.cos(alpha) / mesh.centre_distance)
 
 
 def inertia_of(mech: Mechanism, link: str) -> sp.Expr:

@@ -40,7 +40,7 @@ from typing import Any
 
 import sympy as sp
 
-from symkin.dynamics.bodies import MILLIMETRE, carrier_chain, inertia_of
+from symkin.dynamics.bodies import MILLIMETRE, carrier_chain, inertia_of, mesh_pressure_angle, working_pressure_angle
 from symkin.dynamics.torsional import Modes, TorsionalModel, modes_of
 from symkin.errors import InputError
 from symkin.model import LinkKind, Mechanism
@@ -178,12 +178,15 @@ def planar_modes(planets: int | Sequence[Any], *, rigid_tolerance: float = 1e-9,
     return planar_model(planets, **geometry).modes(rigid_tolerance)
 
 
-def planar_geometry(train: Mechanism, planet: str | None = None, *, pressure_angle: Any = sp.pi / 9,
+def planar_geometry(train: Mechanism, planet: str | None = None, *, pressure_angle: Any = None,
                     length: Any = MILLIMETRE) -> dict[str, Any]:
     """The arguments of :func:`planar_model` that a simple planetary train's assembly gives: the
     planets' places (the planet's angle on its carrier, ``count`` copies equally spaced), the
     base radii (pitch radius x cos(pressure angle), in metres), the carrier radius (the planet's
-    arm) and the inertias of the links (``J_<link>`` symbols where not given).  Masses, bearings
+    arm), the working pressure angles of the sun-planet and ring-planet meshes
+    (:func:`~symkin.dynamics.bodies.working_pressure_angle`: ``pressure_angle`` for both when
+    given, else each mesh's gears' ``pressure_angle`` in the train file, 20 degrees where it gives
+    none) and the inertias of the links (``J_<link>`` symbols where not given).  Masses, bearings
     and mesh stiffnesses are the caller's.
 
     >>> from symkin.trains import load_train
@@ -203,9 +206,10 @@ def planar_geometry(train: Mechanism, planet: str | None = None, *, pressure_ang
     if len(chain) != 1:
         raise InputError(f"planet {planet} is carried by a planet: the planar model is of a simple planetary set")
     arm = chain[0]
-    alpha = as_expr(pressure_angle, what="pressure angle", unit="rad")
     length = as_expr(length, what="length (metres per model length unit)")
     radii: dict[str, sp.Expr] = {}
+    base: dict[str, sp.Expr] = {}
+    angles: dict[str, sp.Expr] = {}
     links: dict[str, str] = {"carrier": arm.carrier, "planet": planet}
     own = {g.name for g in train.link(planet).gears}
     for mesh in train.meshes:
@@ -218,12 +222,16 @@ def planar_geometry(train: Mechanism, planet: str | None = None, *, pressure_ang
         radii[body] = train.gear(other).radius
         radii["planet"] = train.gear(mine).radius
         links[body] = train.link(other).name
+        angles[body] = working_pressure_angle(train, mesh, pressure_angle)
+        alpha = mesh_pressure_angle(train, mesh, pressure_angle)  # the base circles': the working one's at a_w = a
+        base[body] = radii[body] * sp.cos(alpha) * length
+        base["planet"] = radii["planet"] * sp.cos(alpha) * length
     if set(radii) != {"sun", "ring", "planet"}:
         raise InputError(f"planet {planet} must mesh with a sun (an external gear) and a ring (an internal gear)")
     return {
         "planets": [arm.angle + 2 * sp.pi * k / arm.count for k in range(arm.count)],
-        "base_radii": {b: r * sp.cos(alpha) * length for b, r in radii.items()},
+        "base_radii": base,
         "carrier_radius": arm.length * length,
-        "pressure_angle": alpha,
+        "pressure_angle": angles["sun"] if angles["sun"] == angles["ring"] else (angles["sun"], angles["ring"]),
         "inertias": {b: inertia_of(train, n) for b, n in links.items()},
     }

@@ -3,10 +3,13 @@
 Every body is a rotational coordinate: each link about the main axis, and each of a planet's
 ``count`` copies on its own (the product of the counts for a planet of a planet).  A mesh is a
 linear spring along its line of action between the base circles (base radius = pitch radius
-x cos 20 degrees, or the pressure angle given): its deflection is the mesh's contact condition
-(:func:`~symkin.kinematics.contact_condition`, the relative pitch-line motion in the frame of
-the link that carries both axes) written in turns instead of speeds, times the cosine of the
-pressure angle, so it is zero in every rigid motion of the train; its energy is ``k d^2 / 2``.
+x cos of the pressure angle: the gears' ``pressure_angle`` in the train file, 20 degrees where
+it gives none, or the one given): its deflection is the mesh's contact condition
+(:func:`~symkin.kinematics.contact_condition`, the relative motion of the working pitch circles
+in the frame of the link that carries both axes) written in turns instead of speeds, times the
+cosine of the working pressure angle (:func:`~symkin.dynamics.bodies.working_pressure_angle`;
+the pressure angle itself but at a working centre distance), so it is zero in every rigid
+motion of the train; its energy is ``k d^2 / 2``.
 A link's ``stiffness`` is a shaft holding it to the frame.  A planet's centre moves with its
 carrier's coordinate (its mass adds ``m a^2`` there, in the model's position at t = 0).
 Brakes hold links; clutches join them into one coordinate.
@@ -39,7 +42,7 @@ from typing import Any
 import sympy as sp
 
 from symkin import symbols as S
-from symkin.dynamics.bodies import MILLIMETRE, by_name, carrier_chain, inertia_of, mass_of
+from symkin.dynamics.bodies import MILLIMETRE, by_name, carrier_chain, inertia_of, mass_of, working_pressure_angle
 from symkin.dynamics.rigid import state_constraints
 from symkin.errors import InputError
 from symkin.model import FRAME, LinkKind, Mechanism
@@ -58,7 +61,7 @@ def mesh_stiffness(mesh: Any) -> sp.Expr:
     return sp.Symbol(f"k_{mesh.a}_{mesh.b}", positive=True) if mesh.stiffness is None else mesh.stiffness
 
 
-def torsional_model(train: Mechanism, state: Any = None, *, pressure_angle: Any = sp.pi / 9,
+def torsional_model(train: Mechanism, state: Any = None, *, pressure_angle: Any = None,
                     length: Any = MILLIMETRE, values: Mapping[Any, Any] | None = None) -> TorsionalModel:
     """The rotational lumped-parameter model of a train: its coordinates, mass matrix M and stiffness matrix K.
 
@@ -70,15 +73,16 @@ def torsional_model(train: Mechanism, state: Any = None, *, pressure_angle: Any 
         link without a stiffness has no shaft to the frame).
     state : str or State, optional
         A gear state: its brakes hold links, its clutches join them.
-    pressure_angle : number
-        Radians (20 degrees by default): base radius = pitch radius x cos(pressure angle).
+    pressure_angle : number, optional
+        Radians, for every mesh: base radius = pitch radius x cos(pressure angle).  Default: each
+        mesh's from its gears' ``pressure_angle`` in the train file (degrees), 20 degrees where it
+        gives none.
     length : number
         Metres per model length unit (1/1000: millimetres).
     values : mapping of symbol name to value, optional
         Numbers for the symbols left (``{"J_S": 0.01, "k_s_p": 5e8}``).
     """
     held, joined, _ = state_constraints(train, state)
-    alpha = as_expr(pressure_angle, what="pressure angle", unit="rad")
     length = as_expr(length, what="length (metres per model length unit)")
     bodies, chains = _bodies(train, held, joined)
     coordinates = tuple(dict.fromkeys(v for v in bodies.values() if v != 0))
@@ -92,7 +96,7 @@ def torsional_model(train: Mechanism, state: Any = None, *, pressure_angle: Any 
         return bodies[(link, index[: len(chains[link])])]
 
     T = _kinetic_energy(train, bodies, rates, turn, chains, length)
-    V = _mesh_energy(train, turn, chains, alpha, length)
+    V = _mesh_energy(train, turn, chains, pressure_angle, length)
     for L in train.moving_links:  # the shafts holding links to the frame
         if L.stiffness is not None:
             V += L.stiffness * turn(L.name, ()) ** 2 / 2
@@ -168,13 +172,14 @@ def _kinetic_energy(train: Mechanism, bodies: Mapping[Body, Any], rates: Mapping
 
 
 def _mesh_energy(train: Mechanism, turn: Callable[[str, tuple[int, ...]], sp.Expr], chains: Mapping[str, Any],
-                 alpha: sp.Expr, length: sp.Expr) -> sp.Expr:
+                 pressure_angle: Any, length: sp.Expr) -> sp.Expr:
     """The potential energy of the mesh springs: one for each copy of the deepest planet of a mesh,
     its deflection the mesh's contact condition in turns along the line of action."""
     from symkin.kinematics import contact_condition
 
     V = sp.Integer(0)
     for mesh in train.meshes:
+        line = sp.cos(working_pressure_angle(train, mesh, pressure_angle)) * length  # pitch-line turns to the line of action
         geo = train.mesh_geometry(mesh)
         eq = contact_condition(train, mesh)
         relative = sp.expand(eq.lhs - eq.rhs)
@@ -184,7 +189,7 @@ def _mesh_energy(train: Mechanism, turn: Callable[[str, tuple[int, ...]], sp.Exp
             d = sp.Integer(0)
             for n in names:
                 d += relative.coeff(S.omega(n)) * turn(n, _index_for(chains, n, deepest, index))
-            V += mesh_stiffness(mesh) * (sp.cos(alpha) * length * d) ** 2 / 2
+            V += mesh_stiffness(mesh) * (line * d) ** 2 / 2
     return V
 
 
@@ -224,7 +229,7 @@ class TorsionalModel:
         return sp.expand((self.stiffness_matrix - lam * self.mass_matrix).det(method="berkowitz"))
 
 
-def natural_modes(train: Mechanism, state: Any = None, *, pressure_angle: Any = sp.pi / 9, length: Any = MILLIMETRE,
+def natural_modes(train: Mechanism, state: Any = None, *, pressure_angle: Any = None, length: Any = MILLIMETRE,
                   values: Mapping[Any, Any] | None = None, rigid_tolerance: float = 1e-9) -> Modes:
     """Natural frequencies (Hz) and mode shapes of a train's torsional model (:func:`torsional_model`).
 

@@ -199,3 +199,24 @@ def test_bad_input_is_one_line():
         planar_geometry(read_train(SIMPLE.replace("[links.R]", "[links.Q]\ncarrier = \"C\"\ngears = { q = 10 }\n[links.R]")))
     with pytest.raises(InputError, match="two suns"):
         planar_geometry(read_train(SIMPLE.replace("r = { teeth = 72, internal = true }", "r = 24")))
+
+
+def test_planar_geometry_takes_the_train_files_pressure_angle():
+    train = read_train("""
+module = 2
+meshes = [["s", "p"], ["p", "r"]]
+[links.S]
+gears = { s = { teeth = 24, pressure_angle = 25 } }
+[links.C]
+[links.P]
+carrier = "C"
+count = 3
+gears = { p = { teeth = 24, pressure_angle = 25 } }
+[links.R]
+gears = { r = { teeth = 72, internal = true, pressure_angle = 25 } }
+""")
+    g = planar_geometry(train)
+    # base radius = m z cos(alpha) / 2, in metres, by hand
+    expected = {b: z * math.cos(math.radians(25)) / 1000 for b, z in (("sun", 24), ("planet", 24), ("ring", 72))}
+    assert {b: float(r) for b, r in g["base_radii"].items()} == pytest.approx(expected, rel=1e-15)
+    assert float(g["pressure_angle"]) == pytest.approx(math.radians(25), rel=1e-15)

@@ -212,3 +212,51 @@ def test_fixed_ring_frequencies_have_kahramans_closed_form(count):
     expected = sorted(math.sqrt(x) / (2 * math.pi) for x in lam)
     assert modes.model.names == ("S", "C", *(f"P_{k + 1}" for k in range(n)))
     assert modes.frequencies_hz == pytest.approx(expected, rel=1e-12, abs=1e-9)
+
+
+def _two_gears(form_a: str, form_b: str, mesh: str = "") -> str:
+    return f"""
+module = 1
+meshes = [{{ gears = ["a", "b"], stiffness = 1e8{mesh} }}]
+[links.A]
+gears = {{ a = {{ teeth = 20{form_a} }} }}
+inertia = 0.01
+[links.B]
+carrier = "frame"
+gears = {{ b = {{ teeth = 40{form_b} }} }}
+inertia = 0.04
+"""
+
+
+def _two_gear_stiffness(alpha_degrees: float) -> np.ndarray:
+    """K of two gears on fixed axes by hand: k [r_bA^2, r_bA r_bB; r_bA r_bB, r_bB^2], with the
+    base radii m z cos(alpha) / 2 (ISO 21771) in metres; the sign of the coupling is that of
+    external gears turning opposite ways."""
+    rb = [z / 2 * math.cos(math.radians(alpha_degrees)) / 1000 for z in (20, 40)]
+    return 1e8 * np.array([[rb[0] ** 2, rb[0] * rb[1]], [rb[0] * rb[1], rb[1] ** 2]])
+
+
+def test_the_train_files_pressure_angle_is_the_models():
+    # written in the file: the mesh's base circles are cos 25 degrees of its pitch circles
+    model = torsional_model(read_train(_two_gears(", pressure_angle = 25", ", pressure_angle = 25")))
+    K = np.array(model.stiffness_matrix.evalf(30).tolist(), dtype=float)
+    assert np.allclose(K, _two_gear_stiffness(25), rtol=1e-14, atol=0)
+    # none written: 20 degrees, the basic rack's; one given in Python: it, for every mesh
+    plain = read_train(_two_gears("", ""))
+    K20 = np.array(torsional_model(plain).stiffness_matrix.evalf(30).tolist(), dtype=float)
+    assert np.allclose(K20, _two_gear_stiffness(20), rtol=1e-14, atol=0)
+    given = torsional_model(plain, pressure_angle=sp.pi * 25 / 180)
+    assert given.stiffness_matrix == model.stiffness_matrix
+
+
+def test_a_shifted_mesh_keeps_its_base_circles():
+    # a working centre distance of 31 mm for a reference 30: the working circles are 31/30 of the
+    # pitch circles, the base circles stay m z cos(alpha) / 2, so K is that of the unshifted pair
+    model = torsional_model(read_train(_two_gears("", "", ", centre_distance = 31")))
+    K = np.array(model.stiffness_matrix.evalf(30).tolist(), dtype=float)
+    assert np.allclose(K, _two_gear_stiffness(20), rtol=1e-14, atol=0)
+
+
+def test_gears_of_one_mesh_with_different_pressure_angles_are_refused():
+    with pytest.raises(InputError, match=r"gears a and b mesh but have different pressure angles \(25 and 20 degrees"):
+        torsional_model(read_train(_two_gears(", pressure_angle = 25", "")))
