@@ -513,33 +513,12 @@ class _Reader:
         joins nothing): a link that nothing joins is a free speed no state can fix (50 of them
         took minutes before the states said so, by the degrees of freedom)."""
         names = [n for n in specs if n not in (FRAME_TABLE, FRAME)]
-        parent = {n: n for n in names}
-
-        def root(n: str) -> str:
-            while parent[n] != n:
-                parent[n] = parent[parent[n]]
-                n = parent[n]
-            return n
-
-        def join(a: Any, b: Any) -> None:
-            if isinstance(a, str) and isinstance(b, str):
-                a, b = gear_owner.get(a, a), gear_owner.get(b, b)
-                if a in parent and b in parent:
-                    parent[root(a)] = root(b)
-
-        for m in meshes:
-            join(m.a, m.b)
-        for n in names:
-            join(n, specs[n].get("carrier"))
-        for st in states:
-            for a, b in st.clutches:
-                join(a, b)
-        parts: dict[str, list[str]] = {}
-        for n in names:
-            parts.setdefault(root(n), []).append(n)
-        if len(parts) < 2:
+        pairs = [*((m.a, m.b) for m in meshes), *((n, specs[n].get("carrier")) for n in names),
+                 *(pair for st in states for pair in st.clutches)]
+        groups = _connected(names, [(gear_owner.get(a, a), gear_owner.get(b, b)) for a, b in pairs
+                                    if isinstance(a, str) and isinstance(b, str)])
+        if len(groups) < 2:
             return
-        groups = sorted(parts.values(), key=len, reverse=True)
         loose = [g[0] for g in groups[1:] if len(g) == 1]
         if len(loose) == len(groups) - 1:
             it = "it" if len(loose) == 1 else "them"
@@ -572,32 +551,34 @@ class _Reader:
             raise self.fail("meshes", "the file lists no meshes; add meshes = [[\"a\", \"b\"], ...] before the first [table]")
         if not isinstance(items, list):
             raise self.fail("meshes", f"must be a list of gear pairs, got {_show(items)}")
-        out = []
-        for k, item in enumerate(items, 1):
-            where = f"meshes[{k}]"
-            distance = efficiency = None
-            props: dict[str, sp.Expr] = {}
-            if isinstance(item, Mapping):
-                item = self.keys(item, _MESH, where)
-                props = self.mass_properties(item, where)
-                if "centre_distance" in item:
-                    distance = self.number(item["centre_distance"], f"{where} centre_distance")
-                if "efficiency" in item:
-                    efficiency = self.number(item["efficiency"], f"{where} efficiency")
-                    if not efficiency <= 1:
-                        raise self.fail(f"{where} efficiency", f"must lie in (0, 1], got {_show(item['efficiency'])}")
-                item = item.get("gears")
-            if not isinstance(item, list) or len(item) != 2:
-                raise self.fail(where, f"a mesh is a pair of gear names [\"a\", \"b\"], got {_show(item)}")
-            for g in item:
-                if g not in owner:
-                    raise self.fail(where, f"names no gear {g!r}; the gears are {', '.join(owner)}")
-            try:
-                mesh = Mesh(item[0], item[1], centre_distance=distance, efficiency=efficiency, **props)
-            except ModelError as err:
-                raise self.fail(where, str(err)) from None
-            out.append(mesh)
-        return out
+        return [self.mesh(item, owner, f"meshes[{k}]") for k, item in enumerate(items, 1)]
+
+    def mesh(self, item: Any, owner: Mapping[str, str], where: str) -> Mesh:
+        """One mesh: a pair of gear names, or a table of its gears and options."""
+        options: dict[str, sp.Expr] = {}
+        if isinstance(item, Mapping):
+            item, options = self.mesh_table(item, where)
+        if not isinstance(item, list) or len(item) != 2:
+            raise self.fail(where, f"a mesh is a pair of gear names [\"a\", \"b\"], got {_show(item)}")
+        for g in item:
+            if g not in owner:
+                raise self.fail(where, f"names no gear {g!r}; the gears are {', '.join(owner)}")
+        try:
+            return Mesh(item[0], item[1], **options)
+        except ModelError as err:
+            raise self.fail(where, str(err)) from None
+
+    def mesh_table(self, table: Mapping[str, Any], where: str) -> tuple[Any, dict[str, sp.Expr]]:
+        """A mesh as a table: its gears, and its centre distance, efficiency and stiffness (as Mesh takes them)."""
+        table = self.keys(table, _MESH, where)
+        options = self.mass_properties(table, where)
+        if "centre_distance" in table:
+            options["centre_distance"] = self.number(table["centre_distance"], f"{where} centre_distance")
+        if "efficiency" in table:
+            options["efficiency"] = self.number(table["efficiency"], f"{where} efficiency")
+            if not options["efficiency"] <= 1:
+                raise self.fail(f"{where} efficiency", f"must lie in (0, 1], got {_show(table['efficiency'])}")
+        return table.get("gears"), options
 
     def states(self, table: Any, names: set[str]) -> list[State]:
         if not isinstance(table, Mapping):
@@ -663,6 +644,30 @@ class _Reader:
         if named:
             return f"[links.{min(named)[1]}]"
         return "meshes" if "mesh" in message or "gears" in message else ""
+
+
+def _connected(names: Sequence[str], pairs: Sequence[tuple[str, str]]) -> list[list[str]]:
+    """The groups of ``names`` that ``pairs`` join (a pair naming anything else joins nothing), largest first,
+    each in the order of ``names``.
+
+    >>> _connected(["A", "B", "C", "D"], [("A", "C"), ("C", "x")])
+    [['A', 'C'], ['B'], ['D']]
+    """
+    parent = {n: n for n in names}
+
+    def root(n: str) -> str:
+        while parent[n] != n:
+            parent[n] = parent[parent[n]]
+            n = parent[n]
+        return n
+
+    for a, b in pairs:
+        if a in parent and b in parent:
+            parent[root(a)] = root(b)
+    parts: dict[str, list[str]] = {}
+    for n in names:
+        parts.setdefault(root(n), []).append(n)
+    return sorted(parts.values(), key=len, reverse=True)
 
 
 def _model_name(name: str) -> str:
