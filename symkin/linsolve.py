@@ -138,6 +138,18 @@ def solve_factored(A: sp.Matrix, B: sp.Matrix) -> tuple[sp.Matrix, sp.Matrix] | 
             return None
         whole = whole.xreplace(back) if back else whole
         return whole, whole
+    composed = _composed(A, B, blocks)
+    if composed is None:
+        return None
+    result = _canonical(composed, A, B)
+    if back:
+        return result.xreplace(back), composed.xreplace(back)
+    return result, composed
+
+
+def _composed(A: sp.Matrix, B: sp.Matrix, blocks: list[tuple[list[int], list[int]]]) -> sp.Matrix | None:
+    """X with A X = B, block by block in the order of ``blocks`` (:func:`triangular_blocks`), each block's
+    solution composed with the earlier blocks' without expanding; None when a block is singular."""
     X: list[list[sp.Expr]] = [[sp.Integer(0)] * B.cols for _ in range(A.cols)]
     nonzero: list[list[tuple[int, sp.Expr]]] = [[] for _ in range(A.rows)]
     for (r, c), value in sorted(A.todok().items()):
@@ -157,11 +169,7 @@ def solve_factored(A: sp.Matrix, B: sp.Matrix) -> tuple[sp.Matrix, sp.Matrix] | 
             for j in range(B.cols):
                 terms = [given[j]] + [-k * X[o][j] for k, o in zip(coefficients, outside) if k != 0 and X[o][j] != 0]
                 X[c][j] = sp.Add(*terms)
-    composed = sp.Matrix(X)
-    result = _canonical(composed, A, B)
-    if back:
-        return result.xreplace(back), composed.xreplace(back)
-    return result, composed
+    return sp.Matrix(X)
 
 
 def _without_denominators(A: sp.Matrix, B: sp.Matrix) -> tuple[sp.Matrix, sp.Matrix]:
