@@ -129,6 +129,20 @@ def _texts(fig: Figure) -> list[Any]:
     """Every text drawn: titles, labels, legends, annotations, and the tick labels in view."""
     from matplotlib.text import Text
 
+    ticks, shown = _tick_labels(fig)
+    out, seen = [], set()
+    for text in fig.findobj(Text):
+        if id(text) in seen or not text.get_visible() or not text.get_text().strip():
+            continue
+        seen.add(id(text))
+        if id(text) in ticks and id(text) not in shown:
+            continue
+        out.append(text)
+    return out
+
+
+def _tick_labels(fig: Figure) -> tuple[set[int], set[int]]:
+    """The ids of every tick label (and of the label of a hidden axis), and of the tick labels in view."""
     ticks: set[int] = set()
     shown: set[int] = set()
     for ax in fig.axes:
@@ -145,15 +159,7 @@ def _texts(fig: Figure) -> list[Any]:
                         shown.add(id(t))
             if not axis.get_visible():
                 ticks.add(id(axis.get_label()))
-    out, seen = [], set()
-    for text in fig.findobj(Text):
-        if id(text) in seen or not text.get_visible() or not text.get_text().strip():
-            continue
-        seen.add(id(text))
-        if id(text) in ticks and id(text) not in shown:
-            continue
-        out.append(text)
-    return out
+    return ticks, shown
 
 
 def layout_problems(fig: Figure, *, width: float = PAGE) -> list[str]:
