@@ -138,6 +138,18 @@ def solve_factored(A: sp.Matrix, B: sp.Matrix) -> tuple[sp.Matrix, sp.Matrix] | 
             return None
         whole = whole.xreplace(back) if back else whole
         return whole, whole
+    composed = _composed(A, B, blocks)
+    if composed is None:
+        return None
+    result = _canonical(composed, A, B)
+    if back:
+        return result.xreplace(back), composed.xreplace(back)
+    return result, composed
+
+
+def _composed(A: sp.Matrix, B: sp.Matrix, blocks: list[tuple[list[int], list[int]]]) -> sp.Matrix | None:
+    """X with A X = B, block by block in the order of ``blocks`` (:func:`triangular_blocks`), each block's
+    solution composed with the earlier blocks' without expanding; None when a block is singular."""
     X: list[list[sp.Expr]] = [[sp.Integer(0)] * B.cols for _ in range(A.cols)]
     nonzero: list[list[tuple[int, sp.Expr]]] = [[] for _ in range(A.rows)]
     for (r, c), value in sorted(A.todok().items()):
@@ -157,11 +169,7 @@ def solve_factored(A: sp.Matrix, B: sp.Matrix) -> tuple[sp.Matrix, sp.Matrix] | 
             for j in range(B.cols):
                 terms = [given[j]] + [-k * X[o][j] for k, o in zip(coefficients, outside) if k != 0 and X[o][j] != 0]
                 X[c][j] = sp.Add(*terms)
-    composed = sp.Matrix(X)
-    result = _canonical(composed, A, B)
-    if back:
-        return result.xreplace(back), composed.xreplace(back)
-    return result, composed
+    return sp.Matrix(X)
 
 
 def _without_denominators(A: sp.Matrix, B: sp.Matrix) -> tuple[sp.Matrix, sp.Matrix]:
@@ -227,7 +235,19 @@ def triangular_blocks(A: sp.Matrix) -> list[tuple[list[int], list[int]]] | None:
     equation to each unknown exists (A is singular for every value of its symbols)."""
     n = A.cols
     pattern = [[c for c in range(n) if A[r, c] != 0] for r in range(A.rows)]
-    row_of: list[int | None] = [None] * n  # the equation assigned to each unknown
+    row_of = _matching(pattern, n)
+    if row_of is None:
+        return None
+    # unknown c depends on the other unknowns of its equation; Tarjan's components come
+    # out dependencies first
+    depends = [[d for d in pattern[row_of[c]] if d != c] for c in range(n)]
+    return [([row_of[c] for c in cols], cols) for cols in _components(depends)]
+
+
+def _matching(pattern: list[list[int]], n: int) -> list[int] | None:
+    """The equation assigned to each of the ``n`` unknowns (``pattern[r]``: the unknowns of equation r), by
+    Kuhn's augmenting paths; None when some equation finds none."""
+    row_of: list[int | None] = [None] * n
 
     def augment(r: int) -> bool:  # Kuhn's augmenting path from equation r
         seen: set[int] = set()
@@ -249,34 +269,36 @@ def triangular_blocks(A: sp.Matrix) -> list[tuple[list[int], list[int]]] | None:
                 frames.pop()
         return False
 
-    for r in range(A.rows):
+    for r in range(len(pattern)):
         if not augment(r):
             return None
-    # unknown c depends on the other unknowns of its equation; Tarjan's components come
-    # out dependencies first
-    depends = [[d for d in pattern[row_of[c]] if d != c] for c in range(n)]  # type: ignore[index]
+    return row_of  # type: ignore[return-value]  # (every unknown assigned once every equation is)
+
+
+def _components(depends: list[list[int]]) -> list[list[int]]:
+    """The strongly connected components of the graph ``v -> depends[v]``, each sorted, dependencies first
+    (Tarjan's algorithm, without recursion)."""
     index: dict[int, int] = {}
     low: dict[int, int] = {}
     on_stack: set[int] = set()
     stack: list[int] = []
-    blocks: list[tuple[list[int], list[int]]] = []
-    counter = 0
-    for root in range(n):
+    blocks: list[list[int]] = []
+
+    def visit(v: int) -> None:
+        index[v] = low[v] = len(index)
+        stack.append(v)
+        on_stack.add(v)
+
+    for root in range(len(depends)):
         if root in index:
             continue
         work = [(root, iter(depends[root]))]
-        index[root] = low[root] = counter
-        counter += 1
-        stack.append(root)
-        on_stack.add(root)
+        visit(root)
         while work:
             v, children = work[-1]
             for w in children:
                 if w not in index:
-                    index[w] = low[w] = counter
-                    counter += 1
-                    stack.append(w)
-                    on_stack.add(w)
+                    visit(w)
                     work.append((w, iter(depends[w])))
                     break
                 if w in on_stack:
@@ -286,16 +308,20 @@ def triangular_blocks(A: sp.Matrix) -> list[tuple[list[int], list[int]]] | None:
                 if work:
                     low[work[-1][0]] = min(low[work[-1][0]], low[v])
                 if low[v] == index[v]:
-                    cols = []
-                    while True:
-                        w = stack.pop()
-                        on_stack.discard(w)
-                        cols.append(w)
-                        if w == v:
-                            break
-                    cols.sort()
-                    blocks.append(([row_of[c] for c in cols], cols))  # type: ignore[misc]
+                    blocks.append(_pop_component(stack, on_stack, v))
     return blocks
+
+
+def _pop_component(stack: list[int], on_stack: set[int], v: int) -> list[int]:
+    """The component of root ``v``: the stack's top down to ``v``, taken off, sorted."""
+    cols = []
+    while True:
+        w = stack.pop()
+        on_stack.discard(w)
+        cols.append(w)
+        if w == v:
+            break
+    return sorted(cols)
 
 
 _CANONICAL_TERMS = 32  # entries whose expanded numerator and denominator stay below this many terms

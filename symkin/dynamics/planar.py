@@ -110,14 +110,7 @@ def planar_model(planets: int | Sequence[Any], *, base_radii: Mapping[str, Any],
 
     Values may be numbers, SymPy expressions (symbols keep M and K symbolic) or pint quantities.
     """
-    if isinstance(planets, int):
-        if planets < 1:
-            raise InputError(f"a planetary set needs at least one planet, got {planets}")
-        psi = [2 * sp.pi * k / planets for k in range(planets)]
-    else:
-        psi = [as_expr(p, what="planet angle", unit="rad") for p in planets]
-        if not psi:
-            raise InputError("no planet angles given: give at least one, or a number of planets")
+    psi = _planet_angles(planets)
     angles = pressure_angle if isinstance(pressure_angle, (tuple, list)) else (pressure_angle, pressure_angle)
     if len(angles) != 2 or len(mesh_stiffness) != 2:
         raise InputError("give the pressure angle and the mesh stiffness as (sun-planet, ring-planet) pairs")
@@ -160,6 +153,26 @@ def planar_model(planets: int | Sequence[Any], *, base_radii: Mapping[str, Any],
         line_r = sp.cos(a_r) * tangent - sp.sin(a_r) * radial
         springs.append((k_sp, line_s.dot(sun - centre) + rb["sun"] * th_s + rb["planet"] * th))
         springs.append((k_rp, line_r.dot(ring - centre) + rb["ring"] * th_r - rb["planet"] * th))
+    M, K = _matrices(q, inertia, springs)
+    return PlanarModel(None, tuple(names), tuple(q), M, K)  # type: ignore[arg-type]
+
+
+def _planet_angles(planets: int | Sequence[Any]) -> list[sp.Expr]:
+    """Each planet's place psi: ``planets`` equally spaced from angle 0, or the angles given."""
+    if isinstance(planets, int):
+        if planets < 1:
+            raise InputError(f"a planetary set needs at least one planet, got {planets}")
+        return [2 * sp.pi * k / planets for k in range(planets)]
+    psi = [as_expr(p, what="planet angle", unit="rad") for p in planets]
+    if not psi:
+        raise InputError("no planet angles given: give at least one, or a number of planets")
+    return psi
+
+
+def _matrices(q: list[sp.Symbol], inertia: list[tuple[sp.Expr, int]],
+              springs: list[tuple[sp.Expr, sp.Expr]]) -> tuple[sp.ImmutableMatrix, sp.ImmutableMatrix]:
+    """M (diagonal: the ``inertia`` by coordinate index) and K (the sum of ``k (grad d)(grad d)^T`` over the
+    ``springs`` ``(k, d)``, expanded) in the coordinates ``q``."""
     size = len(q)
     M = sp.zeros(size, size)
     for value, i in inertia:
@@ -168,8 +181,7 @@ def planar_model(planets: int | Sequence[Any], *, base_radii: Mapping[str, Any],
     for k, d in springs:
         grad = sp.Matrix([d.diff(v) for v in q])
         K += k * grad * grad.T
-    K = K.applyfunc(sp.expand)
-    return PlanarModel(None, tuple(names), tuple(q), sp.ImmutableMatrix(M), sp.ImmutableMatrix(K))  # type: ignore[arg-type]
+    return sp.ImmutableMatrix(M), sp.ImmutableMatrix(K.applyfunc(sp.expand))
 
 
 def planar_modes(planets: int | Sequence[Any], *, rigid_tolerance: float = 1e-9, **geometry: Any) -> Modes:

@@ -152,7 +152,8 @@ class PairGeometry:
             if sp.N(r2 - line, DIGITS) > 0:
                 out.append(f"involute interference: the tip of the {g2.teeth}-tooth gear reaches past the interference "
                            f"point (on the base circle) of the {g1.teeth}-tooth gear")
-        return out
+        # each problem once: two gears of one tooth number (a sun and its planet of 12) say the same sentence
+        return list(dict.fromkeys(out))
 
     # ---- internal meshes (KHK / SDP-SI eqs. 5-5 to 5-10)
     def _tip_angles(self) -> tuple[sp.Expr, sp.Expr]:

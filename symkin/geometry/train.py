@@ -174,42 +174,13 @@ def coaxial_shifts(train: Any, *, digits: int = 5) -> dict[str, sp.Rational]:
     mesh are not in the result.
     """
     gears, _ = _spur_gears(train, None)
-    rules: list[tuple[str, str, int, sp.Expr]] = []  # x_b = sign * x_a + value
-    for mesh in train.meshes:
-        if mesh.a not in gears or mesh.b not in gears:
-            continue
-        a, b = _ordered(train, mesh.a, mesh.b)
-        needed = shift_sum_for(gears[a], gears[b], sp.nsimplify(train.mesh_geometry(mesh).centre_distance))
-        rules.append((a, b, 1, needed) if gears[b].internal else (a, b, -1, needed))
+    rules = _shift_rules(train, gears)
     affine: dict[str, tuple[sp.Expr, int]] = {}  # x = c + k t
     chosen: dict[str, sp.Expr] = {}
     for start in gears:
         if start in affine or not any(start in r[:2] for r in rules):
             continue
-        component = [start]
-        affine[start] = (sp.Integer(0), 1)
-        fixed: list[float] = []  # t where a loop of meshes fixes it
-        queue = [start]
-        while queue:
-            here = queue.pop()
-            for a, b, sign, value in rules:
-                if here not in (a, b):
-                    continue
-                if here == a:
-                    there, c, k = b, sign * affine[a][0] + value, sign * affine[a][1]
-                else:  # x_a = sign * (x_b - value)
-                    there, c, k = a, sign * (affine[b][0] - value), sign * affine[b][1]
-                if there in affine:
-                    gap = float(sp.N(affine[there][0] - c, DIGITS))
-                    if affine[there][1] != k:
-                        fixed.append(gap / (k - affine[there][1]))
-                    elif abs(gap) > SHIFT_TOLERANCE:
-                        raise InputError(f"the meshes of gear {there} ask for two different shifts: its centre distances "
-                                         "cannot all be met by profile shift; change a centre distance or a tooth number")
-                    continue
-                affine[there] = (c, k)
-                component.append(there)
-                queue.append(there)
+        component, fixed = _spread(start, rules, affine)
         if fixed and max(fixed) - min(fixed) > SHIFT_TOLERANCE:
             raise InputError(f"the meshes around gear {start} ask for two different shifts: their centre distances "
                              "cannot all be met by profile shift; change a centre distance or a tooth number")
@@ -220,6 +191,50 @@ def coaxial_shifts(train: Any, *, digits: int = 5) -> dict[str, sp.Rational]:
             c, k = affine[g]
             chosen[g] = sp.Rational(f"{float(sp.N(c, DIGITS)) + k * t:.{digits}f}")
     return chosen
+
+
+def _shift_rules(train: Any, gears: Mapping[str, GearGeometry]) -> list[tuple[str, str, int, sp.Expr]]:
+    """For each spur mesh a-b (the internal gear second), ``(a, b, sign, value)``: ``x_b = sign * x_a + value``
+    gives the mesh the centre distance the train places it at."""
+    rules = []
+    for mesh in train.meshes:
+        if mesh.a not in gears or mesh.b not in gears:
+            continue
+        a, b = _ordered(train, mesh.a, mesh.b)
+        needed = shift_sum_for(gears[a], gears[b], sp.nsimplify(train.mesh_geometry(mesh).centre_distance))
+        rules.append((a, b, 1, needed) if gears[b].internal else (a, b, -1, needed))
+    return rules
+
+
+def _spread(start: str, rules: list[tuple[str, str, int, sp.Expr]],
+            affine: dict[str, tuple[sp.Expr, int]]) -> tuple[list[str], list[float]]:
+    """The gears the ``rules`` join to ``start``, each one's shift put in ``affine`` as ``x = c + k t`` (``x_start =
+    t``), and the values of t that loops of meshes fix."""
+    component = [start]
+    affine[start] = (sp.Integer(0), 1)
+    fixed: list[float] = []  # t where a loop of meshes fixes it
+    queue = [start]
+    while queue:
+        here = queue.pop()
+        for a, b, sign, value in rules:
+            if here not in (a, b):
+                continue
+            if here == a:
+                there, c, k = b, sign * affine[a][0] + value, sign * affine[a][1]
+            else:  # x_a = sign * (x_b - value)
+                there, c, k = a, sign * (affine[b][0] - value), sign * affine[b][1]
+            if there in affine:
+                gap = float(sp.N(affine[there][0] - c, DIGITS))
+                if affine[there][1] != k:
+                    fixed.append(gap / (k - affine[there][1]))
+                elif abs(gap) > SHIFT_TOLERANCE:
+                    raise InputError(f"the meshes of gear {there} ask for two different shifts: its centre distances "
+                                     "cannot all be met by profile shift; change a centre distance or a tooth number")
+                continue
+            affine[there] = (c, k)
+            component.append(there)
+            queue.append(there)
+    return component, fixed
 
 
 def _least_shifts(lines: list[tuple[float, int, float | None]], margin: float = 0.0) -> float:

@@ -152,6 +152,13 @@ class Mechanism:
 
     # ---- validation
     def _validate(self) -> None:
+        self._check_link_names()
+        self._check_gear_names()
+        self._check_carriers()
+        self._check_meshes()
+
+    def _check_link_names(self) -> None:
+        """Every link a :class:`Link`, of its own name, none named as the frame or the main axis but the frame."""
         seen: set[str] = set()
         for L in self.links:
             if not isinstance(L, Link):
@@ -162,12 +169,17 @@ class Mechanism:
             if L.name in seen:
                 raise ModelError(f"two links are called {L.name!r}; give every link its own name")
             seen.add(L.name)
+
+    def _check_gear_names(self) -> None:
         gear_names: set[str] = set()
         for L in self.links:
             for g in L.gears:
                 if g.name in gear_names:
                     raise ModelError(f"two gears are called {g.name!r}; give every gear its own name")
                 gear_names.add(g.name)
+
+    def _check_carriers(self) -> None:
+        """Every planet's carrier a link of this mechanism, each chain of carriers ending on the main axis."""
         by_name = {L.name: L for L in self.links}
         for L in self.links:
             if L.kind is LinkKind.PLANET:
@@ -183,6 +195,10 @@ class Mechanism:
                                          "that turns about the main axis")
                     assert c.carrier is not None
                     c = by_name[c.carrier]
+
+    def _check_meshes(self) -> None:
+        """Each pair of gears listed once, every mesh possible (:meth:`mesh_geometry`), and each bevel pinion gear
+        meeting side gears of one size."""
         if len({(frozenset((m.a, m.b))) for m in self.meshes}) != len(self.meshes):
             raise ModelError("a mesh is listed twice; list each pair of gears once")
         cones: dict[str, list[tuple[str, sp.Expr]]] = {}

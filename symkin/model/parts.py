@@ -296,6 +296,26 @@ class Link:
 
     def __post_init__(self) -> None:
         _name(self.name, "link name")
+        self._check_mass_properties()
+        if not isinstance(self.kind, LinkKind):
+            raise ModelError(f"kind of link {self.name} must be a LinkKind, got {self.kind!r}")
+        object.__setattr__(self, "gears", self._checked_gears())
+        if self.kind is LinkKind.PLANET:
+            self._check_carrier()
+            self._check_placement()
+            self._check_count()
+            self._check_axis()
+        elif (self.carrier is not None or self.arm is not None or self.position_angle is not None or self.count != 1
+              or self.axis != "parallel"):
+            raise ModelError(
+                f"{self.kind.value} link {self.name} turns about the main axis: it takes no carrier, arm, position "
+                "angle or planet count"
+            )
+        if self.kind is LinkKind.FRAME and self.name != FRAME:
+            raise ModelError(f"the frame must be named {FRAME!r}, got {self.name!r}")
+
+    def _check_mass_properties(self) -> None:
+        """Check inertia, mass and stiffness, and that the link's kind takes each one given."""
         for key, unit in (("inertia", "kg*m**2"), ("mass", "kg"), ("stiffness", "N*m/rad")):
             object.__setattr__(self, key, as_property(getattr(self, key), f"{key} of link {self.name}", unit))
         if self.kind is LinkKind.FRAME and (self.inertia is not None or self.mass is not None or self.stiffness is not None):
@@ -306,45 +326,49 @@ class Link:
         if self.kind is LinkKind.PLANET and self.stiffness is not None:
             raise ModelError(f"planet {self.name} takes no shaft stiffness: a stiffness holds a link about the main "
                              "axis to the frame")
-        if not isinstance(self.kind, LinkKind):
-            raise ModelError(f"kind of link {self.name} must be a LinkKind, got {self.kind!r}")
+
+    def _checked_gears(self) -> tuple[Gear, ...]:
+        """The link's gears as a tuple, each a :class:`Gear`."""
         gears = tuple(self.gears)
         for g in gears:
             if not isinstance(g, Gear):
                 raise ModelError(f"link {self.name} holds {g!r}, which is not a Gear")
-        object.__setattr__(self, "gears", gears)
-        if self.kind is LinkKind.PLANET:
-            if self.carrier is None:
-                raise ModelError(f"planet {self.name} needs a carrier: name the link that carries its axis")
-            _name(self.carrier, f"carrier of planet {self.name}")
-            if self.carrier == self.name:
-                raise ModelError(f"planet {self.name} cannot carry its own axis; name another link as its carrier")
-            if self.arm is not None and not (isinstance(self.arm, (int, sp.Integer)) and self.arm == 0):
-                object.__setattr__(self, "arm", as_length(self.arm, f"arm of planet {self.name}"))
-            elif self.arm is not None:  # arm 0: the link turns about its carrier's own axis
-                object.__setattr__(self, "arm", sp.Integer(0))
-            if self.position_angle is not None:
-                object.__setattr__(
-                    self, "position_angle",
-                    as_expr(self.position_angle, what=f"position angle of planet {self.name}", error=ModelError),
-                )
-            if isinstance(self.count, bool) or not isinstance(self.count, int) or not 1 <= self.count <= MAX_PLANETS:
-                raise ModelError(f"count of planet {self.name} must be a whole number from 1 to {MAX_PLANETS}, got {self.count!r}")
-            if self.axis not in ("parallel", "radial"):
-                raise ModelError(f"axis of planet {self.name} is 'parallel' or 'radial', got {self.axis!r}")
-            if self.axis == "radial":
-                if not all(g.bevel for g in gears):
-                    raise ModelError(f"planet {self.name} has a radial axis (a bevel pinion): its gears must be bevel gears")
-                if self.arm is not None:
-                    raise ModelError(f"bevel pinion {self.name} takes no arm: its axis passes through its carrier's axis")
-        elif (self.carrier is not None or self.arm is not None or self.position_angle is not None or self.count != 1
-              or self.axis != "parallel"):
-            raise ModelError(
-                f"{self.kind.value} link {self.name} turns about the main axis: it takes no carrier, arm, position "
-                "angle or planet count"
+        return gears
+
+    def _check_carrier(self) -> None:
+        """A planet's carrier: a link named, not the planet itself."""
+        if self.carrier is None:
+            raise ModelError(f"planet {self.name} needs a carrier: name the link that carries its axis")
+        _name(self.carrier, f"carrier of planet {self.name}")
+        if self.carrier == self.name:
+            raise ModelError(f"planet {self.name} cannot carry its own axis; name another link as its carrier")
+
+    def _check_placement(self) -> None:
+        """A planet's arm (a positive length, or 0) and position angle, as expressions."""
+        if self.arm is not None and not (isinstance(self.arm, (int, sp.Integer)) and self.arm == 0):
+            object.__setattr__(self, "arm", as_length(self.arm, f"arm of planet {self.name}"))
+        elif self.arm is not None:  # arm 0: the link turns about its carrier's own axis
+            object.__setattr__(self, "arm", sp.Integer(0))
+        if self.position_angle is not None:
+            object.__setattr__(
+                self, "position_angle",
+                as_expr(self.position_angle, what=f"position angle of planet {self.name}", error=ModelError),
             )
-        if self.kind is LinkKind.FRAME and self.name != FRAME:
-            raise ModelError(f"the frame must be named {FRAME!r}, got {self.name!r}")
+
+    def _check_count(self) -> None:
+        """How many planets of this kind: a whole number from 1 to :data:`MAX_PLANETS`."""
+        if isinstance(self.count, bool) or not isinstance(self.count, int) or not 1 <= self.count <= MAX_PLANETS:
+            raise ModelError(f"count of planet {self.name} must be a whole number from 1 to {MAX_PLANETS}, got {self.count!r}")
+
+    def _check_axis(self) -> None:
+        """A planet's axis: parallel, or radial (a bevel pinion: bevel gears only, no arm)."""
+        if self.axis not in ("parallel", "radial"):
+            raise ModelError(f"axis of planet {self.name} is 'parallel' or 'radial', got {self.axis!r}")
+        if self.axis == "radial":
+            if not all(g.bevel for g in self.gears):
+                raise ModelError(f"planet {self.name} has a radial axis (a bevel pinion): its gears must be bevel gears")
+            if self.arm is not None:
+                raise ModelError(f"bevel pinion {self.name} takes no arm: its axis passes through its carrier's axis")
 
     @classmethod
     def central(cls, name: str, *gears: Gear, inertia: Any = None, stiffness: Any = None) -> Link:

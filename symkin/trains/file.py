@@ -314,6 +314,15 @@ class _Reader:
     def angle(self, value: Any, where: str) -> sp.Expr:
         return self.number(value, where, positive=False)
 
+    def arm(self, value: Any, where: str) -> sp.Expr:
+        """A planet's arm: a positive length, or 0 (it turns about its carrier's own axis)."""
+        return sp.Integer(0) if value == 0 else self.number(value, where)
+
+    def text(self, value: Any, where: str) -> str:
+        if not isinstance(value, str):
+            raise self.fail(where, f"must be a string, got {_show(value)}")
+        return value
+
     def teeth(self, value: Any, where: str) -> sp.Expr:
         if isinstance(value, str):
             if not _SYMBOL.match(value):
@@ -378,76 +387,13 @@ class _Reader:
 
     def train(self) -> Train:
         data = self.keys(self.data, _TOP, "top level")
-        name = data.get("name", "")
-        if not isinstance(name, str):
-            raise self.fail("name", f"must be a string, got {_show(name)}")
-        description = data.get("description", "")
-        if not isinstance(description, str):
-            raise self.fail("description", f"must be a string, got {_show(description)}")
+        name = self.text(data.get("name", ""), "name")
+        description = self.text(data.get("description", ""), "description")
         module = self.module(data["module"], "module") if "module" in data else sp.Integer(1)
-        links_table = data.get("links")
-        if not isinstance(links_table, Mapping) or not links_table:
-            raise self.fail("[links]", "the file names no links; add a [links.NAME] table for each link")
-        if len(links_table) > MAX_LINKS:
-            raise self.fail("[links]", f"{len(links_table)} links, more than the {MAX_LINKS} symkin models; equal planets "
-                                       "are one link with count = N")
-        gear_owner: dict[str, str] = {}
-        specs: dict[str, Mapping[str, Any]] = {}
-        for link_name, table in links_table.items():
-            where = f"[links.{link_name}]"
-            specs[link_name] = self.keys(table, _LINK, where)
-            gears = specs[link_name].get("gears", {})
-            if not isinstance(gears, Mapping):
-                raise self.fail(f"{where} gears", f"must be a table of gear = teeth, got {_show(gears)}")
-            for g in gears:
-                if g in gear_owner:
-                    raise self.fail(f"{where} gears", f"gear {g!r} is also on link {gear_owner[g]!r}; give every gear its own name")
-                if g in links_table:
-                    raise self.fail(f"{where} gears", f"gear {g!r} has the name of a link; give gears and links different names")
-                gear_owner[g] = link_name
+        links_table = self.links_table(data.get("links"))
+        specs, gear_owner = self.link_specs(links_table)
         self._check_carriers(specs)
-        links = []
-        for link_name, table in specs.items():
-            where = f"[links.{link_name}]"
-            gears = [self.gear(g, spec, module, f"{where} gears.{g}") for g, spec in table.get("gears", {}).items()]
-            try:
-                props = self.mass_properties(table, where)
-                if link_name == FRAME_TABLE:
-                    extra = sorted(set(table) - {"gears"})
-                    if extra:
-                        raise self.fail(f"{where} {extra[0]}", "the frame holds fixed gears only")
-                    links.append(Link.frame(*gears))
-                elif "carrier" in table:
-                    carrier = self.name(table["carrier"], f"{where} carrier")
-                    carrier = FRAME if carrier == FRAME_TABLE else carrier
-                    count = table.get("count", 1)
-                    if isinstance(count, bool) or not isinstance(count, int):
-                        raise self.fail(f"{where} count", f"must be a whole number of planets, got {_show(count)}")
-                    if "stiffness" in props:
-                        raise self.fail(f"{where} stiffness", "a planet takes no shaft stiffness: a stiffness holds a "
-                                                              "link about the main axis to the frame")
-                    axis = table.get("axis", "parallel")
-                    if axis not in ("parallel", "radial"):
-                        raise self.fail(f"{where} axis", f"is \"parallel\" (a planet) or \"radial\" (a bevel pinion), got {_show(axis)}")
-                    links.append(Link.planet(
-                        link_name, *gears, carrier=carrier, axis=axis,
-                        arm=(sp.Integer(0) if table.get("arm") == 0 else self.number(table["arm"], f"{where} arm"))
-                        if "arm" in table else None,
-                        position_angle=self.angle(table["angle"], f"{where} angle") if "angle" in table else None,
-                        count=count, **props,
-                    ))
-                else:
-                    extra = sorted(set(table) & {"angle", "arm", "count", "axis"})
-                    if extra:
-                        raise self.fail(f"{where} {extra[0]}", "only a planet (a link with a carrier) takes this key")
-                    if "mass" in props:
-                        raise self.fail(f"{where} mass", "only a planet takes a mass (its centre moves); give a link "
-                                                         "about the main axis its inertia")
-                    links.append(Link.central(link_name, *gears, **props))
-            except TrainFileError:
-                raise
-            except ModelError as err:
-                raise self.fail(where, str(err)) from None
+        links = [self.link(link_name, table, module) for link_name, table in specs.items()]
         meshes = self.meshes(data.get("meshes"), gear_owner)
         states = self.states(data.get("states", {}), set(links_table) | set(gear_owner))
         base = self.base(data["base"]) if "base" in data else None
@@ -462,6 +408,82 @@ class _Reader:
             raise self.fail(self._where_of(str(err), specs), str(err)) from None
         self._check_joined(specs, meshes, [*states, *(State("", "", "", (), ((o.link, o.other),)) for o in one_ways)], gear_owner)
         return train
+
+    def links_table(self, links_table: Any) -> Mapping[str, Any]:
+        """The [links] table: at least one link, at most :data:`MAX_LINKS`."""
+        if not isinstance(links_table, Mapping) or not links_table:
+            raise self.fail("[links]", "the file names no links; add a [links.NAME] table for each link")
+        if len(links_table) > MAX_LINKS:
+            raise self.fail("[links]", f"{len(links_table)} links, more than the {MAX_LINKS} symkin models; equal planets "
+                                       "are one link with count = N")
+        return links_table
+
+    def link_specs(self, links_table: Mapping[str, Any]) -> tuple[dict[str, Mapping[str, Any]], dict[str, str]]:
+        """Each link's table (its keys checked) and the link that holds each gear (gear names unique, no link's)."""
+        gear_owner: dict[str, str] = {}
+        specs: dict[str, Mapping[str, Any]] = {}
+        for link_name, table in links_table.items():
+            where = f"[links.{link_name}]"
+            specs[link_name] = self.keys(table, _LINK, where)
+            gears = specs[link_name].get("gears", {})
+            if not isinstance(gears, Mapping):
+                raise self.fail(f"{where} gears", f"must be a table of gear = teeth, got {_show(gears)}")
+            for g in gears:
+                if g in gear_owner:
+                    raise self.fail(f"{where} gears", f"gear {g!r} is also on link {gear_owner[g]!r}; give every gear its own name")
+                if g in links_table:
+                    raise self.fail(f"{where} gears", f"gear {g!r} has the name of a link; give gears and links different names")
+                gear_owner[g] = link_name
+        return specs, gear_owner
+
+    def link(self, link_name: str, table: Mapping[str, Any], module: sp.Expr) -> Link:
+        """One [links.NAME] table: the frame, a planet (it names a carrier) or a link about the main axis."""
+        where = f"[links.{link_name}]"
+        gears = [self.gear(g, spec, module, f"{where} gears.{g}") for g, spec in table.get("gears", {}).items()]
+        try:
+            props = self.mass_properties(table, where)
+            if link_name == FRAME_TABLE:
+                return self.frame_link(table, gears, where)
+            if "carrier" in table:
+                return self.planet(link_name, table, gears, props, where)
+            return self.central(link_name, table, gears, props, where)
+        except TrainFileError:
+            raise
+        except ModelError as err:
+            raise self.fail(where, str(err)) from None
+
+    def frame_link(self, table: Mapping[str, Any], gears: Sequence[Gear], where: str) -> Link:
+        extra = sorted(set(table) - {"gears"})
+        if extra:
+            raise self.fail(f"{where} {extra[0]}", "the frame holds fixed gears only")
+        return Link.frame(*gears)
+
+    def planet(self, link_name: str, table: Mapping[str, Any], gears: Sequence[Gear], props: Mapping[str, sp.Expr],
+               where: str) -> Link:
+        carrier = _model_name(self.name(table["carrier"], f"{where} carrier"))
+        count = table.get("count", 1)
+        if isinstance(count, bool) or not isinstance(count, int):
+            raise self.fail(f"{where} count", f"must be a whole number of planets, got {_show(count)}")
+        if "stiffness" in props:
+            raise self.fail(f"{where} stiffness", "a planet takes no shaft stiffness: a stiffness holds a "
+                                                  "link about the main axis to the frame")
+        axis = table.get("axis", "parallel")
+        if axis not in ("parallel", "radial"):
+            raise self.fail(f"{where} axis", f"is \"parallel\" (a planet) or \"radial\" (a bevel pinion), got {_show(axis)}")
+        arm = self.arm(table["arm"], f"{where} arm") if "arm" in table else None
+        angle = self.angle(table["angle"], f"{where} angle") if "angle" in table else None
+        return Link.planet(link_name, *gears, carrier=carrier, axis=axis, arm=arm, position_angle=angle, count=count,
+                           **props)
+
+    def central(self, link_name: str, table: Mapping[str, Any], gears: Sequence[Gear], props: Mapping[str, sp.Expr],
+                where: str) -> Link:
+        extra = sorted(set(table) & {"angle", "arm", "count", "axis"})
+        if extra:
+            raise self.fail(f"{where} {extra[0]}", "only a planet (a link with a carrier) takes this key")
+        if "mass" in props:
+            raise self.fail(f"{where} mass", "only a planet takes a mass (its centre moves); give a link "
+                                             "about the main axis its inertia")
+        return Link.central(link_name, *gears, **props)
 
     def base(self, table: Any) -> Any:
         from symkin.particles import SpaceFrame
@@ -491,33 +513,12 @@ class _Reader:
         joins nothing): a link that nothing joins is a free speed no state can fix (50 of them
         took minutes before the states said so, by the degrees of freedom)."""
         names = [n for n in specs if n not in (FRAME_TABLE, FRAME)]
-        parent = {n: n for n in names}
-
-        def root(n: str) -> str:
-            while parent[n] != n:
-                parent[n] = parent[parent[n]]
-                n = parent[n]
-            return n
-
-        def join(a: Any, b: Any) -> None:
-            if isinstance(a, str) and isinstance(b, str):
-                a, b = gear_owner.get(a, a), gear_owner.get(b, b)
-                if a in parent and b in parent:
-                    parent[root(a)] = root(b)
-
-        for m in meshes:
-            join(m.a, m.b)
-        for n in names:
-            join(n, specs[n].get("carrier"))
-        for st in states:
-            for a, b in st.clutches:
-                join(a, b)
-        parts: dict[str, list[str]] = {}
-        for n in names:
-            parts.setdefault(root(n), []).append(n)
-        if len(parts) < 2:
+        pairs = [*((m.a, m.b) for m in meshes), *((n, specs[n].get("carrier")) for n in names),
+                 *(pair for st in states for pair in st.clutches)]
+        groups = _connected(names, [(gear_owner.get(a, a), gear_owner.get(b, b)) for a, b in pairs
+                                    if isinstance(a, str) and isinstance(b, str)])
+        if len(groups) < 2:
             return
-        groups = sorted(parts.values(), key=len, reverse=True)
         loose = [g[0] for g in groups[1:] if len(g) == 1]
         if len(loose) == len(groups) - 1:
             it = "it" if len(loose) == 1 else "them"
@@ -550,32 +551,34 @@ class _Reader:
             raise self.fail("meshes", "the file lists no meshes; add meshes = [[\"a\", \"b\"], ...] before the first [table]")
         if not isinstance(items, list):
             raise self.fail("meshes", f"must be a list of gear pairs, got {_show(items)}")
-        out = []
-        for k, item in enumerate(items, 1):
-            where = f"meshes[{k}]"
-            distance = efficiency = None
-            props: dict[str, sp.Expr] = {}
-            if isinstance(item, Mapping):
-                item = self.keys(item, _MESH, where)
-                props = self.mass_properties(item, where)
-                if "centre_distance" in item:
-                    distance = self.number(item["centre_distance"], f"{where} centre_distance")
-                if "efficiency" in item:
-                    efficiency = self.number(item["efficiency"], f"{where} efficiency")
-                    if not efficiency <= 1:
-                        raise self.fail(f"{where} efficiency", f"must lie in (0, 1], got {_show(item['efficiency'])}")
-                item = item.get("gears")
-            if not isinstance(item, list) or len(item) != 2:
-                raise self.fail(where, f"a mesh is a pair of gear names [\"a\", \"b\"], got {_show(item)}")
-            for g in item:
-                if g not in owner:
-                    raise self.fail(where, f"names no gear {g!r}; the gears are {', '.join(owner)}")
-            try:
-                mesh = Mesh(item[0], item[1], centre_distance=distance, efficiency=efficiency, **props)
-            except ModelError as err:
-                raise self.fail(where, str(err)) from None
-            out.append(mesh)
-        return out
+        return [self.mesh(item, owner, f"meshes[{k}]") for k, item in enumerate(items, 1)]
+
+    def mesh(self, item: Any, owner: Mapping[str, str], where: str) -> Mesh:
+        """One mesh: a pair of gear names, or a table of its gears and options."""
+        options: dict[str, sp.Expr] = {}
+        if isinstance(item, Mapping):
+            item, options = self.mesh_table(item, where)
+        if not isinstance(item, list) or len(item) != 2:
+            raise self.fail(where, f"a mesh is a pair of gear names [\"a\", \"b\"], got {_show(item)}")
+        for g in item:
+            if g not in owner:
+                raise self.fail(where, f"names no gear {g!r}; the gears are {', '.join(owner)}")
+        try:
+            return Mesh(item[0], item[1], **options)
+        except ModelError as err:
+            raise self.fail(where, str(err)) from None
+
+    def mesh_table(self, table: Mapping[str, Any], where: str) -> tuple[Any, dict[str, sp.Expr]]:
+        """A mesh as a table: its gears, and its centre distance, efficiency and stiffness (as Mesh takes them)."""
+        table = self.keys(table, _MESH, where)
+        options = self.mass_properties(table, where)
+        if "centre_distance" in table:
+            options["centre_distance"] = self.number(table["centre_distance"], f"{where} centre_distance")
+        if "efficiency" in table:
+            options["efficiency"] = self.number(table["efficiency"], f"{where} efficiency")
+            if not options["efficiency"] <= 1:
+                raise self.fail(f"{where} efficiency", f"must lie in (0, 1], got {_show(table['efficiency'])}")
+        return table.get("gears"), options
 
     def states(self, table: Any, names: set[str]) -> list[State]:
         if not isinstance(table, Mapping):
@@ -598,15 +601,12 @@ class _Reader:
             for n in used:
                 if not isinstance(n, str) or (n not in names and n != FRAME_TABLE):
                     raise self.fail(where, f"names no link {n!r}; the links are {', '.join(sorted(names))}")
-            description = spec.get("description", "")
-            if not isinstance(description, str):
-                raise self.fail(f"{where} description", f"must be a string, got {_show(description)}")
+            description = self.text(spec.get("description", ""), f"{where} description")
             released = spec.get("released", [])
             if not isinstance(released, list) or not all(isinstance(r, str) for r in released):
                 raise self.fail(f"{where} released", f"must be a list of one-way clutch names, got {_show(released)}")
-            frame = lambda n: FRAME if n == FRAME_TABLE else n  # noqa: E731
-            out.append(State(state_name, spec["input"], spec["output"], tuple(frame(b) for b in brakes),
-                             tuple((frame(a), frame(b)) for a, b in clutches), description, tuple(released)))
+            out.append(State(state_name, spec["input"], spec["output"], tuple(_model_name(b) for b in brakes),
+                             tuple((_model_name(a), _model_name(b)) for a, b in clutches), description, tuple(released)))
         return out
 
     def one_ways(self, table: Any, names: set[str]) -> tuple[OneWay, ...]:
@@ -628,7 +628,7 @@ class _Reader:
                 raise self.fail(f"{where} blocks", f"is \"negative\" (the first link may not turn backwards relative to "
                                 f"the second) or \"positive\", got {_show(blocks)}")
             try:
-                link, other = (FRAME if n == FRAME_TABLE else n for n in pair)
+                link, other = (_model_name(n) for n in pair)
                 out.append(OneWay(ow_name, link, other, blocks=blocks))
             except ModelError as err:
                 raise self.fail(where, str(err)) from None
@@ -644,6 +644,39 @@ class _Reader:
         if named:
             return f"[links.{min(named)[1]}]"
         return "meshes" if "mesh" in message or "gears" in message else ""
+
+
+def _connected(names: Sequence[str], pairs: Sequence[tuple[str, str]]) -> list[list[str]]:
+    """The groups of ``names`` that ``pairs`` join (a pair naming anything else joins nothing), largest first,
+    each in the order of ``names``.
+
+    >>> _connected(["A", "B", "C", "D"], [("A", "C"), ("C", "x")])
+    [['A', 'C'], ['B'], ['D']]
+    """
+    parent = {n: n for n in names}
+
+    def root(n: str) -> str:
+        while parent[n] != n:
+            parent[n] = parent[parent[n]]
+            n = parent[n]
+        return n
+
+    for a, b in pairs:
+        if a in parent and b in parent:
+            parent[root(a)] = root(b)
+    parts: dict[str, list[str]] = {}
+    for n in names:
+        parts.setdefault(root(n), []).append(n)
+    return sorted(parts.values(), key=len, reverse=True)
+
+
+def _model_name(name: str) -> str:
+    """The model's name of a link named in a file: the file's "frame" is the model's frame :data:`FRAME`.
+
+    >>> _model_name("frame"), _model_name("C")
+    ('0', 'C')
+    """
+    return FRAME if name == FRAME_TABLE else name
 
 
 def _show(value: Any) -> str:

@@ -149,24 +149,45 @@ def levers(mech: Mechanism, named: set[str] | None = None) -> list[Lever]:
     {'S2': -10, 'C': 0, 'R': 5, 'S1': 12}
     """
     if named is None:
-        named = {n for st in getattr(mech, "states", ()) for n in (st.input, st.output, *st.brakes,
-                                                                    *(x for pair in st.clutches for x in pair))}
-        named = {mech.link(n).name for n in named}
+        named = _named(mech)
     shown = _shown(mech, named)
-    groups: dict[str, list[Any]] = {}
-    for mesh in mech.meshes:
-        geo = mech.mesh_geometry(mesh)
-        if geo.holder in (geo.link_a.name, geo.link_b.name):
-            continue  # a gear on the holder itself: nothing turns relative to it
-        groups.setdefault(geo.holder, []).append(geo)
     found: list[tuple[dict[str, sp.Expr], list[str]]] = []
-    for holder, meshes in groups.items():
+    for holder, meshes in _meshes_by_holder(mech).items():
         rel = _relative_speeds(mech, meshes)
         nodes = {n: x for n, x in rel.items() if n in shown}
         nodes[holder] = sp.Integer(0)
         if holder == FRAME:
             nodes.pop(FRAME, None) if not mech.link(FRAME).gears and FRAME not in named else None
         found.append((nodes, [holder]))
+    _merge(found)
+    out = []
+    for nodes, holders in found:
+        whole = _whole(nodes)
+        if whole is not None and len(whole) >= 2:
+            out.append(Lever(whole, tuple(holders)))
+    return out
+
+
+def _named(mech: Mechanism) -> set[str]:
+    """The links a train's states name (inputs, outputs, brakes, clutches), by their model names."""
+    named = {n for st in getattr(mech, "states", ()) for n in (st.input, st.output, *st.brakes,
+                                                                *(x for pair in st.clutches for x in pair))}
+    return {mech.link(n).name for n in named}
+
+
+def _meshes_by_holder(mech: Mechanism) -> dict[str, list[Any]]:
+    """The meshes' geometries by the link that holds both their axes (none on that link itself)."""
+    groups: dict[str, list[Any]] = {}
+    for mesh in mech.meshes:
+        geo = mech.mesh_geometry(mesh)
+        if geo.holder in (geo.link_a.name, geo.link_b.name):
+            continue  # a gear on the holder itself: nothing turns relative to it
+        groups.setdefault(geo.holder, []).append(geo)
+    return groups
+
+
+def _merge(found: list[tuple[dict[str, sp.Expr], list[str]]]) -> None:
+    """Join, in place, the levers that share a link (:func:`_join`) until none can be joined."""
     merged = True
     while merged:
         merged = False
@@ -180,9 +201,3 @@ def levers(mech: Mechanism, named: set[str] | None = None) -> list[Lever]:
                     break
             if merged:
                 break
-    out = []
-    for nodes, holders in found:
-        whole = _whole(nodes)
-        if whole is not None and len(whole) >= 2:
-            out.append(Lever(whole, tuple(holders)))
-    return out

@@ -87,27 +87,11 @@ class _Scheme:
     def __init__(self, mech: Mechanism):
         self.mech = mech
         self.radial = [L for L in mech.links if L.axis == "radial"]
-        self.y0: dict[str, float] = {}
-        for L in mech.links:
-            self.y0[L.name] = self._axis_radius(L.name)
-        gears: dict[str, _Gear] = {}
-        for L in mech.links:
-            if L.axis == "radial":
-                continue
-            for g in L.gears:
-                if g.bevel:  # a side gear: drawn beside its pinions
-                    continue
-                r = _number(g.radius, f"the pitch radius of gear {g.name}")
-                gears[g.name] = _Gear(g.name, L.name, r, self.y0[L.name], g.internal, 0.0, 0.0)
-        self.gears = gears
-        self.R = max([g.y0 + g.r for g in gears.values()] + [1e-9])
-        for L in self.radial:  # bevel pinions reach out to their side gears
-            for mesh in mech.meshes:
-                geo = mech.mesh_geometry(mesh)
-                if geo.kind == "bevel" and L.name in (geo.link_a.name, geo.link_b.name):
-                    self.R = max(self.R, _number(geo.centre_distance, "a bevel mesh's radius"))
+        self.y0: dict[str, float] = {L.name: self._axis_radius(L.name) for L in mech.links}
+        self.gears = self._spur_gears()
+        self.R = self._outer_radius()
         self.band = 0.07 * self.R
-        for gg in gears.values():
+        for gg in self.gears.values():
             if gg.internal:
                 gg.lo, gg.hi = gg.r, gg.r + self.band
             elif gg.y0 > 0:
@@ -116,6 +100,29 @@ class _Scheme:
                 gg.lo, gg.hi = 0.0, gg.r
         self._columns()
         self._levels()
+
+    def _spur_gears(self) -> dict[str, _Gear]:
+        """The gears drawn in the section: all but the bevel pinions' and the bevel side gears."""
+        gears: dict[str, _Gear] = {}
+        for L in self.mech.links:
+            if L.axis == "radial":
+                continue
+            for g in L.gears:
+                if g.bevel:  # a side gear: drawn beside its pinions
+                    continue
+                r = _number(g.radius, f"the pitch radius of gear {g.name}")
+                gears[g.name] = _Gear(g.name, L.name, r, self.y0[L.name], g.internal, 0.0, 0.0)
+        return gears
+
+    def _outer_radius(self) -> float:
+        """How far the section reaches from the main axis: the gears' outer pitch circles, the bevel meshes."""
+        R = max([g.y0 + g.r for g in self.gears.values()] + [1e-9])
+        for L in self.radial:  # bevel pinions reach out to their side gears
+            for mesh in self.mech.meshes:
+                geo = self.mech.mesh_geometry(mesh)
+                if geo.kind == "bevel" and L.name in (geo.link_a.name, geo.link_b.name):
+                    R = max(R, _number(geo.centre_distance, "a bevel mesh's radius"))
+        return R
 
     def _axis_radius(self, link: str) -> float:
         """A planet's axis at its carrier's radius plus its arm (nested carriers unfolded in the section)."""
@@ -131,32 +138,7 @@ class _Scheme:
                    for o in placed.get(column, []))
 
     def _columns(self) -> None:
-        placed: dict[int, list[_Gear]] = {}
-        done: set[str] = set()
-
-        def put(g: _Gear, near: int) -> None:
-            for step in range(0, 4 * len(self.gears) + 2):
-                c = near + (step + 1) // 2 * (1 if step % 2 else -1) if step else near
-                if self._fits(g, c, placed):
-                    break
-            g.column = c
-            placed.setdefault(c, []).append(g)
-            done.add(g.name)
-
-        bevel = {m for m in self.mech.meshes if self.mech.mesh_geometry(m).kind == "bevel"}
-        for mesh in self.mech.meshes:
-            if mesh in bevel:
-                continue
-            a, b = self.gears[mesh.a], self.gears[mesh.b]
-            if a.name not in done and b.name not in done:
-                put(a, max(placed, default=-1) + 1)
-            if a.name not in done:
-                a, b = b, a
-            if b.name not in done:
-                put(b, a.column)
-        for g in self.gears.values():
-            if g.name not in done:
-                put(g, max(placed, default=-1) + 1)
+        placed = self._place_gears()
         # bevel pinions: a wide column each, after the others
         self.pinion_column: dict[str, int] = {}
         for L in self.radial:
@@ -167,10 +149,44 @@ class _Scheme:
         for g in self.gears.values():
             g.column = renumber[g.column]
         self.pinion_column = {n: renumber[c] for n, c in self.pinion_column.items()}
+        self._column_positions(len(order))
+
+    def _place_gears(self) -> dict[int, list[_Gear]]:
+        """Each spur gear in a column (a mesh's gears in one where they fit), by column."""
+        placed: dict[int, list[_Gear]] = {}
+        done: set[str] = set()
+        bevel = {m for m in self.mech.meshes if self.mech.mesh_geometry(m).kind == "bevel"}
+        for mesh in self.mech.meshes:
+            if mesh in bevel:
+                continue
+            a, b = self.gears[mesh.a], self.gears[mesh.b]
+            if a.name not in done and b.name not in done:
+                self._put(a, max(placed, default=-1) + 1, placed, done)
+            if a.name not in done:
+                a, b = b, a
+            if b.name not in done:
+                self._put(b, a.column, placed, done)
+        for g in self.gears.values():
+            if g.name not in done:
+                self._put(g, max(placed, default=-1) + 1, placed, done)
+        return placed
+
+    def _put(self, g: _Gear, near: int, placed: dict[int, list[_Gear]], done: set[str]) -> None:
+        """Gear ``g`` in the column nearest ``near`` where it fits (tried on either side in turn)."""
+        for step in range(0, 4 * len(self.gears) + 2):
+            c = near + (step + 1) // 2 * (1 if step % 2 else -1) if step else near
+            if self._fits(g, c, placed):
+                break
+        g.column = c
+        placed.setdefault(c, []).append(g)
+        done.add(g.name)
+
+    def _column_positions(self, columns: int) -> None:
+        """The columns' widths (a bevel pinion's holds its pitch diameter) and their centres ``x``."""
         self.W = 0.45 * self.R
         self.w = 0.3 * self.W
         self.gap = 0.09 * self.W
-        widths = [self.W] * len(order)
+        widths = [self.W] * columns
         self.pinions: dict[str, float] = {}
         for L in self.radial:
             rp = max(_number(g.radius, f"the pitch radius of gear {g.name}") for g in L.gears)

@@ -129,6 +129,20 @@ def _texts(fig: Figure) -> list[Any]:
     """Every text drawn: titles, labels, legends, annotations, and the tick labels in view."""
     from matplotlib.text import Text
 
+    ticks, shown = _tick_labels(fig)
+    out, seen = [], set()
+    for text in fig.findobj(Text):
+        if id(text) in seen or not text.get_visible() or not text.get_text().strip():
+            continue
+        seen.add(id(text))
+        if id(text) in ticks and id(text) not in shown:
+            continue
+        out.append(text)
+    return out
+
+
+def _tick_labels(fig: Figure) -> tuple[set[int], set[int]]:
+    """The ids of every tick label (and of the label of a hidden axis), and of the tick labels in view."""
     ticks: set[int] = set()
     shown: set[int] = set()
     for ax in fig.axes:
@@ -145,15 +159,7 @@ def _texts(fig: Figure) -> list[Any]:
                         shown.add(id(t))
             if not axis.get_visible():
                 ticks.add(id(axis.get_label()))
-    out, seen = [], set()
-    for text in fig.findobj(Text):
-        if id(text) in seen or not text.get_visible() or not text.get_text().strip():
-            continue
-        seen.add(id(text))
-        if id(text) in ticks and id(text) not in shown:
-            continue
-        out.append(text)
-    return out
+    return ticks, shown
 
 
 def layout_problems(fig: Figure, *, width: float = PAGE) -> list[str]:
@@ -185,33 +191,52 @@ def layout_problems(fig: Figure, *, width: float = PAGE) -> list[str]:
         if not ax.get_visible() or not ax.axison:
             continue
         name = f"axes {n}" + (f" ({ax.get_title()[:40]!r})" if ax.get_title() else "")
-        axes = [("x", ax.xaxis), ("y", ax.yaxis)] + ([("z", ax.zaxis)] if hasattr(ax, "zaxis") else [])
-        for key, axis in axes:
-            shown = [t for t in axis.get_ticklabels() if axis.get_visible() and t.get_visible() and t.get_text().strip()]
-            lo, hi = sorted(getattr(ax, f"get_{key}lim")())
-            shown_in = [t for t, v in zip(axis.get_ticklabels(), axis.get_ticklocs()) if t.get_visible()
-                        and t.get_text().strip() and lo - 1e-12 * abs(hi - lo) <= v <= hi + 1e-12 * abs(hi - lo)]
-            if not shown:
-                continue
-            text = axis.get_label().get_text()
-            if not _UNIT.search(text):
-                problems.append(f"{name}: the {key} axis has no label with a unit in brackets")
-            if axis.get_scale() == "log" and len(shown_in) < 3:
-                problems.append(f"{name}: the {key} axis is logarithmic with {len(shown_in)} labelled ticks")
-        legend = ax.get_legend()
-        if legend is not None and legend.get_visible():
-            box = legend.get_window_extent(renderer)
-            for line in ax.get_lines():
-                xy = np.asarray(line.get_xydata(), dtype=float)
-                if not line.get_visible() or (str(line.get_label()).startswith("_") and len(xy) < 2):
-                    continue
-                if hasattr(ax, "zaxis") or not len(xy):
-                    continue
-                pts = line.get_transform().transform(xy[np.all(np.isfinite(xy), axis=1)])
-                inside = (pts[:, 0] > box.x0) & (pts[:, 0] < box.x1) & (pts[:, 1] > box.y0) & (pts[:, 1] < box.y1)
-                if inside.any():
-                    problems.append(f"{name}: the legend covers a drawn line ({str(line.get_label())[:30]!r})")
-                    break
+        problems += _axis_problems(ax, name)
+        problems += _legend_problems(ax, name, renderer)
+    return problems + _text_problems(fig, renderer, scale, width)
+
+
+def _axis_problems(ax: Any, name: str) -> list[str]:
+    """Each axis of ``ax`` that shows tick labels: a label with a unit, and (log) at least three labelled ticks."""
+    problems = []
+    axes = [("x", ax.xaxis), ("y", ax.yaxis)] + ([("z", ax.zaxis)] if hasattr(ax, "zaxis") else [])
+    for key, axis in axes:
+        shown = [t for t in axis.get_ticklabels() if axis.get_visible() and t.get_visible() and t.get_text().strip()]
+        lo, hi = sorted(getattr(ax, f"get_{key}lim")())
+        shown_in = [t for t, v in zip(axis.get_ticklabels(), axis.get_ticklocs()) if t.get_visible()
+                    and t.get_text().strip() and lo - 1e-12 * abs(hi - lo) <= v <= hi + 1e-12 * abs(hi - lo)]
+        if not shown:
+            continue
+        text = axis.get_label().get_text()
+        if not _UNIT.search(text):
+            problems.append(f"{name}: the {key} axis has no label with a unit in brackets")
+        if axis.get_scale() == "log" and len(shown_in) < 3:
+            problems.append(f"{name}: the {key} axis is logarithmic with {len(shown_in)} labelled ticks")
+    return problems
+
+
+def _legend_problems(ax: Any, name: str, renderer: Any) -> list[str]:
+    """The first drawn line of ``ax`` (2-D) that its legend covers, if any."""
+    legend = ax.get_legend()
+    if legend is None or not legend.get_visible():
+        return []
+    box = legend.get_window_extent(renderer)
+    for line in ax.get_lines():
+        xy = np.asarray(line.get_xydata(), dtype=float)
+        if not line.get_visible() or (str(line.get_label()).startswith("_") and len(xy) < 2):
+            continue
+        if hasattr(ax, "zaxis") or not len(xy):
+            continue
+        pts = line.get_transform().transform(xy[np.all(np.isfinite(xy), axis=1)])
+        inside = (pts[:, 0] > box.x0) & (pts[:, 0] < box.x1) & (pts[:, 1] > box.y0) & (pts[:, 1] < box.y1)
+        if inside.any():
+            return [f"{name}: the legend covers a drawn line ({str(line.get_label())[:30]!r})"]
+    return []
+
+
+def _text_problems(fig: Figure, renderer: Any, scale: float, width: float) -> list[str]:
+    """Text smaller than :data:`MIN_FONT` at ``scale``, and texts whose boxes overlap."""
+    problems = []
     texts = _texts(fig)
     boxes = [t.get_window_extent(renderer) for t in texts]
     for t in texts:

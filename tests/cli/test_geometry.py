@@ -5,11 +5,13 @@ from __future__ import annotations
 
 import io
 import json
+import re
 
 import ezdxf
 import pytest
 
 from symkin.cli import main
+from tests.support.train_texts import SYMBOLIC_SIMPLE
 
 
 def run(capsys, *argv):
@@ -119,3 +121,15 @@ gears = { b = { teeth = 24, shift = 0.36 } }
     data = json.loads(out)
     assert code == 0 and data["meshes"][0]["centre_distance"] == 56.4999
     assert not any("centre distance" in p for p in data["problems"])
+
+
+def test_a_sun_and_planet_of_12_teeth_print_each_problem_once(capsys, tmp_path):
+    # both 12-tooth tips reach past the other's interference point (by hand in tests/geometry/test_mesh.py); the
+    # sentence names the gears by their teeth, so it is one problem, printed once (it was printed twice)
+    path = tmp_path / "s12.toml"
+    teeth = {'"z1"': "12", '"z2"': "12", '"z3"': "36"}
+    path.write_text("module = 2\n" + re.sub('"z[123]"', lambda m: teeth[m.group()], SYMBOLIC_SIMPLE))
+    code, out, _ = run(capsys, "--train", str(path))
+    problems = [line for line in out.splitlines() if line.startswith("problem: ")]
+    assert code == 0 and len(problems) == len(set(problems))
+    assert sum(line.startswith("problem: mesh s-p: involute interference") for line in problems) == 1

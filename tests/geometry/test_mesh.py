@@ -82,6 +82,26 @@ def test_involute_interference_of_an_internal_mesh_is_named():
                                                                       gear_geometry(72, 1, internal=True)).problems())
 
 
+def _tip_reaches_past(z_tip: int, z_other: int, m: float = 2) -> bool:
+    """By hand (KHK / SDP-SI 5.2): the tip of the z_tip gear reaches past the interference point of the other,
+    where the line of action touches its base circle: sqrt(r_a^2 - r_b^2) > a sin(alpha), standard gears at 20 deg."""
+    a = math.radians(20)
+    ra, rb = m * z_tip / 2 + m, m * z_tip / 2 * math.cos(a)
+    return math.sqrt(ra**2 - rb**2) > m * (z_tip + z_other) / 2 * math.sin(a)
+
+
+@pytest.mark.parametrize("z1, z2", [(12, 12), (10, 11), (11, 10)])
+def test_each_involute_interference_of_an_external_mesh_is_named_once(z1, z2):
+    # two 12-tooth gears (a sun and its planet): both tips reach past the other's interference point, and the two
+    # sentences, naming the gears by their teeth, were one sentence printed twice
+    by_hand = [_tip_reaches_past(z1, z2), _tip_reaches_past(z2, z1)]
+    assert by_hand == [True, True]
+    problems = pair_geometry(gear_geometry(z1, 2), gear_geometry(z2, 2)).problems()
+    found = [q for q in problems if q.startswith("involute interference")]
+    assert len(found) == len({z1, z2})
+    assert len(problems) == len(set(problems))
+
+
 def _contact_ratio_by_intersection(p) -> float:
     """The line of action (through the pitch point, at a_w to the tangent of the pitch circles) cut by the tip
     circles, each cut found by root finding along the line; the path of contact over the base pitch."""

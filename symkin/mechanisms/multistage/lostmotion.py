@@ -412,24 +412,8 @@ def _positive_on(
     (5.123456789..., 'it is not shown to be positive (it comes within ... of 0)')
     """
     lo, hi = sp.Rational(lower), sp.Rational(upper)
-
-    def at(point: Any) -> tuple[str | None, Any]:
-        try:
-            x = Encloser(prec, {symbol: (point, point)}).enclose(expr)
-        except NotReal:
-            return "it is not a real number", None
-        except Unbounded:
-            return "it is infinite (a pole)", None
-        except OutOfRange as err:
-            if err.large:
-                return f"it is larger than 1e{MAX_DIGITS}", None
-            x = err.interval
-        except Undecided:
-            return None, None
-        return ("it is not positive" if mpf_le(x[1], fzero) else None), x[1]
-
     for end in (lo, hi):
-        problem, _ = at(end)
+        problem, _ = _value_at(expr, symbol, end, prec)
         if problem:
             return (float(end), problem)
     stack = [(lo, hi)]
@@ -437,23 +421,13 @@ def _positive_on(
     while stack:
         a, b = stack.pop()
         tried += 1
-        box = None
-        try:
-            x = Encloser(prec, {symbol: (a, b)}).enclose(expr)
-            if mpf_gt(x[0], fzero):
-                continue
-            if mpf_le(x[1], fzero):
-                return (float((a + b) / 2), "it is not positive")
-        except Unbounded:
-            box = "it is infinite (a pole)"
-        except NotReal:
-            box = "it is not a real number"
-        except Undecided as err:
-            box = "a divisor in it vanishes (a pole)" if err.question == "is zero" else None
-        except OutOfRange:
-            pass
+        shown, box = _enclosed(expr, symbol, a, b, prec)
+        if shown:
+            continue
+        if shown is False:
+            return (float((a + b) / 2), "it is not positive")
         mid = (a + b) / 2
-        problem, top = at(mid)
+        problem, top = _value_at(expr, symbol, mid, prec)
         if problem:
             return (float(mid), problem)
         if tried >= boxes or b - a <= (hi - lo) / 2**60:
@@ -463,3 +437,41 @@ def _positive_on(
             return (float(mid), f"it is not shown to be positive{near}")
         stack += [(mid, b), (a, mid)]
     return None
+
+
+def _value_at(expr: Any, symbol: Any, point: Any, prec: int) -> tuple[str | None, Any]:
+    """What is wrong with ``expr`` at ``symbol = point`` (None: nothing shown), and the upper end of its
+    enclosure there (None when there is none)."""
+    try:
+        x = Encloser(prec, {symbol: (point, point)}).enclose(expr)
+    except NotReal:
+        return "it is not a real number", None
+    except Unbounded:
+        return "it is infinite (a pole)", None
+    except OutOfRange as err:
+        if err.large:
+            return f"it is larger than 1e{MAX_DIGITS}", None
+        x = err.interval
+    except Undecided:
+        return None, None
+    return ("it is not positive" if mpf_le(x[1], fzero) else None), x[1]
+
+
+def _enclosed(expr: Any, symbol: Any, a: Any, b: Any, prec: int) -> tuple[bool | None, str | None]:
+    """What the enclosure of ``expr`` for ``symbol`` in [a, b] shows: True (positive throughout), False
+    (nowhere positive) or None (neither), and why no enclosure was found (a pole, not real; else None)."""
+    try:
+        x = Encloser(prec, {symbol: (a, b)}).enclose(expr)
+        if mpf_gt(x[0], fzero):
+            return True, None
+        if mpf_le(x[1], fzero):
+            return False, None
+    except Unbounded:
+        return None, "it is infinite (a pole)"
+    except NotReal:
+        return None, "it is not a real number"
+    except Undecided as err:
+        return None, "a divisor in it vanishes (a pole)" if err.question == "is zero" else None
+    except OutOfRange:
+        pass
+    return None, None
