@@ -28,6 +28,7 @@ import os
 import time
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
+from fractions import Fraction
 from typing import Any
 
 import numpy as np
@@ -432,18 +433,57 @@ def _exact_chunk(rows: list[dict[sp.Symbol, int]], search: _Search) -> list[Tran
             if d is not None]
 
 
+@functools.lru_cache(maxsize=256)
+def _exact_law(law: sp.Expr) -> tuple[Callable[..., tuple[int, int]], tuple[sp.Symbol, ...], Fraction] | None:
+    """``law``, a rational function of tooth numbers, as integer arithmetic: its numerator and
+    denominator as polynomials with integer coefficients (compiled once per process, on a Dask
+    worker too), their arguments and the factor that the cleared denominators leave; None for a
+    law that is not rational.  An exact ratio then costs microseconds where SymPy's substitution
+    and cancellation cost milliseconds (benchmarks/notes/transmission.md)."""
+    args = tuple(sorted(law.free_symbols, key=str))
+    try:
+        num, den = sp.fraction(sp.cancel(sp.together(law)))
+        gens = args or (sp.Dummy(),)
+        cn, pn = sp.Poly(num, *gens).clear_denoms()
+        cd, pd = sp.Poly(den, *gens).clear_denoms()
+    except sp.PolynomialError:
+        return None
+    if not (pn.domain.is_ZZ and pd.domain.is_ZZ):
+        return None
+    f = sp.lambdify(args, (pn.as_expr(), pd.as_expr()), modules=[], docstring_limit=0)
+    factor = sp.Rational(cd, cn)
+    return f, args, Fraction(int(factor.p), int(factor.q))
+
+
+def _ratio(law: sp.Expr, values: Mapping[sp.Symbol, int]) -> Fraction | None:
+    """The exact value of ``law`` at the tooth numbers ``values``; None where it has none (a zero denominator)."""
+    compiled = _exact_law(law)
+    if compiled is None:  # not a rational function: SymPy's substitution (no re-derivation)
+        value = sp.cancel(law.xreplace({z: sp.Integer(v) for z, v in values.items()}))
+        return Fraction(int(value.p), int(value.q)) if value.is_Rational else None
+    f, args, factor = compiled
+    num, den = f(*[values[z] for z in args])
+    return None if den == 0 else Fraction(num, den) * factor
+
+
 def _design(values: dict[sp.Symbol, int], laws: dict[str, sp.Expr], targets: dict[str, sp.Rational], tol: sp.Rational,
             absolute: bool) -> TransmissionDesign | None:
-    """The design with exact ratios, or None when one misses the tolerance exactly."""
-    exact = {z: sp.Integer(v) for z, v in values.items()}
-    ratios = {s: sp.Rational(sp.cancel(law.xreplace(exact))) for s, law in laws.items()}  # xreplace: no re-derivation
-    errors = [abs(ratios[s] - t) if absolute else abs(ratios[s] - t) / abs(t) for s, t in targets.items()]
-    if max(errors) > tol:
+    """The design with exact ratios, or None when one misses the tolerance exactly (or has no finite value)."""
+    ratios: dict[str, Fraction] = {}
+    for s, law in laws.items():
+        ratio = _ratio(law, values)
+        if ratio is None:
+            return None
+        ratios[s] = ratio
+    goal = {s: Fraction(int(t.p), int(t.q)) for s, t in targets.items()}
+    errors = [abs(ratios[s] - t) if absolute else abs(ratios[s] - t) / abs(t) for s, t in goal.items()]
+    if max(errors) > Fraction(int(tol.p), int(tol.q)):
         return None
-    names = list(targets)
-    steps = [abs(ratios[a] / ratios[b] - targets[a] / targets[b]) / abs(targets[a] / targets[b])
+    names = list(goal)
+    steps = [abs(ratios[a] / ratios[b] - goal[a] / goal[b]) / abs(goal[a] / goal[b])
              for a, b in itertools.pairwise(names) if ratios[b] != 0]
-    return TransmissionDesign({str(z): v for z, v in values.items()}, ratios, max(errors), max(steps, default=sp.Integer(0)))
+    return TransmissionDesign({str(z): v for z, v in values.items()}, {s: sp.Rational(r.numerator, r.denominator)
+                              for s, r in ratios.items()}, sp.Rational(max(errors)), sp.Rational(max(steps, default=0)))
 
 
 def _built(problem: Problem, teeth: Mapping[str, int]) -> Any:
