@@ -13,7 +13,7 @@ from __future__ import annotations
 import dataclasses
 import math
 import warnings
-from collections.abc import Iterator, Sequence
+from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any
@@ -27,6 +27,7 @@ from symkin.model import Gear, LinkKind, Mechanism
 from symkin.synthesis.conditions import Condition
 from symkin.synthesis.efficiency import DEFAULT_RANK
 from symkin.synthesis.funnel import Record
+from symkin.synthesis.integers import exact_form
 from symkin.synthesis.plan import STAGES, SearchPlan
 from symkin.synthesis.problem import Problem
 from symkin.synthesis.request import Target
@@ -144,15 +145,12 @@ class Design:
     def from_record(cls, plan: SearchPlan, record: Record) -> Design:
         """A design from a search record: every gear's tooth number, the exact ratio and its error, the size, the planets' arms and the profile shifts."""
         problem = plan.problem
-        values = dict(zip(problem.unknowns, record.teeth))
-        gear_teeth = []
-        for L in problem.train.links:
-            for g in L.gears:
-                gear_teeth.append((g.name, int(sp.sympify(g.teeth).subs(values))))
+        values = {z: int(v) for z, v in zip(problem.unknowns, record.teeth)}
+        gear_teeth = [(g.name, int(_at(g.teeth, values))) for L in problem.train.links for g in L.gears]
         y = problem.options.shift
         arms, shifts = [], []
         for arm in problem.arms:
-            refs = [sp.Rational(m.reference.subs(values)) for m in arm.meshes]
+            refs = [_at(m.reference, values) for m in arm.meshes]
             if arm.fixed is not None:
                 a_w = sp.Rational(arm.fixed)
             elif y:
@@ -628,3 +626,15 @@ def describe_designs(designs: Sequence[Design]) -> list[str]:
                     + ([efficiency_text(d.ranked_efficiency)] if ranked else []))
     widths = [max(len(r[i]) for r in rows) for i in range(len(header))]
     return ["  ".join(c.rjust(w) for c, w in zip(r, widths)).rstrip() for r in rows]
+
+
+def _at(expr: Any, values: Mapping[sp.Symbol, int]) -> sp.Rational:
+    """The exact value of ``expr`` (a tooth number or a centre distance, rational in the unknown
+    tooth numbers) at ``values``: integer arithmetic compiled once per expression
+    (:func:`~symkin.synthesis.integers.exact_form`), SymPy's substitution where it is not rational."""
+    expr = sp.sympify(expr)
+    exact = exact_form(expr)
+    value = exact(values) if exact is not None else None
+    if value is None:
+        return sp.Rational(expr.subs(values))
+    return sp.Rational(value.numerator, value.denominator)

@@ -38,6 +38,7 @@ from symkin._util.jsonout import exact_json, float_text
 from symkin.errors import InputError, TimeLimitError
 from symkin.model import Gear, Mechanism
 from symkin.numeric import compile as compile_law
+from symkin.synthesis.integers import exact_form
 from symkin.synthesis.problem import Problem, derive
 from symkin.synthesis.request import Options
 from symkin.values import as_rational
@@ -433,37 +434,13 @@ def _exact_chunk(rows: list[dict[sp.Symbol, int]], search: _Search) -> list[Tran
             if d is not None]
 
 
-@functools.lru_cache(maxsize=256)
-def _exact_law(law: sp.Expr) -> tuple[Callable[..., tuple[int, int]], tuple[sp.Symbol, ...], Fraction] | None:
-    """``law``, a rational function of tooth numbers, as integer arithmetic: its numerator and
-    denominator as polynomials with integer coefficients (compiled once per process, on a Dask
-    worker too), their arguments and the factor that the cleared denominators leave; None for a
-    law that is not rational.  An exact ratio then costs microseconds where SymPy's substitution
-    and cancellation cost milliseconds (benchmarks/notes/transmission.md)."""
-    args = tuple(sorted(law.free_symbols, key=str))
-    try:
-        num, den = sp.fraction(sp.cancel(sp.together(law)))
-        gens = args or (sp.Dummy(),)
-        cn, pn = sp.Poly(num, *gens).clear_denoms()
-        cd, pd = sp.Poly(den, *gens).clear_denoms()
-    except sp.PolynomialError:
-        return None
-    if not (pn.domain.is_ZZ and pd.domain.is_ZZ):
-        return None
-    f = sp.lambdify(args, (pn.as_expr(), pd.as_expr()), modules=[], docstring_limit=0)
-    factor = sp.Rational(cd, cn)
-    return f, args, Fraction(int(factor.p), int(factor.q))
-
-
 def _ratio(law: sp.Expr, values: Mapping[sp.Symbol, int]) -> Fraction | None:
     """The exact value of ``law`` at the tooth numbers ``values``; None where it has none (a zero denominator)."""
-    compiled = _exact_law(law)
-    if compiled is None:  # not a rational function: SymPy's substitution (no re-derivation)
-        value = sp.cancel(law.xreplace({z: sp.Integer(v) for z, v in values.items()}))
-        return Fraction(int(value.p), int(value.q)) if value.is_Rational else None
-    f, args, factor = compiled
-    num, den = f(*[values[z] for z in args])
-    return None if den == 0 else Fraction(num, den) * factor
+    exact = exact_form(law)
+    if exact is not None:
+        return exact(values)
+    value = sp.cancel(law.xreplace({z: sp.Integer(v) for z, v in values.items()}))  # not rational in the teeth
+    return Fraction(int(value.p), int(value.q)) if value.is_Rational else None
 
 
 def _design(values: dict[sp.Symbol, int], laws: dict[str, sp.Expr], targets: dict[str, sp.Rational], tol: sp.Rational,
