@@ -3,6 +3,14 @@
 in its own process, alternating, ROUNDS times (3), and prints the medians (microseconds) as a markdown
 table; ``python benchmarks/small_calls.py --one TREE`` is one such process (json).  A tree is a folder
 holding symkin/ and benchmarks/ (e.g. ``git archive <commit> symkin benchmarks | tar -x -C /tmp/x``).
+
+``python benchmarks/small_calls.py --numba BEFORE_TREE AFTER_TREE [ROUNDS]`` (issue 34 item 4a): the same
+laws as a plain hand-written ``@numba.njit`` function (the law as SymPy prints it, nothing else) and a plain
+``@njit`` loop over 100 points, against symkin's ``backend="numba"`` and its default (``jit="auto"``, driven
+by calls of 1000 points until it has compiled its kernel), for a scalar call and a 100-point call; in each
+process (``--numba-one TREE ROUNDS``) the methods in turn, 5 rounds, medians; the trees' processes
+alternating ROUNDS (3) times, medians (microseconds) and the ratios to the plain ``@njit`` function (its
+median over both trees) as a markdown table.
 """
 
 from __future__ import annotations
@@ -30,26 +38,107 @@ def timed(fn, vals) -> float:
         loops *= 4
 
 
-def one(tree: str) -> None:
-    """The medians of 5 timings of each law, size and method in this process, as json (us)."""
-    sys.path[:0] = [tree, tree + "/benchmarks"]
-    import laws
+def plain_njit(expr, args):
+    """The law as a plain ``@njit`` scalar function and a plain ``@njit`` loop allocating its output
+    (written from ``sympy.pycode`` of the law: no symkin code)."""
+    import numba
     import numpy as np
     import sympy as sp
 
+    names = [f"a{k}" for k in range(len(args))]
+    body = sp.pycode(expr.xreplace({s: sp.Symbol(n) for s, n in zip(args, names)}))
+    src = (f"def law({', '.join(names)}):\n    return {body}\n\n"
+           f"def loop({', '.join(names)}):\n    n = a0.shape[0]\n    out = numpy.empty(n)\n    for i in range(n):\n"
+           f"        out[i] = law({', '.join(f'{n}[i]' for n in names)})\n    return out\n")
+    ns: dict = {"numpy": np}
+    exec(src, ns)
+    law = numba.njit(ns["law"])
+    ns["law"] = law
+    return law, numba.njit(ns["loop"])
+
+
+def numba_one(tree: str, rounds: int) -> None:
+    """Item 4a in one process of ``tree``: :func:`numba_rows` as json."""
+    sys.path[:0] = [tree, tree + "/benchmarks"]
+    print(json.dumps(numba_rows(rounds)))
+
+
+def numba_rows(rounds: int) -> dict:
+    """Item 4a in this process: ``{"law|points|method": median us}`` of each law, size (1, 100) and
+    method (plain @njit, symkin numba, symkin default once switched), and ``{"law|switch": CPU s}``,
+    the NumPy time the default spent before it compiled its kernel."""
+    import numpy as np
+
     import symkin
+
+    out = {}
+    for title, (expr, args, values) in cases(np.random.default_rng(7), 1000).items():
+        law, loop = plain_njit(expr, args)
+        eager = symkin.compile(expr, args, backend="numba")
+        auto = symkin.compile(expr, args)  # the default: NumPy until compiling the kernel pays
+        start = time.process_time()
+        while not auto._evaluator.kernels and time.process_time() - start < 120:
+            auto(*values)
+        out[f"{title}|switch"] = time.process_time() - start
+        for size in (1, 100):
+            vals = [v[0].item() for v in values] if size == 1 else [np.ascontiguousarray(v[:size]) for v in values]
+            fns = {"plain @njit": law if size == 1 else loop, "symkin numba": eager, "symkin default (auto)": auto}
+            samples: dict[str, list[float]] = {k: [] for k in fns}
+            for fn in fns.values():
+                fn(*vals)
+            for _ in range(rounds):
+                for k, fn in fns.items():
+                    samples[k].append(timed(fn, vals))
+            for k, v in samples.items():
+                out[f"{title}|{size}|{k}"] = statistics.median(v) * 1e6
+    return out
+
+
+def numba_compare(trees: dict[str, str], rounds: int) -> None:
+    """Item 4a: both trees, alternating processes, ``rounds`` times; the medians as a markdown table."""
+    res: dict[str, list[dict]] = {k: [] for k in trees}
+    print("load at start", os.getloadavg(), flush=True)
+    for _ in range(rounds):
+        for k, t in trees.items():
+            o = subprocess.run([sys.executable, os.path.abspath(__file__), "--numba-one", t, "5"], capture_output=True,
+                               text=True, cwd="/tmp", check=True)
+            res[k].append(json.loads(o.stdout.splitlines()[-1]))
+    print("load at end", os.getloadavg())
+    med = {k: {key: statistics.median(r[key] for r in res[k]) for key in res[k][0]} for k in trees}
+    print("| law | points | plain @njit us | " + " | ".join(f"{k}: symkin numba us | ratio | default (auto) us | ratio"
+                                                         for k in trees) + " |")
+    print("|---|---:|---:|" + "---:|---:|---:|---:|" * len(trees))
+    for key in med[next(iter(trees))]:
+        law, *rest = key.split("|")
+        if rest[-1] != "plain @njit":
+            continue
+        size = rest[0]
+        p = statistics.median([med[k][key] for k in trees])
+        cells = []
+        for k in trees:
+            e, a = med[k][f"{law}|{size}|symkin numba"], med[k][f"{law}|{size}|symkin default (auto)"]
+            cells.append(f"{e:.2f} | {e / p:.2f} | {a:.2f} | {a / p:.2f}")
+        print(f"| {law} | {size} | {p:.2f} | " + " | ".join(cells) + " |")
+    print("(the default switched to its kernel after " + "; ".join(
+        f"{k}: " + ", ".join(f"{key.split('|')[0]} {v:.1f} s" for key, v in med[k].items() if key.endswith("|switch"))
+        for k in trees) + " of CPU)")
+
+
+def cases(rng, n: int) -> dict:
+    """The benchmark laws, each ``(expr, args, values)`` with ``n`` points."""
+    import laws
+    import numpy as np
+
     from symkin import schemes
     from symkin import symbols as S
 
     w1, w4 = S.omega("1"), S.omega("4")
     radii = [S.radius(i) for i in "1234"]
-    rng = np.random.default_rng(7)
-    n = 10**5
     ratio = schemes.two_row("AA", teeth=True).ratio("H", "1", fixed="4").rhs
     z = [rng.integers(20, 200, n) for _ in range(4)]
     z[3] = np.where(z[0] * z[2] == z[1] * z[3], z[3] + 1, z[3])  # away from the poles, as run.py
     sub = laws.differential_law()
-    cases = {
+    return {
         "II (run.py)": (schemes.two_row("II").speeds({"1": w1, "4": w4}).law("H").rhs, [w1, w4, *radii],
                         [rng.uniform(-1, 1, n), rng.uniform(-1, 1, n), rng.uniform(5, 10, n), rng.uniform(1, 2, n),
                          rng.uniform(2.5, 4, n), rng.uniform(1, 2, n)]),
@@ -58,8 +147,18 @@ def one(tree: str) -> None:
                               [rng.uniform(-1, 1, n), rng.uniform(-1, 1, n), rng.uniform(5, 10, n), rng.uniform(1, 2, n),
                                rng.uniform(2.5, 4, n)]),
     }
+
+
+def one(tree: str) -> None:
+    """The medians of 5 timings of each law, size and method in this process, as json (us)."""
+    sys.path[:0] = [tree, tree + "/benchmarks"]
+    import numpy as np
+    import sympy as sp
+
+    import symkin
+
     out = {}
-    for title, (expr, args, values) in cases.items():
+    for title, (expr, args, values) in cases(np.random.default_rng(7), 10**5).items():
         fns = {"symkin numpy": symkin.compile(expr, args, backend="numpy"), "lambdify": sp.lambdify(args, expr, "numpy")}
         for size in SIZES:
             vals = [v[0].item() for v in values] if size == 1 else [v[:size] for v in values]
@@ -92,7 +191,11 @@ def compare(trees: dict[str, str], rounds: int) -> None:
 
 
 if __name__ == "__main__":
-    if sys.argv[1] == "--one":
+    if sys.argv[1] == "--numba":
+        numba_compare({"before": sys.argv[2], "after": sys.argv[3]}, int(sys.argv[4]) if len(sys.argv) > 4 else 3)
+    elif sys.argv[1] == "--numba-one":
+        numba_one(sys.argv[2], int(sys.argv[3]))
+    elif sys.argv[1] == "--one":
         one(sys.argv[2])
     else:
         compare({"before": sys.argv[1], "after": sys.argv[2]}, int(sys.argv[3]) if len(sys.argv) > 3 else 3)
