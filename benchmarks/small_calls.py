@@ -11,6 +11,9 @@ by calls of 1000 points until it has compiled its kernel), for a scalar call and
 process (``--numba-one TREE ROUNDS``) the methods in turn, 5 rounds, medians; the trees' processes
 alternating ROUNDS (3) times, medians (microseconds) and the ratios to the plain ``@njit`` function (its
 median over both trees) as a markdown table.
+
+``python benchmarks/small_calls.py --tradeoff [ROUNDS]`` (item 4b): speed and accuracy of the NumPy backend
+with and without its stable forms, the numba backend and lambdify, in one process (see :func:`tradeoff`).
 """
 
 from __future__ import annotations
@@ -36,6 +39,18 @@ def timed(fn, vals) -> float:
         if dt >= 5e-3:
             return dt / loops
         loops *= 4
+
+
+def in_turn(fns: dict, vals, rounds: int) -> dict:
+    """Seconds per call of each function on ``vals``: each called once, then timed in turn ``rounds``
+    times, the medians."""
+    samples: dict[str, list[float]] = {k: [] for k in fns}
+    for fn in fns.values():
+        fn(*vals)
+    for _ in range(rounds):
+        for k, fn in fns.items():
+            samples[k].append(timed(fn, vals))
+    return {k: statistics.median(v) for k, v in samples.items()}
 
 
 def plain_njit(expr, args):
@@ -83,14 +98,8 @@ def numba_rows(rounds: int) -> dict:
         for size in (1, 100):
             vals = [v[0].item() for v in values] if size == 1 else [np.ascontiguousarray(v[:size]) for v in values]
             fns = {"plain @njit": law if size == 1 else loop, "symkin numba": eager, "symkin default (auto)": auto}
-            samples: dict[str, list[float]] = {k: [] for k in fns}
-            for fn in fns.values():
-                fn(*vals)
-            for _ in range(rounds):
-                for k, fn in fns.items():
-                    samples[k].append(timed(fn, vals))
-            for k, v in samples.items():
-                out[f"{title}|{size}|{k}"] = statistics.median(v) * 1e6
+            for k, v in in_turn(fns, vals, rounds).items():
+                out[f"{title}|{size}|{k}"] = v * 1e6
     return out
 
 
@@ -122,6 +131,58 @@ def numba_compare(trees: dict[str, str], rounds: int) -> None:
     print("(the default switched to its kernel after " + "; ".join(
         f"{k}: " + ", ".join(f"{key.split('|')[0]} {v:.1f} s" for key, v in med[k].items() if key.endswith("|switch"))
         for k in trees) + " of CPU)")
+
+
+def tradeoff(rounds: int) -> None:
+    """Item 4b: the NumPy backend with its stable forms, with ``stable=False``, the numba backend and
+    lambdify at 10^3, 10^4 and 10^5 points, in one process (methods in turn, ``rounds`` rounds, medians,
+    ratios to lambdify), with each method's largest relative error against exact rational arithmetic
+    (Fraction) on the first 10^4 points; and the II law on inputs where no term cancels (every point
+    of its sum certified: the least any certificate can cost), as a markdown table."""
+    from fractions import Fraction
+
+    import numpy as np
+    import sympy as sp
+
+    import symkin
+
+    print("load at start", os.getloadavg(), flush=True)
+    rng = np.random.default_rng(7)
+    all_cases = cases(rng, 10**5)
+    ii = all_cases["II (run.py)"]
+    same_sign = [rng.uniform(0.5, 1, 10**5), rng.uniform(-1, -0.5, 10**5), *ii[2][2:]]  # w1 r1 r3 - w4 r2 r4: no cancellation
+    all_cases["II, no cancellation (every point certified)"] = (ii[0], ii[1], same_sign)
+    table = []
+    for title, (expr, args, values) in all_cases.items():
+        fns = {"lambdify": sp.lambdify(args, expr, "numpy"),
+               "symkin numpy": symkin.compile(expr, args, backend="numpy"),
+               "symkin numpy, stable=False": symkin.compile(expr, args, backend="numpy", stable=False),
+               "symkin numba": symkin.compile(expr, args, backend="numba")}
+        m = 10**4
+        exact_f = sp.lambdify(args, expr, "math")
+        points = list(zip(*(map(Fraction, v[:m].tolist()) for v in values)))
+        exact = [exact_f(*p) for p in points]  # rational arithmetic: Fraction in, Fraction out
+        errors = {}
+        for k, fn in fns.items():
+            got = np.asarray(fn(*(v[:m] for v in values)), dtype=float).tolist()
+            errors[k] = max(float(abs(Fraction(g) - x) / abs(x)) for g, x in zip(got, exact) if x)
+        for size in (10**3, 10**4, 10**5):
+            med = in_turn(fns, [v[:size] for v in values], rounds)
+            table.append((title, size, med, errors))
+            print(title, size, {k: f"{v / med['lambdify']:.2f}" for k, v in med.items()}, flush=True)
+    print("load at end", os.getloadavg())
+    names = list(table[0][2])
+    print("| law | points | lambdify us | " + " | ".join(f"{k}: ratio" for k in names[1:]) + " |")
+    print("|---|---:|---:|" + "---:|" * (len(names) - 1))
+    for title, size, med, _ in table:
+        lam = med["lambdify"]
+        print(f"| {title} | {size} | {lam * 1e6:.1f} | " + " | ".join(f"{med[k] / lam:.2f}" for k in names[1:]) + " |")
+    print()
+    print("| law | " + " | ".join(f"{k}: max relative error" for k in names) + " |")
+    print("|---|" + "---:|" * len(names))
+    for title, size, _, errors in table:
+        if size == 10**3:
+            print(f"| {title} | " + " | ".join(f"{errors[k]:.1e}" for k in names) + " |")
 
 
 def cases(rng, n: int) -> dict:
@@ -193,6 +254,8 @@ def compare(trees: dict[str, str], rounds: int) -> None:
 if __name__ == "__main__":
     if sys.argv[1] == "--numba":
         numba_compare({"before": sys.argv[2], "after": sys.argv[3]}, int(sys.argv[4]) if len(sys.argv) > 4 else 3)
+    elif sys.argv[1] == "--tradeoff":
+        tradeoff(int(sys.argv[2]) if len(sys.argv) > 2 else 5)
     elif sys.argv[1] == "--numba-one":
         numba_one(sys.argv[2], int(sys.argv[3]))
     elif sys.argv[1] == "--one":
