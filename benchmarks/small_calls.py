@@ -13,7 +13,8 @@ alternating ROUNDS (3) times, medians (microseconds) and the ratios to the plain
 median over both trees) as a markdown table.
 
 ``python benchmarks/small_calls.py --tradeoff [ROUNDS]`` (item 4b): speed and accuracy of the NumPy backend
-with and without its stable forms, the numba backend and lambdify, in one process (see :func:`tradeoff`).
+with and without its stable forms, the numba backend and lambdify, in one process (see :func:`tradeoff`);
+``--scalar-floor``: what symkin's scalar wrapper costs around a bare law (see :func:`scalar_floor`).
 """
 
 from __future__ import annotations
@@ -24,6 +25,7 @@ import statistics
 import subprocess
 import sys
 import time
+import timeit
 
 SIZES = (1, 100, 1000, 10**5)
 
@@ -185,6 +187,55 @@ def tradeoff(rounds: int) -> None:
             print(f"| {title} | " + " | ".join(f"{errors[k]:.1e}" for k in names) + " |")
 
 
+def scalar_floor() -> None:
+    """Item 4a, the scalar floor: the II law as a bare expression, as a plain ``@njit`` function, and
+    behind a copy of symkin's scalar wrapper (``NumericFunction.__call__``'s tests and a generated entry:
+    a type test per argument, the finiteness test, a NumPy float64 result) around the bare expression,
+    not symkin's stable-form code: what a call with symkin's guarantees costs before its law does.
+    Minimum of 5 loops of 2*10^5 calls (microseconds), 3 times."""
+    import numba
+    import numpy as np
+
+    f64, nd = np.float64, np.ndarray
+
+    def law(w1, w4, r1, r2, r3, r4):
+        return (w1 * r1 * r3 - w4 * r2 * r4) / (r1 * r3 - r2 * r4)
+
+    def entry(values):
+        v0, v1, v2, v3, v4, v5 = values
+        if ((type(v0) is float or type(v0) is f64) and (type(v1) is float or type(v1) is f64)
+                and (type(v2) is float or type(v2) is f64) and (type(v3) is float or type(v3) is f64)
+                and (type(v4) is float or type(v4) is f64) and (type(v5) is float or type(v5) is f64)):
+            try:
+                r0 = law(v0, v1, v2, v3, v4, v5)
+            except ArithmeticError:
+                return None
+            if type(r0) is float and r0 - r0 == 0.0:
+                return f64(r0)
+        return None
+
+    class Wrapper:
+        _arity = 6
+        _entry = staticmethod(entry)
+
+        def __call__(self, *values, out=None):
+            if len(values) != self._arity:
+                raise TypeError("arguments")
+            if out is None and not (values and type(values[0]) is nd) and self._entry is not False:
+                r = self._entry(values)
+                if r is not None:
+                    return r
+            return None
+
+    jit, wrapped = numba.njit(law), Wrapper()
+    sv = [0.3, -0.5, 7.0, 1.5, 3.0, 1.2]
+    jit(*sv)
+    print("load", os.getloadavg())
+    for _ in range(3):
+        print({name: round(min(timeit.repeat(lambda c=c: c(*sv), number=200000, repeat=5)) / 200000 * 1e6, 3)
+               for name, c in (("plain @njit", jit), ("bare law", law), ("wrapper + bare law", wrapped))})
+
+
 def cases(rng, n: int) -> dict:
     """The benchmark laws, each ``(expr, args, values)`` with ``n`` points."""
     import laws
@@ -254,6 +305,8 @@ def compare(trees: dict[str, str], rounds: int) -> None:
 if __name__ == "__main__":
     if sys.argv[1] == "--numba":
         numba_compare({"before": sys.argv[2], "after": sys.argv[3]}, int(sys.argv[4]) if len(sys.argv) > 4 else 3)
+    elif sys.argv[1] == "--scalar-floor":
+        scalar_floor()
     elif sys.argv[1] == "--tradeoff":
         tradeoff(int(sys.argv[2]) if len(sys.argv) > 2 else 5)
     elif sys.argv[1] == "--numba-one":
