@@ -2,7 +2,7 @@
 in one run; writes docs/numerics.md and benchmarks/results.json from that run.
 
     python benchmarks/run.py                 # about 3-6 minutes on 2 shared cores
-    python benchmarks/run.py --quick         # 1 and 10^3 points only (a smoke run; docs not written)
+    python benchmarks/run.py --quick         # 1, 100 and 10^3 points only (a smoke run; docs not written)
 
 Laws (as the README derives them, nothing substituted): the AA ratio i_H1^(4) in tooth numbers,
 the II general differential omega_H(omega_1, omega_4, r1..r4) in radii (denominator
@@ -65,7 +65,9 @@ try:
 except ImportError:
     HAS_NUMEXPR = False
 
-SIZES = (1, 10**3, 10**5, 10**6)
+SIZES = (1, 100, 10**3, 10**5, 10**6)
+#: The NumPy backend without the stable-form rewriting: the user's speed-for-accuracy trade.
+UNSTABLE = "symkin numpy, stable=False"
 W1, W4 = S.omega("1"), S.omega("4")
 R = [S.radius(i) for i in "1234"]
 Z = [S.teeth(i) for i in "1234"]
@@ -163,6 +165,7 @@ def methods(case: dict) -> dict:
         names = ["z1", "z2", "z3", "z4"] if case["key"] == "ratio" else ["w1", "w4", "r1", "r2", "r3", "r4"]
         out["numexpr"] = lambda *v: ne.evaluate(text, local_dict=dict(zip(names, (np.asarray(x, float) for x in v))))
     out[label("numpy")] = symkin.compile(expr, args, backend="numpy", ranges=L.RANGES)
+    out[UNSTABLE] = symkin.compile(expr, args, backend="numpy", ranges=L.RANGES, stable=False)
     if HAS_NUMBA:
         out[label("numba")] = symkin.compile(expr, args, backend="numba", ranges=L.RANGES)
     return out
@@ -183,8 +186,8 @@ def timed(fn, values, n: int) -> float:
 
 
 def point(values, n: int) -> list:
-    if n == 1:
-        return [float(v[0]) if np.ndim(v) else v for v in values]
+    if n == 1:  # Python numbers: tooth numbers as Python integers, the rest as floats
+        return [v[0].item() if np.ndim(v) else v for v in values]
     return [v[:n] if np.ndim(v) else v for v in values]
 
 
@@ -235,7 +238,8 @@ def random_points(n: int = 10**5) -> list[dict]:
             points = [(a, b, c, d, e, c - d + e) for a, b, c, d, e in points]
         exact = [(a * r1 * r3 - b * r2 * r4) / (r1 * r3 - r2 * r4) for a, b, r1, r2, r3, r4 in points]
         fns = {"sympy.lambdify": sp.lambdify(args, expr), "lambdify(cse=True)": sp.lambdify(args, expr, cse=True),
-               label("numpy"): symkin.compile(expr, args, backend="numpy")}
+               label("numpy"): symkin.compile(expr, args, backend="numpy"),
+               UNSTABLE: symkin.compile(expr, args, backend="numpy", stable=False)}
         if HAS_NUMBA:
             fns[label("numba")] = symkin.compile(expr, args, backend="numba")
             fns["symkin default, first calls (NumPy code)"] = symkin.compile(expr, args, jit="auto", backend="numba")
@@ -303,7 +307,7 @@ def hard_regions() -> list[dict]:
     t = np.concatenate([2.5 * k, 2.5 * k + 1e-6, 2.5 * k + 1e-3, 2.5 * k[1:] - 1e-3, np.linspace(0, 20, 41)])
     vals = [0.999999, 0.02, 1.0, 0.8 * np.pi, 0.3, 0.1, t]
     ref = mp(list(L.slider_laws_continuous()), SLIDER_ARGS, vals)
-    region = "slider s, V_s, a_s at e = 0.999999, m = 1, t on and beside the speed peaks (max of the 3)"
+    region = "slider s, V_s, a_s at e = 0.999999, m = 1, omega = 0.8 pi rad/s (a float input), t on and beside the speed peaks (max of the 3)"
     raw = sp.lambdify(SLIDER_ARGS, laws, modules="numpy", cse=True)(*vals)
     add(region, "lambdify(cse=True)", max(error(g, r, True) for g, r in zip(raw, ref)), "normwise")
     for b in float_backends:
@@ -315,7 +319,7 @@ def hard_regions() -> list[dict]:
     exact_laws = [x.subs(L.W, 4 * sp.pi / 5) for x in laws]
     evals = [v for a, v in zip(SLIDER_ARGS, vals) if a != L.W]
     ref = mp([x.subs(L.W, 4 * sp.pi / 5) for x in L.slider_laws_continuous()], exact_args, evals)
-    region = "slider s, V_s, a_s at e = 0.999999, omega = 4 pi/5 exactly (substituted), on and beside the speed peaks"
+    region = "slider s, V_s, a_s at e = 0.999999, m = 1, omega = 4 pi/5 = 0.8 pi rad/s exactly (substituted, the 2018 drive), on and beside the speed peaks (max of the 3)"
     raw = sp.lambdify(exact_args, exact_laws, modules="numpy", cse=True)(*evals)
     add(region, "lambdify(cse=True)", max(error(g, r, True) for g, r in zip(raw, ref)), "normwise")
     for b in float_backends:
@@ -467,7 +471,7 @@ def markdown(res: dict) -> str:
         "float64, stable forms, input and pole checks); `symkin numba` is `backend=\"numba\"` (one fused loop, all",
         f"threads from 2^15 points); `(default)` marks what `symkin.compile(law)` takes on this machine ({DEFAULT}:",
         "numba where it is installed). Each cell is the median wall time of one call over the rounds (methods in",
-        "round robin), spread = (max - min)/median. A call with 1 point passes Python floats (the one-point path,",
+        "round robin), spread = (max - min)/median. A call with 1 point passes Python numbers (the one-point path,",
         "the same for both backends: the type test of each argument and the finiteness test of each output, which",
         "a bare lambdify expression does not make). NumPy evaluates a call of up to 2^17 points in one piece, larger",
         "calls in chunks of 2^17 points.",
@@ -509,12 +513,14 @@ def markdown(res: dict) -> str:
             "", f"## Random points against exact rational arithmetic ({rnd[0]['n']:.0e} points)", "",
             "Relative error, pointwise (no floor), against `fractions.Fraction` arithmetic on the same binary inputs:",
             "max and median over the points. The II differential's numerator `w1 r1 r3 - w4 r2 r4` cancels wherever",
-            "the result is small; the float64 backends sum it in double-double (numba: always; NumPy: where the plain",
+            "the result is small; the float64 backends sum it error-free (numba: always; NumPy: where the plain",
             "sum is not certified within 8 units), so the law is within a few units in the last place at every point.",
+            "`stable=False` evaluates the law as written (lambdify's arithmetic, with symkin's common subexpressions).",
             "",
             "| law | method | max | median |", "|---|---|---:|---:|",
         ]
         lines += [f"| {r['law']} | {r['method']} | {r['max']:.1e} | {r['median']:.1e} |" for r in rnd]
+    lines += njit_section(res) + choice_section(res)
     if res.get("first_use"):
         fu = res["first_use"]
         lines += [
@@ -602,6 +608,79 @@ def markdown(res: dict) -> str:
     return "\n".join(lines) + "\n" + STATIC
 
 
+def njit_section(res: dict) -> list[str]:
+    """Small calls against a plain @njit function and loop (issue 34, item 4a)."""
+    nj = res.get("njit")
+    if not nj:
+        return []
+    rows = nj["rows"]
+    lines = [
+        "", "## Small calls against a plain `@numba.njit` loop (load "
+        f"{nj['load'][0]:.1f} -> {nj['load'][1]:.1f})", "",
+        "`benchmarks/small_calls.py` (`numba_rows`), in this process: each law as a plain `@njit` function (the law",
+        "as `sympy.pycode` prints it, nothing else: no stable forms, no checks) called with Python numbers, and a",
+        "plain `@njit` loop over 100 points allocating its output, against `symkin.compile(law, backend=\"numba\")` and",
+        "the default `symkin.compile(law)` once it has compiled its kernel (`jit=\"auto\"`, driven there by calls of",
+        "1000 points). Medians of 5 rounds (methods in turn), microseconds; ratio: over the plain `@njit` time.",
+        "A scalar call of either symkin function is the Python-float code (the numba kernel is not called for one",
+        "point): its type test of each argument, its finiteness test and its NumPy float64 result are the",
+        "guarantees a bare `@njit` call does not give.",
+        "",
+        "| law | points | plain @njit | symkin numba | ratio | symkin default (after the switch) | ratio |",
+        "|---|---:|---:|---:|---:|---:|---:|",
+    ]
+    for key, plain in rows.items():
+        law, *rest = key.split("|")
+        if rest[-1] != "plain @njit":
+            continue
+        e, a = rows[f"{law}|{rest[0]}|symkin numba"], rows[f"{law}|{rest[0]}|symkin default (auto)"]
+        lines.append(f"| {law} | {rest[0]} | {plain:.2f} | {e:.2f} | {e / plain:.2f} | {a:.2f} | {a / plain:.2f} |")
+    switch = ", ".join(f"{k.split('|')[0]} {v:.1f} s" for k, v in rows.items() if k.endswith("|switch"))
+    lines += ["", f"The default compiled its kernel after this much NumPy time (CPU): {switch}."]
+    return lines
+
+
+def choice_section(res: dict) -> list[str]:
+    """Speed or accuracy: what each choice gives on this run's figures (issue 34, item 4b)."""
+    cell = {(r["law"], r["method"], r["n"]): r["median_s"] for r in res["speed"]}
+    diff = "differential omega_H (II, radii)"
+    sizes = [n for n in (10**3, 10**5) if (diff, "sympy.lambdify", n) in cell]
+    if not sizes or (diff, UNSTABLE, sizes[0]) not in cell:
+        return []
+
+    def ratios(method: str) -> str:
+        return ", ".join(f"{cell[(diff, method, n)] / cell[(diff, 'sympy.lambdify', n)]:.2f}x at {n:.0e} points"
+                         for n in sizes if (diff, method, n) in cell)
+
+    worst = {}
+    for r in res.get("random", []):
+        worst[r["method"]] = max(worst.get(r["method"], 0.0), r["max"])
+    acc = lambda m: f"{worst[m]:.1e}" if m in worst else "-"  # noqa: E731
+    lines = [
+        "", "## Speed or accuracy: what to choose", "",
+        "On this run's figures for the II differential (its numerator `w1 r1 r3 - w4 r2 r4` cancels at about",
+        "half the benchmark points), time as a ratio to `sympy.lambdify`, and the largest relative error on the",
+        "random points above (every law and input set of that table):",
+        "",
+        f"- `symkin.compile(law)` (the default), or `backend=\"numba\"`: {ratios(label('numba'))}; error "
+        f"{acc(label('numba'))}. The error-free sum is inlined in one compiled loop; the default starts with the",
+        "  NumPy code and compiles once that pays (first use above).",
+        f"- `backend=\"numpy\"` (stable forms): {ratios(label('numpy'))}; error {acc(label('numpy'))}. Where",
+        "  the plain sum is not certified within 8 units the error-free sum (TwoProduct and Sum2) costs about 58",
+        "  NumPy operations for the II law's two terms against lambdify's 10, and below about 10^4 points each",
+        "  operation's call costs more than its work: that is the floor, not overhead (benchmarks/notes/numpy_floor.md).",
+        "  A cheaper certificate would certify fewer points or give up the 8-unit bound.",
+        f"- `backend=\"numpy\", stable=False`: {ratios(UNSTABLE)}; error {acc(UNSTABLE)} (lambdify's: "
+        f"{acc('sympy.lambdify')}, with cse {acc('lambdify(cse=True)')}). The law as written, with symkin's input and pole checks but none of the stable",
+        "  forms: no certified difference of products near a pole, no phase reduction for long times, no",
+        "  error-free sums. Choose it for NumPy speed on small arrays when a few lost digits do not matter.",
+        "",
+        "Laws whose sums do not cancel (the AA ratio in teeth, the planet and the slider) pay no error-free sum;",
+        "there the NumPy backend's cost over lambdify is its checks (the tables above).",
+    ]
+    return lines
+
+
 STATIC = """## What the float backends guarantee (tested, not measured here)
 
 `symkin.compile(laws, args, backend=..., precision=..., digits=...)` is the one entry point; backends
@@ -621,9 +700,10 @@ else numpy (`SYMKIN_BACKEND=numpy` or `numba` chooses). Float backends evaluate 
   with NumPy.
 - Accuracy at every point: sums of products that can cancel in a rational law of real inputs (the II
   differential's numerator `w1 r1 r3 - w4 r2 r4`; a numerator given as products of sums is expanded) are
-  summed in double-double and rounded once (`CompensatedSum`): within one unit of their exact value in the
+  summed error-free (each product split exactly by TwoProduct, the terms by Sum2) and rounded once
+  (`CompensatedSum`): within one unit of their exact value in the
   numba kernel, within 8 units in the NumPy code (the plain sum where its error bound certifies that, the
-  double-double sum at the other points), so the law is within a few units in the last place of exact
+  error-free sum at the other points, or at every point of a call of up to 4096 points), so the law is within a few units in the last place of exact
   rational arithmetic on the same inputs at every point (the table above), never less accurate than
   lambdify there. Sums of more than 8 terms or of terms of more than 4 factors, and laws with functions
   (sin, sqrt), are evaluated as written. float32 evaluates such a sum in float64 and rounds it.
@@ -668,12 +748,19 @@ else numpy (`SYMKIN_BACKEND=numpy` or `numba` chooses). Float backends evaluate 
   inputs repeat (tests/numeric/test_stable_long_phase.py). sin and cos are libm's scalar functions (as fast here as
   NumPy's), so laws in time gain least (the planet law above). Rational laws gain most. A scalar argument's
   block of copies is kept for the next call with the same value. Compiling a kernel takes 0.3-3 s of CPU
-  on this machine (the parallel one 1.3-27 s) with an empty cache; it is kept on disk
-  (`$SYMKIN_CACHE_DIR`, else `~/.cache/symkin/kernels`), and another process loads it after importing
-  numba (0.2-0.3 s; the first-use table above).
+  on this machine (the parallel one 1.3-27 s) with an empty cache; it is kept on disk (`$SYMKIN_CACHE_DIR`,
+  else `kernels` in the user's cache folder, `platformdirs.user_cache_dir("symkin")`: `~/.cache/symkin/kernels`
+  on Linux), and another process loads it after importing numba (0.2-0.3 s; the first-use table above).
+  Numba's cache files are pickles, which run code when loaded, so the folder is made private (0700) and a
+  folder another user owns or others can write is not used: a warning says so and kernels are compiled in
+  memory. An entry that fails to load (truncated, damaged) is removed and compiled again.
 - Speed, what lambdify keeps ahead on: one point, and small NumPy calls. A call of one point pays what a
-  bare lambdify expression does not (the type test of each argument, the finiteness test of each output):
-  a few microseconds with either backend (the tables above). On the NumPy backend a call of up to about 10^4 points
+  bare lambdify expression does not (the type test of each argument, the finiteness test of each output,
+  a NumPy float64 result): about a microsecond with either backend, one generated function of Python
+  floats (the tables above). The numba backend's call of flat contiguous arrays of one length below 2^15
+  points (float64, int64 for tooth numbers) goes straight to its compiled loop once that has run: one
+  generated function testing each array's type, dtype, layout and length (the small-call table above);
+  any other call takes the general path. On the NumPy backend a call of up to about 10^4 points
   also pays one `np.errstate`, the finiteness sum of each output, the tooth-number bound and the
   cancellation test: 15-30 us at 10^3 points (the table above); the numba kernel does these tests in its
   loop. Loops over many small calls are faster with one call on an array.
@@ -691,7 +778,7 @@ else numpy (`SYMKIN_BACKEND=numpy` or `numba` chooses). Float backends evaluate 
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--quick", action="store_true", help="1 and 10^3 points only, 3 rounds; docs not written")
+    ap.add_argument("--quick", action="store_true", help="1, 100 and 10^3 points only, 3 rounds; docs not written")
     ap.add_argument("--rounds", type=int, default=7)
     ap.add_argument("--no-docs", action="store_true")
     ap.add_argument("--docs-from", type=Path, metavar="JSON",
@@ -701,7 +788,7 @@ def main() -> None:
     if opts.docs_from:
         (ROOT / "docs" / "numerics.md").write_text(markdown(json.loads(opts.docs_from.read_text())))
         return
-    sizes = (1, 10**3) if opts.quick else SIZES
+    sizes = (1, 100, 10**3) if opts.quick else SIZES
     rounds = 3 if opts.quick else opts.rounds
     t0 = time.perf_counter()
     load0 = os.getloadavg()[0]
@@ -716,6 +803,11 @@ def main() -> None:
     res["hard"] = hard_regions()
     res["fixed"] = fixed_costs(all_cases)
     res["random"] = random_points(10**4 if opts.quick else 10**5)
+    if HAS_NUMBA:
+        import small_calls
+
+        res["njit"] = dict(load=[os.getloadavg()[0]], rows=small_calls.numba_rows(5))
+        res["njit"]["load"].append(os.getloadavg()[0])
     if not opts.quick:
         res["issue_size"] = issue_size()
         if opts.first_use_rounds:

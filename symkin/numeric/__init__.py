@@ -199,6 +199,8 @@ def compile(
         Eliminate common subexpressions (results are equal either way).
     stable : bool
         Rewrite into stable forms before float evaluation (see :mod:`symkin.numeric.stable`).
+        ``False``: the laws as written, lambdify's accuracy, faster on NumPy for small arrays
+        (docs/numerics.md, "Speed or accuracy: what to choose"; the numba backend keeps both).
     ranges : {symbol: (lo, hi)}, optional
         Known ranges of symbols, which let the rewriting decide signs (e.g. an
         eccentricity in (0, 1)).

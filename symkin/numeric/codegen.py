@@ -343,7 +343,13 @@ class ScalarPrinter(_ProductCalls, PythonCodePrinter):
         return _print_long_phase(self, expr, False)
 
     def _print_CompensatedSum(self, expr: CompensatedSum) -> str:
-        return _print_compensated_sum(self, expr, "float64")
+        bound = compensated_bound(expr.args[1])
+        if bound is None:
+            return _print_compensated_sum(self, expr, "float64")
+        # runtime's scalar compensated sum written out (one call less per point: issue 34, item 4)
+        v = f"_v{expr.name}"
+        return (f"({v} if abs({v} := {self._print(expr.args[1])}) >= {self._print(bound)} else "
+                f"{expr.name}({', '.join(self._print(a) for a in expr.args[2:])})[0])")
 
 
 class ExactPrinter(PythonCodePrinter):

@@ -84,6 +84,7 @@ class NumericFunction:
         self._token: str | None = None
         self._float64: NumericFunction | None = None  # the float64 twin that checks float32 results
         self.args: tuple[str, ...] = tuple(s.name for s in plan.args)
+        self._arity = len(self.args)
         self.outputs: tuple[str, ...] = plan.names
         self.backend = backend
         self.precision = plan.precision if backend not in ("mpmath",) else f"{plan.digits} digits"
@@ -138,10 +139,16 @@ class NumericFunction:
         return (_rebuild, (self._token, pickle.dumps(self._spec)))
 
     def __call__(self, *values: Any, out: Sequence[np.ndarray] | np.ndarray | None = None) -> Any:
-        if len(values) != len(self.args):
+        if len(values) != self._arity:
             raise InputError(f"this function takes {len(self.args)} arguments ({', '.join(self.args)}), got {len(values)}")
         if out is None:
-            if self._entry is not False and not (values and type(values[0]) is np.ndarray):
+            if values and type(values[0]) is np.ndarray:
+                fast = self._evaluator.array_entry  # the numba kernel's common small call, once it has run
+                if fast is not None:
+                    r = fast(values)
+                    if r is not None:
+                        return r
+            elif self._entry is not False:
                 entry = self._entry
                 if entry is None:
                     entry = self._entry = self._entry_builder() or False

@@ -60,9 +60,14 @@ class Backend(ABC):
 
     A backend that evaluates one point of scalars faster than arrays may also define
     ``evaluate_scalar(values) -> list | None`` (None: take the array path);
-    :class:`~symkin.numeric.function.NumericFunction` calls it for calls without arrays."""
+    :class:`~symkin.numeric.function.NumericFunction` calls it for calls without arrays.
+    One that has a faster path for its common array call sets :attr:`array_entry`."""
 
     key: ClassVar[str]  # its name in BACKENDS
+    #: A function of the call's values for a call whose first value is an array, returning what
+    #: the call returns, or None for :meth:`evaluate` to take the call (set by a backend once it
+    #: has one; the numba backend's small calls).
+    array_entry: Callable[[Sequence[Any]], Any] | None = None
     precisions: ClassVar[tuple[str, ...]]  # what precision= may be; the first is the default
     floats: ClassVar[bool]  # computes in binary floating point: given the stable forms
 

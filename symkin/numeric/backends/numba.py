@@ -354,34 +354,75 @@ class NumbaBackend(NumpyBackend):
         """Evaluate the laws at ``values`` in one fused loop; returns the broadcast shape, the outputs and whether any is not finite."""
         if self.broken:
             return super().evaluate(values, outs)
+        serial = self.kernels.get(self._serial_key) if outs is None else None
+        common = None
+        if serial is not None:  # (compiled: jit="auto" has nothing to decide for a small call)
+            common = self._common_call(values)
+            if common is not None and common[0] < _PARALLEL_FROM:
+                # the common small call: the serial kernel compiled, nothing to convert or switch
+                n, inputs, steps = common
+                results = [np.empty(n, self._np_dtype) for _ in range(self._outputs)]
+                try:
+                    bad, _nonwhole, uncertain = serial[0](*inputs, *results, n, *steps)
+                except Exception as err:  # a new signature, whose cache entry may be damaged
+                    if not self._discard(self._serial_key, err):
+                        raise
+                    return self.evaluate(values, outs)
+                if not (bad or uncertain):
+                    return (n,), results, False
+                # (else poles, or differences of products to redo: the general path below, again)
         if self.plan.jit == "auto" and len(self._paying) < 2:
             waited = self._numpy_until_it_pays(values, outs)
             if waited is not None:
                 return waited
-        common = self._common_call(values) if outs is None else None
-        serial = self.kernels.get(self._serial_key)
-        if common is not None and serial is not None and common[0] < _PARALLEL_FROM:
-            # the common small call: the serial kernel compiled, nothing to convert or switch
-            n, inputs, steps = common
-            results = [np.empty(n, self._np_dtype) for _ in range(self._outputs)] if self._outputs > 1 else [np.empty(n, self._np_dtype)]
-            try:
-                bad, _nonwhole, uncertain = serial[0](*inputs, *results, n, *steps)
-            except Exception as err:  # a new signature, whose cache entry may be damaged
-                if not self._discard(self._serial_key, err):
-                    raise
-                return self.evaluate(values, outs)
-            if not (bad or uncertain):
-                return (n,), results, False
-            # (else poles, or differences of products to redo: the general path below, again)
+        if common is None and outs is None:
+            common = self._common_call(values)
         call = self._as_given(common) if common is not None else self._converted(values, outs)
         bad = None if call is None else self._run(call)
         if call is None or bad is None:  # Python integers, or a law Numba cannot compile: the NumPy code
             return super().evaluate(values, outs)
+        serial = self.kernels.get(self._serial_key)
+        if serial is not None and self.array_entry is None and self.plan.precision == "float64":
+            self.array_entry = self._array_entry(serial[0])  # (the serial kernel has run: loaded, not damaged)
         if bad and self.twins:  # int64 could overflow there: those points again with Python integers
             index = np.flatnonzero(np.logical_or.reduce([~np.isfinite(r) for r in call.results]))
             for r, f in zip(call.results, self.evaluate_points(values, index)):
                 r[index] = f
         return call.shape, call.results, bool(bad)
+
+    def _array_entry(self, kernel: Any) -> Any:
+        """The common small call of arrays as one generated function of the call's values (issue
+        34, item 4: a small call's overhead): every argument a flat contiguous array of one
+        length below :data:`_PARALLEL_FROM` (int64 for tooth numbers, float64 otherwise) goes
+        straight to the serial ``kernel``; its outputs when every value is finite and certified,
+        else None (the general path then takes the call: poles, redo, reports, a damaged cache
+        entry), as :meth:`evaluate`'s own fast path.  Only the type tests of
+        :meth:`_common_call`, written out."""
+        names = [f"v{k}" for k in range(len(self._wanted))]
+        tests = [f"type({v}) is _nd and {v}.dtype is _w{k} and {v}.strides == _one" for k, v in enumerate(names)]
+        tests[1:] = [f"{t} and {v}.shape == _s" for t, v in zip(tests[1:], names[1:])]
+        outs = [f"r{k}" for k in range(self._outputs)]
+        lines = [
+            "def _entry(values):",
+            f"    {', '.join(names)}, = values",
+            f"    if {tests[0]}:",
+            f"        _s = {names[0]}.shape",
+            f"        if {' and '.join(tests[1:]) or 'True'}:",
+            "            n = _s[0]",
+            "            if n < _PAR:",
+            *(f"                {r} = _empty(n)" for r in outs),
+            "                try:",
+            f"                    bad, _nw, unc = _kernel({', '.join(names + outs)}, n, {', '.join('1' for _ in names)})",
+            "                except Exception:  # a signature not run yet whose cache entry is damaged: evaluate's",
+            "                    return None  # general path discards it",
+            "                if not (bad or unc):",
+            f"                    return {outs[0] if len(outs) == 1 else '(' + ', '.join(outs) + ',)'}",
+            "    return None",
+        ]
+        ns = {"_nd": np.ndarray, "_one": (8,), "_PAR": _PARALLEL_FROM, "_empty": np.empty, "_kernel": kernel,
+              **{f"_w{k}": w for k, w in enumerate(self._wanted)}}
+        exec(compile("\n".join(lines) + "\n", "<symkin array entry>", "exec"), ns)  # generated here, no user text
+        return ns["_entry"]
 
     def _numpy_until_it_pays(self, values: Sequence[Any], outs: Sequence[np.ndarray] | None) -> Result | None:
         """jit="auto": the call by the NumPy code (timed) while the kernel it needs is not compiled

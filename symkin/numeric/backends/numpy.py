@@ -232,7 +232,8 @@ class NumpyBackend(Backend):
         if code is False:
             return None
         names = [f"v{k}" for k in range(len(self.plan.args))]
-        tests = [f"type({v}) is int and -_BIG < {v} < _BIG" if integer else f"(type({v}) is float or type({v}) is _f64)"
+        # (a Python integer beyond the float range: float() raises OverflowError, and the slow path takes it)
+        tests = [f"type({v}) is int" if integer else f"(type({v}) is float or type({v}) is _f64)"
                  for v, integer in zip(names, self.integer_flags)]
         point = [f"float({v})" if integer else v for v, integer in zip(names, self.integer_flags)]
         point += [v for v, integer in zip(names, self.integer_flags) if integer]
@@ -254,7 +255,7 @@ class NumpyBackend(Backend):
             f"            return {result}",
             f"    return {back}",
         ]
-        ns = {"_code": code, "_f64": np.float64, "_slow": self.evaluate_scalar, "_BIG": _FLOAT_INT}
+        ns = {"_code": code, "_f64": np.float64, "_slow": self.evaluate_scalar}
         exec(compile("\n".join(lines) + "\n", "<symkin scalar entry>", "exec"), ns)  # generated here, no user text
         return ns["_entry"]
 
