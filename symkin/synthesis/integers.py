@@ -17,14 +17,11 @@ changing the lattice it spans (a Hermite form), and the system is then solved ro
 
 from __future__ import annotations
 
-import functools
 import math
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Sequence
 from fractions import Fraction
 
-import sympy as sp
-
-__all__ = ["solvable", "divides", "exact_form"]
+__all__ = ["solvable", "divides"]
 
 
 def solvable(G: Sequence[Sequence[int]], h: Sequence[Fraction | int]) -> bool:
@@ -108,43 +105,3 @@ def _reduce(M: list[list[int]], i: int, col: int) -> None:
 def _swap(M: list[list[int]], a: int, b: int) -> None:
     for r in M:
         r[a], r[b] = r[b], r[a]
-
-
-@functools.lru_cache(maxsize=1024)
-def exact_form(expr: sp.Expr) -> Callable[[Mapping[sp.Symbol, int]], Fraction | None] | None:
-    """``expr``, a rational function of integers (tooth numbers) with rational coefficients, as a
-    function of their values in exact integer arithmetic, or None for an expression that is not one.
-
-    Its numerator and denominator become polynomials with integer coefficients, compiled once per
-    process (on a Dask worker too): a value is then a few products of Python integers and one
-    :class:`~fractions.Fraction`, microseconds where SymPy's substitution and cancellation take a
-    millisecond or more.  The function returns None where the denominator vanishes.
-
-    >>> z1, z2 = sp.symbols("z1 z2")
-    >>> f = exact_form(z1 / (z1 + z2) + sp.Rational(1, 2))
-    >>> f({z1: 30, z2: 18}), f({z1: 3, z2: -3})
-    (Fraction(9, 8), None)
-    >>> exact_form(z1 / 2 + z2 / 2)({z1: 19, z2: 30})
-    Fraction(49, 2)
-    >>> exact_form(sp.sqrt(z1)) is None
-    True
-    """
-    args = tuple(sorted(expr.free_symbols, key=str))
-    try:
-        num, den = sp.fraction(sp.cancel(sp.together(expr)))
-        gens = args or (sp.Dummy(),)
-        cn, pn = sp.Poly(num, *gens).clear_denoms()
-        cd, pd = sp.Poly(den, *gens).clear_denoms()
-    except sp.PolynomialError:
-        return None
-    if not all(q.domain.is_ZZ or q.domain.is_QQ for q in (pn, pd)):  # (cleared, a QQ polynomial has integer coefficients)
-        return None
-    polynomials = sp.lambdify(args, (pn.as_expr(), pd.as_expr()), modules=[], docstring_limit=0)
-    ratio = sp.Rational(cd, cn)
-    factor = Fraction(int(ratio.p), int(ratio.q))
-
-    def value(values: Mapping[sp.Symbol, int]) -> Fraction | None:
-        top, bottom = polynomials(*[int(values[z]) for z in args])  # Python integers: no overflow
-        return None if bottom == 0 else Fraction(top, bottom) * factor
-
-    return value

@@ -38,7 +38,7 @@ from symkin._util.jsonout import exact_json, float_text
 from symkin.errors import InputError, TimeLimitError
 from symkin.model import Gear, Mechanism
 from symkin.numeric import compile as compile_law
-from symkin.synthesis.integers import exact_form
+from symkin.numeric.backends.exact import exact_form
 from symkin.synthesis.problem import Problem, derive
 from symkin.synthesis.request import Options
 from symkin.values import as_rational

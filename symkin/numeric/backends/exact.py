@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable
+import functools
+from collections.abc import Callable, Mapping
 from fractions import Fraction
 from typing import Any
 
@@ -14,7 +15,7 @@ from symkin.numeric.backends.pointwise import PointwiseBackend
 from symkin.numeric.codegen import ExactPrinter
 from symkin.values import refuse_text
 
-__all__ = ["ExactBackend"]
+__all__ = ["ExactBackend", "exact_form"]
 
 
 class ExactBackend(PointwiseBackend):
@@ -66,3 +67,45 @@ def _to_fraction(v: Any, name: str) -> Any:
         f"{name} must be exact for the exact backend (int or Fraction), got {v!r}; "
         "use backend='mpmath' for floats"
     )
+
+
+@functools.lru_cache(maxsize=1024)
+def exact_form(expr: sp.Expr) -> Callable[[Mapping[sp.Symbol, int]], Fraction | None] | None:
+    """``expr``, a rational function of integers (tooth numbers) with rational coefficients, as a
+    function of their values in exact integer arithmetic, or None for an expression that is not one.
+
+    Its numerator and denominator become polynomials with integer coefficients, compiled once per
+    process (on a Dask worker too) and called without the checks of a compiled function's call
+    (the synthesis's inner loop, where the values are tooth numbers it made): a value is then a
+    few products of Python integers and one :class:`~fractions.Fraction`, microseconds where
+    SymPy's substitution and cancellation take a millisecond or more.  The function returns None
+    where the denominator vanishes.
+
+    >>> z1, z2 = sp.symbols("z1 z2")
+    >>> f = exact_form(z1 / (z1 + z2) + sp.Rational(1, 2))
+    >>> f({z1: 30, z2: 18}), f({z1: 3, z2: -3})
+    (Fraction(9, 8), None)
+    >>> exact_form(z1 / 2 + z2 / 2)({z1: 19, z2: 30})
+    Fraction(49, 2)
+    >>> exact_form(sp.sqrt(z1)) is None
+    True
+    """
+    args = tuple(sorted(expr.free_symbols, key=str))
+    try:
+        num, den = sp.fraction(sp.cancel(sp.together(expr)))
+        gens = args or (sp.Dummy(),)
+        cn, pn = sp.Poly(num, *gens).clear_denoms()
+        cd, pd = sp.Poly(den, *gens).clear_denoms()
+    except sp.PolynomialError:
+        return None
+    if not all(q.domain.is_ZZ or q.domain.is_QQ for q in (pn, pd)):  # (cleared, a QQ polynomial has integer coefficients)
+        return None
+    polynomials = sp.lambdify(args, (pn.as_expr(), pd.as_expr()), modules=[], docstring_limit=0)
+    ratio = sp.Rational(cd, cn)
+    factor = Fraction(int(ratio.p), int(ratio.q))
+
+    def value(values: Mapping[sp.Symbol, int]) -> Fraction | None:
+        top, bottom = polynomials(*[int(values[z]) for z in args])  # Python integers: no overflow
+        return None if bottom == 0 else Fraction(top, bottom) * factor
+
+    return value
