@@ -157,8 +157,9 @@ class PairGeometry:
         values = [g1.base_diameter / 2, g2.base_diameter / 2, g1.tip_diameter / 2, g2.tip_diameter / 2,
                   self.centre_distance, self.working_pressure_angle]
         with mpmath.workdps(DIGITS):
-            return interferences(mpmath.mpf(int(g1.teeth)), mpmath.mpf(int(g2.teeth)), self.internal,
-                                 *(mpmath.mpf(str(sp.N(v, DIGITS + 5))) for v in values), lib=mpmath)
+            rb1, rb2, ra1, ra2, a, aw = (mpmath.mpf(str(sp.N(v, DIGITS + 5))) for v in values)
+            return interferences(mpmath.mpf(int(g1.teeth)), mpmath.mpf(int(g2.teeth)), self.internal, rb1, rb2, ra1, ra2,
+                                 a, aw, lib=mpmath)
 
     def _involute_ok(self) -> bool:
         return "involute" not in self.interferences()

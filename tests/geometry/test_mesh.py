@@ -10,8 +10,15 @@ import sympy as sp
 from scipy.optimize import brentq
 
 from symkin.errors import InputError
-from symkin.geometry import (ToothForm, gear_geometry, interferences, inverse_involute, involute, pair_geometry,
-                             shift_sum_for)
+from symkin.geometry import (
+    ToothForm,
+    gear_geometry,
+    interferences,
+    inverse_involute,
+    involute,
+    pair_geometry,
+    shift_sum_for,
+)
 
 
 def _inv(a: float) -> float:

@@ -12,6 +12,7 @@ from scipy.optimize import brentq
 from symkin.errors import InputError
 from symkin.geometry import coaxial_shifts, train_geometry
 from symkin.trains import load_train, read_train, ready_made
+from tests.support.gears import least_ring_shift, undercut_limit
 
 PLANETARY = """
 name = "shifted"
@@ -173,20 +174,6 @@ def test_the_2009_papers_aa_set_is_built_by_shifting_both_meshes_to_one_arm():
     assert train_geometry(train, shifts=shifts).problems == []
 
 
-def _least_ring_shift(z1: int, z2: int) -> float:
-    """By hand, the published condition against involute interference of an internal mesh (KHK / SDP-SI eq. 5-5)
-    typed here: z1/z2 >= 1 - tan(alpha_a2)/tan(alpha_w).  At the reference arm alpha_w = 20 deg, so the ring's tip
-    radius must be at least r_b2 sqrt(1 + ((1 - z1/z2) tan 20)^2); its tip radius is m (z2/2 - 1 + x2), m = 1."""
-    alpha = math.radians(20)
-    r_a2 = z2 / 2 * math.cos(alpha) * math.sqrt(1 + ((1 - z1 / z2) * math.tan(alpha)) ** 2)
-    return r_a2 - (z2 / 2 - 1)
-
-
-def _undercut_limit(z: int) -> float:
-    """The textbook least shift without undercut, 1 - z sin^2(20 deg) / 2 (ISO 53 profile A: to 3e-5)."""
-    return 1 - z * math.sin(math.radians(20)) ** 2 / 2
-
-
 def test_the_double_pinion_ring_gets_the_least_shift_that_clears_its_involute_interference():
     # 30/18/18/90: every mesh at its reference distance, so x_p1 = -x_s, x_p2 = -x_p1 and x_r = x_p2: one free
     # shift t = x_r.  The ring clears its 18-tooth pinion from t = 0.0423 (by hand), the pinion p1 (x = -t) is
@@ -194,8 +181,8 @@ def test_the_double_pinion_ring_gets_the_least_shift_that_clears_its_involute_in
     train = load_train("double-pinion")
     assert [p.split(":")[:2] for p in train_geometry(train).problems] == [["mesh p2-r", " involute interference"]]
     shifts = coaxial_shifts(train)
-    least = _least_ring_shift(18, 90)
-    assert 0.042 < least < -_undercut_limit(18) < 0.053
+    least = least_ring_shift(18, 90)
+    assert 0.042 < least < -undercut_limit(18) < 0.053
     assert 0 < float(shifts["r"]) - least < 5e-5
     assert shifts["s"] == shifts["p2"] == shifts["r"] == -shifts["p1"]
     geo = train_geometry(train, shifts=shifts)
@@ -207,7 +194,7 @@ def test_a_ring_no_shift_clears_keeps_the_choice_and_the_report_says_why(name, p
     # the ring's mesh with its 18-tooth planet is clear from x_r = 0.0666 (72 teeth) or 0.1081 (54 teeth), by hand;
     # moving x_r there moves an 18-tooth gear to -x_r, below its undercut limit -0.0528: no shift clears both
     train = load_train(name)
-    assert _least_ring_shift(planet, ring) > -_undercut_limit(18) + 0.01
+    assert least_ring_shift(planet, ring) > -undercut_limit(18) + 0.01
     shifts = coaxial_shifts(train)
     assert set(shifts.values()) == {0}  # today's choice: the least largest shift without undercut
     (note,) = shifts.notes
@@ -221,8 +208,8 @@ def test_a_12_tooth_sun_keeps_its_shift_and_the_report_says_the_ring_stays_in_in
     # 12/24/60: x_s = -x_p = -x_r. The sun is free of undercut from x_s = 0.2981, so x_r <= -0.2981; the ring clears
     # its 24-tooth planet only from x_r = -0.1448 (by hand): the choice stays x_s = 0.29811, and says so
     train = read_train(PLANETARY.format(xs=0, xp=0, xr=0, distance=""))
-    assert -_undercut_limit(12) < _least_ring_shift(24, 60) - 0.15
-    assert _least_ring_shift(24, 60) == pytest.approx(-0.1448, abs=5e-5)
+    assert -undercut_limit(12) < least_ring_shift(24, 60) - 0.15
+    assert least_ring_shift(24, 60) == pytest.approx(-0.1448, abs=5e-5)
     shifts = coaxial_shifts(train)
     assert shifts == {"s": sp.Rational("0.29811"), "p": sp.Rational("-0.29811"), "r": sp.Rational("-0.29811")}
     geo = train_geometry(train, shifts=shifts)
@@ -241,7 +228,7 @@ def test_a_sun_with_room_to_lose_shift_lets_the_ring_clear_its_planet():
     # -0.755) and the planet (-0.0528) stay free of undercut there: t just above the ring's least
     train = read_train(SUN_PLANET_RING.format(xs=0, xp=0, xr=0, distance=""))
     shifts = coaxial_shifts(train)
-    least = _least_ring_shift(18, 66)
+    least = least_ring_shift(18, 66)
     assert least == pytest.approx(0.0779, abs=5e-5)
     assert 0 < float(shifts["r"]) - least < 5e-5 and shifts["p"] == shifts["r"] == -shifts["s"]
     assert train_geometry(train, shifts=shifts).problems == []
