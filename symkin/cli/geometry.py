@@ -31,7 +31,8 @@ def register(sub: Any) -> None:
                    "layer per gear, mm; needs ezdxf) or FILE.svg")
     p.add_argument("--choose-shifts", action="store_true",
                    help="replace the file's shifts by the ones that give every mesh its centre distance (the least "
-                   "largest shift with no external gear undercut), and report them")
+                   "largest shift with no external gear undercut and no mesh interference; where no shift clears an "
+                   "interference, a note says so), and report them")
     p.add_argument("--min-contact-ratio", default="1.2", metavar="EPS",
                    help="report meshes whose transverse contact ratio is below EPS (default 1.2)")
 

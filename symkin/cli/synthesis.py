@@ -193,7 +193,7 @@ def _train_geometry(build: Any) -> dict[str, Any] | None:
         return None
     return {"shifts": {g: shifts[g] for g in geo.gears if g in shifts and shifts[g] != 0},
             "contact_ratio_min": min(float(m.pair.contact_ratio) for m in geo.meshes),
-            "undercut": any(g.undercut for g in geo.gears.values()), "problems": geo.problems}
+            "undercut": any(g.undercut for g in geo.gears.values()), "problems": geo.problems + list(shifts.notes)}
 
 
 def _geometry_limits(args: Any, top: int | None) -> tuple[Any, int | None, int | None]:

@@ -6,10 +6,10 @@ Lengths are in millimetres (the module, ISO 54); the user's view is ``docs/geome
 """
 
 from symkin.geometry.gear import GearGeometry, ToothForm, gear_geometry, involute
-from symkin.geometry.mesh import PairGeometry, inverse_involute, pair_geometry, shift_sum_for
+from symkin.geometry.mesh import PairGeometry, interferences, inverse_involute, pair_geometry, shift_sum_for
 from symkin.geometry.outline import tooth_outline
-from symkin.geometry.train import MeshReport, TrainGeometry, coaxial_shifts, train_geometry
+from symkin.geometry.train import CoaxialShifts, MeshReport, TrainGeometry, coaxial_shifts, train_geometry
 
 __all__ = ["ToothForm", "GearGeometry", "gear_geometry", "involute", "PairGeometry", "pair_geometry",
            "inverse_involute", "shift_sum_for", "tooth_outline", "TrainGeometry", "MeshReport", "train_geometry",
-           "coaxial_shifts"]
+           "coaxial_shifts", "CoaxialShifts", "interferences"]

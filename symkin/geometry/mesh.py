@@ -32,6 +32,7 @@ Metric Gear Technology, eqs. 5-5 to 5-10; Niemann/Winter vol. 2 the same conditi
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Any
 
@@ -133,61 +134,84 @@ class PairGeometry:
         eps = self.contact_ratio
         if eps < min_contact_ratio:
             out.append(f"contact ratio {float(eps):.3f} below {float(min_contact_ratio):g}")
-        r1, r2, line = self._paths()
-        # involute interference: a tip beyond the partner's interference point on the line of action
-        if self.internal:
-            if g2.tip_inside_base or not self._involute_ok():
-                out.append("involute interference: the ring's tip reaches past the pinion's interference point (where "
-                           "the line of action touches its base circle); raise the ring's shift or its tip diameter")
-            if not self._trochoid_ok():
-                out.append("tip interference (trochoid): the pinion's tip strikes the ring's teeth as it leaves the "
-                           "mesh; give a larger tooth difference or ring shift")
-            if not self._trimming_ok():
-                out.append("trimming interference: the pinion cannot be taken out radially (assemble it axially; a "
-                           "pinion cutter of these teeth cannot cut the ring)")
-        else:
-            if sp.N(r1 - line, DIGITS) > 0:
-                out.append(f"involute interference: the tip of the {g1.teeth}-tooth gear reaches past the interference "
-                           f"point (on the base circle) of the {g2.teeth}-tooth gear")
-            if sp.N(r2 - line, DIGITS) > 0:
-                out.append(f"involute interference: the tip of the {g2.teeth}-tooth gear reaches past the interference "
-                           f"point (on the base circle) of the {g1.teeth}-tooth gear")
+        found = self.interferences()
+        if "involute" in found:
+            out.append("involute interference: the ring's tip reaches past the pinion's interference point (where "
+                       "the line of action touches its base circle); raise the ring's shift or its tip diameter")
+        if "tip" in found:
+            out.append("tip interference (trochoid): the pinion's tip strikes the ring's teeth as it leaves the "
+                       "mesh; give a larger tooth difference or ring shift")
+        if "trimming" in found:
+            out.append("trimming interference: the pinion cannot be taken out radially (assemble it axially; a "
+                       "pinion cutter of these teeth cannot cut the ring)")
+        for key, (tip, other) in (("involute 1", (g1, g2)), ("involute 2", (g2, g1))):
+            if key in found:
+                out.append(f"involute interference: the tip of the {tip.teeth}-tooth gear reaches past the interference "
+                           f"point (on the base circle) of the {other.teeth}-tooth gear")
         # each problem once: two gears of one tooth number (a sun and its planet of 12) say the same sentence
         return list(dict.fromkeys(out))
 
-    # ---- internal meshes (KHK / SDP-SI eqs. 5-5 to 5-10)
-    def _tip_angles(self) -> tuple[sp.Expr, sp.Expr]:
+    def interferences(self) -> tuple[str, ...]:
+        """The interferences of this mesh (:func:`interferences`, at :data:`DIGITS` digits)."""
         g1, g2 = self.gear1, self.gear2
-        return sp.acos(g1.base_diameter / g1.tip_diameter), sp.acos(sp.Min(1, g2.base_diameter / g2.tip_diameter))
+        values = [g1.base_diameter / 2, g2.base_diameter / 2, g1.tip_diameter / 2, g2.tip_diameter / 2,
+                  self.centre_distance, self.working_pressure_angle]
+        with mpmath.workdps(DIGITS):
+            rb1, rb2, ra1, ra2, a, aw = (mpmath.mpf(str(sp.N(v, DIGITS + 5))) for v in values)
+            return interferences(mpmath.mpf(int(g1.teeth)), mpmath.mpf(int(g2.teeth)), self.internal, rb1, rb2, ra1, ra2,
+                                 a, aw, lib=mpmath)
 
     def _involute_ok(self) -> bool:
-        a2 = self._tip_angles()[1]
-        z1, z2 = self.gear1.teeth, self.gear2.teeth
-        return bool(sp.N(sp.Rational(z1, z2) - (1 - sp.tan(a2) / sp.tan(self.working_pressure_angle)), DIGITS) >= 0)
+        return "involute" not in self.interferences()
 
     def _trochoid_ok(self) -> bool:
-        a1, a2 = self._tip_angles()
-        z1, z2 = self.gear1.teeth, self.gear2.teeth
-        ra1, ra2, a = self.gear1.tip_diameter / 2, self.gear2.tip_diameter / 2, self.centre_distance
-        aw = self.working_pressure_angle
-        theta1 = sp.acos(_clip((ra2**2 - ra1**2 - a**2) / (2 * a * ra1))) + involute(a1) - involute(aw)
-        theta2 = sp.acos(_clip((a**2 + ra2**2 - ra1**2) / (2 * a * ra2)))
-        return bool(sp.N(theta1 * z1 / z2 + involute(aw) - involute(a2) - theta2, DIGITS) >= 0)
+        return "tip" not in self.interferences()
 
     def _trimming_ok(self) -> bool:
-        a1, a2 = self._tip_angles()
-        z1, z2 = self.gear1.teeth, self.gear2.teeth
-        aw = self.working_pressure_angle
-        theta1 = sp.asin(sp.sqrt(_clip((1 - (sp.cos(a1) / sp.cos(a2)) ** 2) / (1 - sp.Rational(z1, z2) ** 2), 0)))
-        theta2 = sp.asin(sp.sqrt(_clip(((sp.cos(a2) / sp.cos(a1)) ** 2 - 1) / (sp.Rational(z2, z1) ** 2 - 1), 0)))
-        return bool(sp.N(theta1 + involute(a1) - involute(aw) - sp.Rational(z2, z1) * (theta2 + involute(a2) - involute(aw)),
-                         DIGITS) >= 0)
+        return "trimming" not in self.interferences()
 
 
-def _clip(value: sp.Expr, low: int = -1) -> sp.Expr:
-    """``value`` within [low, 1] (as a float of :data:`DIGITS` digits): a circle that misses another."""
-    v = sp.N(value, DIGITS)
-    return sp.Max(low, sp.Min(1, v))
+def interferences(z1: Any, z2: Any, internal: bool, rb1: Any, rb2: Any, ra1: Any, ra2: Any, a: Any, aw: Any,
+                  lib: Any = math) -> tuple[str, ...]:
+    """The interferences of a mesh (gear 2 the internal one of an internal mesh) from its teeth, base and tip
+    radii, working centre distance ``a`` and pressure angle ``aw`` (KHK / SDP-SI eqs. 5-5 to 5-10; see the
+    module docstring): ``"involute 1"``/``"involute 2"`` (external: that gear's tip reaches past the other's
+    interference point), ``"involute"``, ``"tip"`` (trochoid) and ``"trimming"`` (internal).
+
+    ``lib`` is :mod:`math` (floats: fast, for a scan) or :mod:`mpmath` (every number an ``mpf``, at mpmath's
+    working precision).
+
+    >>> import math
+    >>> rb = lambda z: z / 2 * math.cos(math.pi / 9)
+    >>> interferences(18, 72, True, rb(18), rb(72), 10, 35, 27, math.pi / 9)
+    ('involute',)
+    """
+    line = a * lib.sin(aw)
+    if not internal:
+        found = []
+        for key, ra, rb in (("involute 1", ra1, rb1), ("involute 2", ra2, rb2)):
+            if lib.sqrt(ra**2 - rb**2) - line > 0:
+                found.append(key)
+        return tuple(found)
+    inv = lambda angle: lib.tan(angle) - angle  # noqa: E731
+    a1, a2 = lib.acos(rb1 / ra1), lib.acos(min(1, rb2 / ra2))
+    found = []
+    if ra2 < rb2 or z1 / z2 - (1 - lib.tan(a2) / lib.tan(aw)) < 0:
+        found.append("involute")
+    theta1 = lib.acos(_clip((ra2**2 - ra1**2 - a**2) / (2 * a * ra1))) + inv(a1) - inv(aw)
+    theta2 = lib.acos(_clip((a**2 + ra2**2 - ra1**2) / (2 * a * ra2)))
+    if theta1 * z1 / z2 + inv(aw) - inv(a2) - theta2 < 0:
+        found.append("tip")
+    theta1 = lib.asin(lib.sqrt(_clip((1 - (lib.cos(a1) / lib.cos(a2)) ** 2) / (1 - (z1 / z2) ** 2), 0)))
+    theta2 = lib.asin(lib.sqrt(_clip(((lib.cos(a2) / lib.cos(a1)) ** 2 - 1) / ((z2 / z1) ** 2 - 1), 0)))
+    if theta1 + inv(a1) - inv(aw) - z2 / z1 * (theta2 + inv(a2) - inv(aw)) < 0:
+        found.append("trimming")
+    return tuple(found)
+
+
+def _clip(value: Any, low: int = -1) -> Any:
+    """``value`` within [low, 1]: a circle that misses another."""
+    return max(low, min(1, value))
 
 
 def pair_geometry(gear1: GearGeometry, gear2: GearGeometry, centre_distance: Any = None) -> PairGeometry:

@@ -16,8 +16,15 @@ pitch circles do not give it.  :func:`train_geometry` puts them together:
 puts it at (every planet mesh of a coaxial set shares its planet's arm): each mesh fixes
 the sum ``x1 + x2`` (internal: ``x2 - x1``), which leaves one free shift per connected set
 of gears; it is chosen to make the largest shift of the set least while every external gear
-stays free of undercut (``x >= x_min``): the smallest shifts that build the set.  Bevel
-gears are left out (spur geometry only).
+stays free of undercut (``x >= x_min``) and every mesh of the set free of the interferences
+the report checks (involute; internal meshes also tip and trimming): the smallest shifts that
+build the set.  Moving the free shift keeps every mesh's working pressure angle and moves the
+tip circles only: a ring and its planet move together (``x2 - x1`` fixed), and a larger ring
+shift shortens the ring's teeth, which clears its involute interference while the planet's
+partners (a sun of ``x_s = S - x_p``) lose shift.  Where no shift within -1 and 1 clears the
+interference without undercut, the choice is the least largest shift without undercut, and
+:attr:`CoaxialShifts.notes` (and the report) says in one line what no shift clears and what to
+change.  Bevel gears are left out (spur geometry only).
 
     >>> from symkin.trains import load_train
     >>> geo = train_geometry(load_train("simple"))
@@ -29,20 +36,25 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import sympy as sp
 
 from symkin.errors import InputError
 from symkin.geometry.gear import GearGeometry, ToothForm, gear_geometry
-from symkin.geometry.mesh import DIGITS, MIN_CONTACT_RATIO, PairGeometry, pair_geometry, shift_sum_for
+from symkin.geometry.mesh import DIGITS, MIN_CONTACT_RATIO, PairGeometry, interferences, pair_geometry, shift_sum_for
 from symkin.geometry.outline import mesh_phases
 
-__all__ = ["TrainGeometry", "MeshReport", "train_geometry", "coaxial_shifts", "SHIFT_TOLERANCE"]
+__all__ = ["TrainGeometry", "MeshReport", "train_geometry", "coaxial_shifts", "CoaxialShifts", "SHIFT_TOLERANCE",
+           "SHIFT_LIMIT", "SCAN_STEP"]
 
 #: Shifts whose sum is this close to the one a centre distance needs give that distance.
 SHIFT_TOLERANCE = sp.Rational(1, 10**4)
+#: The shifts the scan for interference looks at: every shift of the set within -SHIFT_LIMIT and SHIFT_LIMIT.
+SHIFT_LIMIT = 1
+#: The step of that scan (in the free shift); a clear stretch is then bisected to its end.
+SCAN_STEP = 0.005
 
 
 @dataclass(frozen=True)
@@ -120,7 +132,8 @@ def train_geometry(train: Any, *, shifts: Mapping[str, Any] | None = None,
                    min_contact_ratio: Any = MIN_CONTACT_RATIO) -> TrainGeometry:
     """The geometry of ``train``'s spur gears and meshes (see the module docstring).
 
-    ``shifts`` (gear name -> x) replaces the file's shifts (e.g. :func:`coaxial_shifts`'s choice).
+    ``shifts`` (gear name -> x) replaces the file's shifts (e.g. :func:`coaxial_shifts`'s choice, whose notes
+    join the report's).
     """
     gears, notes = _spur_gears(train, shifts)
     meshes = []
@@ -151,6 +164,7 @@ def train_geometry(train: Any, *, shifts: Mapping[str, Any] | None = None,
         problems += pair.problems(min_contact_ratio)
         meshes.append(MeshReport((a, b), pair, tuple(problems)))
     geo_problems = {name: p for name, g in gears.items() if (p := _gear_problems(g))}
+    notes += getattr(shifts, "notes", ())  # what coaxial_shifts could not clear
     return TrainGeometry(gears, tuple(meshes), _placement(train, gears, meshes), tuple(notes), geo_problems)
 
 
@@ -165,18 +179,28 @@ def _placement(train: Any, gears: Mapping[str, GearGeometry], meshes: list[MeshR
     return {name: (centre[name][0], centre[name][1], phase[name]) for name in gears}
 
 
-def coaxial_shifts(train: Any, *, digits: int = 5) -> dict[str, sp.Rational]:
+class CoaxialShifts(dict):
+    """:func:`coaxial_shifts`'s choice, gear name -> shift (a dict), with ``notes``: one line for each set of
+    gears whose interference no shift along the coaxial condition clears (what the designer can change)."""
+
+    notes: tuple[str, ...] = ()
+
+
+def coaxial_shifts(train: Any, *, digits: int = 5) -> CoaxialShifts:
     """Shift coefficients that give every spur mesh of ``train`` the centre distance the train places it at.
 
     Each mesh fixes a sum (external) or a difference (internal); one shift per connected set of
-    gears is free, chosen to make the largest shift least with no external gear undercut (see the
-    module docstring).  The shifts are rounded to ``digits`` decimals (exact Rationals); gears in no spur
-    mesh are not in the result.
+    gears is free, chosen to make the largest shift least with no external gear undercut and no mesh of the set
+    with involute, tip (trochoid) or trimming interference (see the module docstring).  Where no shift clears the
+    interference, the choice is the least largest shift without undercut, and ``notes`` says so.  The shifts
+    are rounded to ``digits`` decimals (exact Rationals); gears in no spur mesh are not in the result.
     """
     gears, _ = _spur_gears(train, None)
-    rules = _shift_rules(train, gears)
+    meshes = _spur_meshes(train, gears)
+    rules = _shift_rules(gears, meshes)
     affine: dict[str, tuple[sp.Expr, int]] = {}  # x = c + k t
-    chosen: dict[str, sp.Expr] = {}
+    chosen = CoaxialShifts()
+    notes = []
     for start in gears:
         if start in affine or not any(start in r[:2] for r in rules):
             continue
@@ -184,24 +208,36 @@ def coaxial_shifts(train: Any, *, digits: int = 5) -> dict[str, sp.Rational]:
         if fixed and max(fixed) - min(fixed) > SHIFT_TOLERANCE:
             raise InputError(f"the meshes around gear {start} ask for two different shifts: their centre distances "
                              "cannot all be met by profile shift; change a centre distance or a tooth number")
-        t = fixed[0] if fixed else _least_shifts(
-            [(float(sp.N(affine[g][0], DIGITS)), affine[g][1], None if gears[g].internal else float(gears[g].minimum_shift or 0))
-             for g in component], margin=10.0**-digits)
-        for g in component:
-            c, k = affine[g]
-            chosen[g] = sp.Rational(f"{float(sp.N(c, DIGITS)) + k * t:.{digits}f}")
+        lines = {g: (float(sp.N(affine[g][0], DIGITS)), affine[g][1]) for g in component}
+        if fixed:
+            t = fixed[0]
+        else:
+            scan = _InterferenceScan(gears, lines, [m for m in meshes if m[0] in lines])
+            t = _least_shifts(scan.limits, margin=10.0**-digits)
+            t, note = scan.clear(t, margin=10.0**-digits)
+            notes += [note] if note else []
+        for g, (c, k) in lines.items():
+            chosen[g] = sp.Rational(f"{c + k * t:.{digits}f}")
+    chosen.notes = tuple(notes)
     return chosen
 
 
-def _shift_rules(train: Any, gears: Mapping[str, GearGeometry]) -> list[tuple[str, str, int, sp.Expr]]:
+def _spur_meshes(train: Any, gears: Mapping[str, GearGeometry]) -> list[tuple[str, str, sp.Expr]]:
+    """Each spur mesh as ``(a, b, centre distance)``, the internal gear second, at the distance the train places it."""
+    out = []
+    for mesh in train.meshes:
+        if mesh.a in gears and mesh.b in gears:
+            a, b = _ordered(train, mesh.a, mesh.b)
+            out.append((a, b, sp.nsimplify(train.mesh_geometry(mesh).centre_distance)))
+    return out
+
+
+def _shift_rules(gears: Mapping[str, GearGeometry], meshes: list[tuple[str, str, sp.Expr]]) -> list[tuple[str, str, int, sp.Expr]]:
     """For each spur mesh a-b (the internal gear second), ``(a, b, sign, value)``: ``x_b = sign * x_a + value``
     gives the mesh the centre distance the train places it at."""
     rules = []
-    for mesh in train.meshes:
-        if mesh.a not in gears or mesh.b not in gears:
-            continue
-        a, b = _ordered(train, mesh.a, mesh.b)
-        needed = shift_sum_for(gears[a], gears[b], sp.nsimplify(train.mesh_geometry(mesh).centre_distance))
+    for a, b, placed in meshes:
+        needed = shift_sum_for(gears[a], gears[b], placed)
         rules.append((a, b, 1, needed) if gears[b].internal else (a, b, -1, needed))
     return rules
 
@@ -252,3 +288,94 @@ def _least_shifts(lines: list[tuple[float, int, float | None]], margin: float = 
     candidates |= {(c2 - c1) / 2 * k1 for c1, k1, _ in lines for c2, k2, _ in lines if k1 == -k2}
     feasible = [min(max(t, low), high) for t in candidates]
     return min(feasible, key=lambda t: (max(abs(c + k * t) for c, k, _ in lines), abs(t)))
+
+
+_NAMES = {"involute": "involute interference", "involute 1": "involute interference",
+          "involute 2": "involute interference", "tip": "tip (trochoid) interference",
+          "trimming": "trimming interference"}
+
+
+class _InterferenceScan:
+    """The interferences of a set's meshes as its free shift t moves (every shift ``x = c + k t``): each mesh
+    keeps its working pressure angle and centre distance (the coaxial condition fixes ``x1 + x2``, internal
+    ``x2 - x1``), only the tip circles move with the shifts.  Floats: the report checks the choice again exactly."""
+
+    def __init__(self, gears: Mapping[str, GearGeometry], lines: Mapping[str, tuple[float, int]],
+                 meshes: list[tuple[str, str, sp.Expr]]) -> None:
+        self.lines = lines
+        #: (c, k, x_min) of each gear (x_min None for an internal gear), as :func:`_least_shifts` takes them
+        self.minimum = {g: None if gears[g].internal else float(gears[g].minimum_shift or 0) for g in lines}
+        self.limits = [(c, k, self.minimum[g]) for g, (c, k) in lines.items()]
+        self.tips = {g: _tip_radius_line(gears[g]) for g in lines}
+        self.meshes = []
+        for a, b, placed in meshes:
+            g1, g2 = gears[a], gears[b]
+            pair = pair_geometry(g1, g2, placed)
+            self.meshes.append((f"{a}-{b}", a, b, (float(g1.teeth), float(g2.teeth), g2.internal, float(g1.base_diameter) / 2,
+                                                   float(g2.base_diameter) / 2), float(placed), float(pair.working_pressure_angle)))
+
+    def found(self, t: float) -> dict[str, tuple[str, ...]]:
+        """Mesh name -> the interferences it has at t (every mesh with any)."""
+        out = {}
+        for name, a, b, (z1, z2, internal, rb1, rb2), placed, aw in self.meshes:
+            ra1, ra2 = (r0 + slope * (self.lines[g][0] + self.lines[g][1] * t) for g, (r0, slope) in
+                        ((a, self.tips[a]), (b, self.tips[b])))
+            try:
+                kinds = interferences(z1, z2, internal, rb1, rb2, ra1, ra2, placed, aw)
+            except (ValueError, ZeroDivisionError):  # a tip circle inside the base circle: no involute there
+                kinds = ("involute",)
+            if kinds:
+                out[name] = kinds
+        return out
+
+    def clear(self, t0: float, margin: float) -> tuple[float, str | None]:
+        """The free shift nearest ``t0`` (the least largest shift without undercut) that clears every interference
+        with no external gear undercut, and None; or ``t0`` and the line that says what no shift clears."""
+        at_t0 = self.found(t0)
+        if not at_t0:
+            return t0, None
+        limits = self.limits
+        low = max((xm - c for c, k, xm in limits if xm is not None and k == 1), default=-math.inf) + margin
+        high = min((c - xm for c, k, xm in limits if xm is not None and k == -1), default=math.inf) - margin
+        lo = max(min((-SHIFT_LIMIT - c) * k, (SHIFT_LIMIT - c) * k) for c, k, _ in limits)
+        hi = min(max((-SHIFT_LIMIT - c) * k, (SHIFT_LIMIT - c) * k) for c, k, _ in limits)
+        grid = [lo + i * SCAN_STEP for i in range(int((hi - lo) / SCAN_STEP) + 1)] if hi > lo else []
+        clear = [t for t in grid if not self.found(t)]
+        best = []
+        for side in (-1, 1):
+            ok = [t for t in clear if low <= t <= high and (t - t0) * side > 0]
+            if ok:
+                best.append(self._edge(t0, min(ok, key=lambda t: abs(t - t0)), side, margin))
+        if best:
+            largest = lambda t: max(abs(c + k * t) for c, k, _ in limits)  # noqa: E731
+            return min(best, key=largest), None
+        meshes = ", ".join(f"mesh {m} ({', '.join(dict.fromkeys(_NAMES[k] for k in kinds))})" for m, kinds in at_t0.items())
+        elsewhere = [t for t in grid if not set(self.found(t)) & set(at_t0)]
+        if elsewhere:  # what the nearest shift that clears these meshes runs into
+            t = min(elsewhere, key=lambda t: abs(t - t0))
+            undercut = [g for g, (c, k) in self.lines.items() if (xm := self.minimum[g]) is not None and c + k * t < xm]
+            others = list(self.found(t))
+            why = " or ".join(w for w, on in ((f"undercutting gear{'s' * (len(undercut) > 1)} {', '.join(undercut)}", undercut),
+                                                (f"interference at mesh{'es' * (len(others) > 1)} {', '.join(others)}", others)) if on)
+            why = f"without {why}"
+        else:
+            why = f"with every shift within -{SHIFT_LIMIT} and {SHIFT_LIMIT}"
+        return t0, (f"{meshes}: no profile shift along the coaxial condition clears it {why}; change the tooth numbers, "
+                    "take a larger pressure angle or a shorter addendum of the ring (tip_diameter in the train file)")
+
+    def _edge(self, t0: float, t: float, side: int, margin: float) -> float:
+        """The end of the clear stretch around grid point ``t`` nearest ``t0`` (bisected), ``margin`` inside it."""
+        bad = max(t - SCAN_STEP, t0) if side == 1 else min(t + SCAN_STEP, t0)
+        good = t
+        for _ in range(40):
+            mid = (bad + good) / 2
+            bad, good = (bad, mid) if not self.found(mid) else (mid, good)
+        inside = good + side * margin
+        return inside if not self.found(inside) else t
+
+
+def _tip_radius_line(g: GearGeometry) -> tuple[float, float]:
+    """``(r_a at x = 0, dr_a/dx)``: the tip radius is affine in the shift (0 where the tip diameter is given)."""
+    r0, r1 = (float(GearGeometry(g.teeth, g.module, replace(g.form, shift=x), internal=g.internal, tip=g.tip).tip_diameter) / 2
+              for x in (0, 1))
+    return r0, r1 - r0

@@ -133,3 +133,20 @@ def test_a_sun_and_planet_of_12_teeth_print_each_problem_once(capsys, tmp_path):
     problems = [line for line in out.splitlines() if line.startswith("problem: ")]
     assert code == 0 and len(problems) == len(set(problems))
     assert sum(line.startswith("problem: mesh s-p: involute interference") for line in problems) == 1
+
+
+def test_choose_shifts_clears_the_double_pinion_ring_and_says_why_the_ravigneaux_ring_stays(capsys):
+    # double-pinion: the ring's involute interference with its 18-tooth pinion is cleared by x_r = +0.0423 (the
+    # published condition by hand in tests/geometry/test_train.py); ravigneaux: no shift clears it without
+    # undercutting the short pinion p1, and one line says so
+    code, out, _ = run(capsys, "--train", "double-pinion")
+    assert code == 0 and "problem: mesh p2-r: involute interference" in out
+    code, out, _ = run(capsys, "--train", "double-pinion", "--choose-shifts", "--json")
+    data = json.loads(out)
+    assert code == 0 and data["problems"] == [] and data["notes"] == []
+    assert data["chosen_shifts"]["r"] == pytest.approx(0.0423, abs=1e-4)
+    code, out, _ = run(capsys, "--train", "ravigneaux", "--choose-shifts")
+    assert code == 0 and "problem: mesh p2-r: involute interference" in out
+    (note,) = [line for line in out.splitlines() if line.startswith("note: ")]
+    assert note.startswith("note: mesh p2-r (involute interference): no profile shift along the coaxial condition "
+                           "clears it without undercutting gear p1; change the tooth numbers")

@@ -11,6 +11,7 @@ import pytest
 
 from symkin.cli import main
 from symkin.geometry import gear_geometry, pair_geometry
+from tests.support.gears import least_ring_shift
 
 SIMPLE = ("synthesize", "--train", "simple", "--driver", "S", "--driven", "C", "--fixed", "R", "--ratio", "4",
           "--planets", "3", "--zmax", "80", "--quiet")
@@ -98,3 +99,16 @@ def test_a_transmission_gives_each_design_its_least_contact_ratio(capsys):
     out = capsys.readouterr().out
     assert "z_s=18" not in out and "z_s=21" in out and "least contact ratio 1.5" in out
     assert "note: 1 of the best 3 designs was left out for undercut or a contact ratio below 31/20" in out
+
+
+def test_a_wolfrom_design_with_rings_on_18_and_19_tooth_planets_gets_the_shifts_that_clear_them(capsys):
+    # 38/19/18/75/76 (every mesh at its reference arm 28.5): unshifted, both rings meet their planets' flanks (involute
+    # interference); the rings' least shifts by the published condition, typed in tests/support/gears.py
+    code = main(["synthesize", "--train", "wolfrom", "--state", "drive", "--ratio", "76", "--tolerance", "0.02",
+                 "--planets", "3", "--zmax", "80", "--quiet", "--json"])
+    data = json.loads(capsys.readouterr().out)
+    (design,) = [d for d in data["designs"] if d["teeth"] == {"s": 38, "p1": 19, "p2": 18, "r2": 75, "r1": 76}]
+    assert code == 0 and design["geometry"]["problems"] == []
+    shifts = design["geometry"]["shifts"]
+    assert 0 < shifts["r1"] - least_ring_shift(19, 76) < 1e-4 and shifts["p1"] == shifts["r1"] == -shifts["s"]
+    assert 0 < shifts["r2"] - least_ring_shift(18, 75) < 1e-4 and shifts["p2"] == shifts["r2"]

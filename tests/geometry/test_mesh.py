@@ -10,7 +10,15 @@ import sympy as sp
 from scipy.optimize import brentq
 
 from symkin.errors import InputError
-from symkin.geometry import ToothForm, gear_geometry, inverse_involute, involute, pair_geometry, shift_sum_for
+from symkin.geometry import (
+    ToothForm,
+    gear_geometry,
+    interferences,
+    inverse_involute,
+    involute,
+    pair_geometry,
+    shift_sum_for,
+)
 
 
 def _inv(a: float) -> float:
@@ -64,6 +72,51 @@ def test_trimming_limits_of_a_pinion_cutter_match_the_published_table(zc, z2):
     cutter = gear_geometry(zc, 1, ToothForm(addendum=sp.Rational(5, 4)))
     assert pair_geometry(cutter, gear_geometry(z2, 1, internal=True))._trimming_ok()
     assert not pair_geometry(cutter, gear_geometry(z2 - 1, 1, internal=True))._trimming_ok()
+
+
+# Table 5-3a in full: every (zc, z2) row; SDP-SI 5.2 (c) under it: "there will be an involute interference between
+# the internal gear and the pinion cutter if the number of teeth of the pinion cutter ranges from 15 to 22"
+TABLE_5_3A = [(15, 34), (16, 34), (17, 35), (18, 36), (19, 37), (20, 38), (21, 39), (22, 40), (24, 42), (25, 43),
+              (27, 45), (28, 46), (30, 48), (31, 49), (32, 50), (33, 51), (34, 52), (35, 53), (38, 56), (40, 58),
+              (42, 60), (44, 62), (48, 66), (50, 68), (56, 74), (60, 78), (64, 82), (66, 84), (80, 98), (96, 114),
+              (100, 118)]
+
+
+def _ring_clears_by_hand(z1: int, z2: int, x2: float = 0.0, alpha_w: float = math.pi / 9) -> bool:
+    """SDP-SI eq. (5-5) typed here: z1/z2 >= 1 - tan(alpha_a2)/tan(alpha_w), cos(alpha_a2) = d_b2/d_a2, with the
+    internal gear's tip d_a2 = m (z2 - 2 + 2 x2) (m = 1)."""
+    alpha_a2 = math.acos(z2 * math.cos(math.pi / 9) / (z2 - 2 + 2 * x2))
+    return z1 / z2 >= 1 - math.tan(alpha_a2) / math.tan(alpha_w)
+
+
+@pytest.mark.parametrize("zc, z2", TABLE_5_3A)
+def test_involute_interference_of_a_pinion_cutter_and_its_ring_matches_the_published_statement(zc, z2):
+    cutter = gear_geometry(zc, 1, ToothForm(addendum=sp.Rational(5, 4)))
+    found = pair_geometry(cutter, gear_geometry(z2, 1, internal=True)).interferences()
+    assert ("involute" in found) == (zc <= 22) == (not _ring_clears_by_hand(zc, z2))
+    assert "trimming" not in found  # the row is the least ring without trimming
+
+
+def test_a_shifted_pinion_cutter_matches_table_5_3b():
+    # Table 5-3b (x2 = 0, the cutter shifted by xc = 0.0075 zc + 0.05): its first row, zc 15, xc 0.1625, z2 36 (the
+    # least ring without trimming); under it: involute interference for cutters of 15 to 19 teeth, none from 20
+    def least_ring(zc: int) -> tuple[int, tuple[str, ...]]:
+        cutter = gear_geometry(zc, 1, ToothForm(addendum=sp.Rational(5, 4), shift=sp.Rational(75, 10000) * zc + sp.Rational(1, 20)))
+        z2 = zc + 12
+        while "trimming" in (found := pair_geometry(cutter, gear_geometry(z2, 1, internal=True)).interferences()):
+            z2 += 1
+        return z2, found
+    assert least_ring(15)[0] == 36
+    assert [zc for zc in range(15, 26) if "involute" in least_ring(zc)[1]] == [15, 16, 17, 18, 19]
+
+
+@pytest.mark.parametrize("z1, x2, alpha_w, a, eps", TABLE_5_4[::3])
+def test_the_float_route_of_the_interference_checks_agrees_with_the_exact_one(z1, x2, alpha_w, a, eps):
+    # interferences() with math floats (coaxial_shifts scans with it) against the mpmath route at 30 digits
+    p = pair_geometry(gear_geometry(z1, 1), gear_geometry(50, 1, ToothForm(shift=sp.Rational(x2)), internal=True))
+    values = [float(v) for v in (p.gear1.base_diameter / 2, p.gear2.base_diameter / 2, p.gear1.tip_diameter / 2,
+                                 p.gear2.tip_diameter / 2, p.centre_distance, p.working_pressure_angle)]
+    assert interferences(float(z1), 50.0, True, *values) == p.interferences() == ("trimming",)
 
 
 def test_trochoid_interference_of_standard_internal_gears_needs_a_small_tooth_difference():

@@ -12,6 +12,7 @@ from scipy.optimize import brentq
 from symkin.errors import InputError
 from symkin.geometry import coaxial_shifts, train_geometry
 from symkin.trains import load_train, read_train, ready_made
+from tests.support.gears import least_ring_shift, undercut_limit
 
 PLANETARY = """
 name = "shifted"
@@ -170,4 +171,64 @@ def test_the_2009_papers_aa_set_is_built_by_shifting_both_meshes_to_one_arm():
         x = float(shifts[a] + shifts[b])
         aw = brentq(lambda t: inv(t) - inv(alpha) - 2 * math.tan(alpha) * x / teeth, 0.01, 1.2)
         assert teeth / 2 * math.cos(alpha) / math.cos(aw) == pytest.approx(100, abs=1e-4)
+    assert train_geometry(train, shifts=shifts).problems == []
+
+
+def test_the_double_pinion_ring_gets_the_least_shift_that_clears_its_involute_interference():
+    # 30/18/18/90: every mesh at its reference distance, so x_p1 = -x_s, x_p2 = -x_p1 and x_r = x_p2: one free
+    # shift t = x_r.  The ring clears its 18-tooth pinion from t = 0.0423 (by hand), the pinion p1 (x = -t) is
+    # undercut from t = 0.0528: the least largest shift is the ring's least, t just above 0.0423
+    train = load_train("double-pinion")
+    assert [p.split(":")[:2] for p in train_geometry(train).problems] == [["mesh p2-r", " involute interference"]]
+    shifts = coaxial_shifts(train)
+    least = least_ring_shift(18, 90)
+    assert 0.042 < least < -undercut_limit(18) < 0.053
+    assert 0 < float(shifts["r"]) - least < 5e-5
+    assert shifts["s"] == shifts["p2"] == shifts["r"] == -shifts["p1"]
+    geo = train_geometry(train, shifts=shifts)
+    assert geo.problems == [] and shifts.notes == () and geo.notes == ()
+
+
+@pytest.mark.parametrize("name, planet, ring, undercut", [("ravigneaux", 18, 72, "p1"), ("hub-3speed", 18, 54, "s")])
+def test_a_ring_no_shift_clears_keeps_the_choice_and_the_report_says_why(name, planet, ring, undercut):
+    # the ring's mesh with its 18-tooth planet is clear from x_r = 0.0666 (72 teeth) or 0.1081 (54 teeth), by hand;
+    # moving x_r there moves an 18-tooth gear to -x_r, below its undercut limit -0.0528: no shift clears both
+    train = load_train(name)
+    assert least_ring_shift(planet, ring) > -undercut_limit(18) + 0.01
+    shifts = coaxial_shifts(train)
+    assert set(shifts.values()) == {0}  # today's choice: the least largest shift without undercut
+    (note,) = shifts.notes
+    assert note.startswith(f"mesh {'p2' if name == 'ravigneaux' else 'p'}-r (involute interference): no profile shift "
+                           f"along the coaxial condition clears it without undercutting gear {undercut}; change the tooth "
+                           "numbers, take a larger pressure angle or a shorter addendum of the ring")
+    assert train_geometry(train, shifts=shifts).notes == (note,)
+
+
+def test_a_12_tooth_sun_keeps_its_shift_and_the_report_says_the_ring_stays_in_interference():
+    # 12/24/60: x_s = -x_p = -x_r. The sun is free of undercut from x_s = 0.2981, so x_r <= -0.2981; the ring clears
+    # its 24-tooth planet only from x_r = -0.1448 (by hand): the choice stays x_s = 0.29811, and says so
+    train = read_train(PLANETARY.format(xs=0, xp=0, xr=0, distance=""))
+    assert -undercut_limit(12) < least_ring_shift(24, 60) - 0.15
+    assert least_ring_shift(24, 60) == pytest.approx(-0.1448, abs=5e-5)
+    shifts = coaxial_shifts(train)
+    assert shifts == {"s": sp.Rational("0.29811"), "p": sp.Rational("-0.29811"), "r": sp.Rational("-0.29811")}
+    geo = train_geometry(train, shifts=shifts)
+    assert [p.split(":")[:2] for p in geo.problems] == [["mesh p-r", " involute interference"]]
+    assert geo.notes == ("mesh p-r (involute interference): no profile shift along the coaxial condition clears it "
+                         "without undercutting gear s or interference at mesh s-p; change the tooth numbers, take a "
+                         "larger pressure angle or a "
+                         "shorter addendum of the ring (tip_diameter in the train file)",)
+
+
+SUN_PLANET_RING = PLANETARY.replace("teeth = 12", "teeth = 30").replace("teeth = 24", "teeth = 18").replace("teeth = 60", "teeth = 66")
+
+
+def test_a_sun_with_room_to_lose_shift_lets_the_ring_clear_its_planet():
+    # 30/18/66: x_s = -t, x_p = x_r = t. The ring clears its 18-tooth planet from t = 0.0779 (by hand), the sun (x_min
+    # -0.755) and the planet (-0.0528) stay free of undercut there: t just above the ring's least
+    train = read_train(SUN_PLANET_RING.format(xs=0, xp=0, xr=0, distance=""))
+    shifts = coaxial_shifts(train)
+    least = least_ring_shift(18, 66)
+    assert least == pytest.approx(0.0779, abs=5e-5)
+    assert 0 < float(shifts["r"]) - least < 5e-5 and shifts["p"] == shifts["r"] == -shifts["s"]
     assert train_geometry(train, shifts=shifts).problems == []
