@@ -7,27 +7,17 @@ from __future__ import annotations
 import itertools
 import sys
 import types
-from fractions import Fraction
 
 import numpy as np
 import pytest
 
 import symkin
-from symkin import schemes
 from symkin.numeric.backends import numba as numba_backend
 from symkin.numeric.backends import numba_available
 from symkin.numeric.backends.numba import COMPILE_PAYBACK, compile_estimate, compile_pays
+from tests.support.willis import exact, law
 
 pytestmark = pytest.mark.skipif(not numba_available(), reason="needs numba")
-
-
-def law():
-    return schemes.two_row("AA", teeth=True).ratio("1", "H", fixed="4")
-
-
-def exact(z1, z2, z3, z4):
-    """i_1H^(4) of the AA train by Willis's formula: 1 - i_14^H, i_14^H = z2 z4/(z1 z3)."""
-    return [float(1 - Fraction(int(b) * int(d), int(a) * int(c))) for a, b, c, d in zip(z1, z2, z3, z4)]
 
 
 def test_the_kernel_is_compiled_once_numpy_time_is_five_times_its_compile_estimate():
