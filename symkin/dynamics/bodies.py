@@ -25,7 +25,7 @@ from symkin.model import FRAME, LinkKind, Mechanism
 from symkin.values import as_expr
 
 __all__ = ["MILLIMETRE", "Arm", "inertia_of", "mass_of", "carrier_chain", "multiplicity", "pinion_distance", "by_name",
-           "mesh_pressure_angle", "working_pressure_angle"]
+           "mesh_pressure_angle", "working_pressure_angle", "reference_radius"]
 
 #: Metres per millimetre: the model's lengths (module in mm, ISO 54) in SI.
 MILLIMETRE = sp.Rational(1, 1000)
@@ -67,6 +67,15 @@ def by_name(expr: Any, values: Mapping[Any, Any] | None) -> Any:
 PRESSURE_ANGLE = 20
 
 
+def reference_radius(gear: Any) -> sp.Expr:
+    """A gear's reference pitch radius m z / 2 where its tooth number and module are known (its
+    ``radius`` may be a working one), else its pitch radius: its base radius is this times the
+    cosine of the pressure angle."""
+    if gear.teeth is not None and gear.teeth.is_number and gear.module is not None and gear.module.is_number:
+        return gear.module * gear.teeth / 2
+    return gear.radius
+
+
 def mesh_pressure_angle(mech: Mechanism, mesh: Any, given: Any = None) -> sp.Expr:
     """A mesh's pressure angle (rad), the one of its base circles: ``given`` (radians, or a pint
     angle) when given, else the ``pressure_angle`` its gears' tooth forms in the train file
@@ -89,8 +98,9 @@ def working_pressure_angle(mech: Mechanism, mesh: Any, given: Any = None) -> sp.
     The pressure angle is ``given`` (radians, or a pint angle) for every mesh when given, else the
     ``pressure_angle`` its gears' tooth forms in the train file declare (degrees; 20 for a gear
     that declares none).  A mesh at a working centre distance a_w other than the reference a of
-    its pitch circles (a profile-shifted mesh) keeps its base circles, so its working angle is
-    acos(a cos(alpha) / a_w).
+    its gears (m (z1 +- z2) / 2, or the pitch radii where tooth numbers are not known), a
+    profile-shifted mesh or gears whose radii are given as working radii, keeps its base circles,
+    so its working angle is acos(a cos(alpha) / a_w).  A bevel mesh keeps the pressure angle.
 
     >>> from symkin.trains import read_train
     >>> train = read_train('''
@@ -106,11 +116,17 @@ def working_pressure_angle(mech: Mechanism, mesh: Any, given: Any = None) -> sp.
     30*cos(5*pi/36)/31
     """
     alpha = mesh_pressure_angle(mech, mesh, given)
-    if getattr(mesh, "centre_distance", None) is None:
-        return alpha
     ga, gb = mech.gear(mesh.a), mech.gear(mesh.b)
-    reference = abs(ga.radius - gb.radius) if ga.internal or gb.internal else ga.radius + gb.radius
-    return sp.acos(reference * sp.cos(alpha) / mesh.centre_distance)
+    if ga.bevel or gb.bevel:
+        return alpha
+    # the reference distance from the tooth numbers where they are known (a gear's radius may be
+    # given as its working radius), else from the pitch radii; the working one from the model
+    radii = [reference_radius(g) for g in (ga, gb)]
+    reference = abs(radii[0] - radii[1]) if ga.internal or gb.internal else radii[0] + radii[1]
+    working = mech.mesh_geometry(mesh).centre_distance
+    if reference == working:
+        return alpha
+    return sp.acos(reference * sp.cos(alpha) / working)
 
 
 def inertia_of(mech: Mechanism, link: str) -> sp.Expr:

@@ -40,7 +40,14 @@ from typing import Any
 
 import sympy as sp
 
-from symkin.dynamics.bodies import MILLIMETRE, carrier_chain, inertia_of, mesh_pressure_angle, working_pressure_angle
+from symkin.dynamics.bodies import (
+    MILLIMETRE,
+    carrier_chain,
+    inertia_of,
+    mesh_pressure_angle,
+    reference_radius,
+    working_pressure_angle,
+)
 from symkin.dynamics.torsional import Modes, TorsionalModel, modes_of
 from symkin.errors import InputError
 from symkin.model import LinkKind, Mechanism
@@ -236,8 +243,8 @@ def planar_geometry(train: Mechanism, planet: str | None = None, *, pressure_ang
         links[body] = train.link(other).name
         angles[body] = working_pressure_angle(train, mesh, pressure_angle)
         alpha = mesh_pressure_angle(train, mesh, pressure_angle)  # the base circles': the working one's at a_w = a
-        base[body] = radii[body] * sp.cos(alpha) * length
-        base["planet"] = radii["planet"] * sp.cos(alpha) * length
+        base[body] = reference_radius(train.gear(other)) * sp.cos(alpha) * length
+        base["planet"] = reference_radius(train.gear(mine)) * sp.cos(alpha) * length
     if set(radii) != {"sun", "ring", "planet"}:
         raise InputError(f"planet {planet} must mesh with a sun (an external gear) and a ring (an internal gear)")
     return {

@@ -260,3 +260,21 @@ def test_a_shifted_mesh_keeps_its_base_circles():
 def test_gears_of_one_mesh_with_different_pressure_angles_are_refused():
     with pytest.raises(InputError, match=r"gears a and b mesh but have different pressure angles \(25 and 20 degrees"):
         torsional_model(read_train(_two_gears(", pressure_angle = 25", "")))
+
+
+def test_gears_given_by_working_radii_keep_the_base_circles_of_their_teeth():
+    # radii 31/3 and 62/3 mm given directly for 20 and 40 teeth of module 1 (a mesh at 31 mm
+    # whose reference is 30): the base circles are m z cos(alpha) / 2 all the same
+    train = read_train("""
+module = 1
+meshes = [{ gears = ["a", "b"], stiffness = 1e8 }]
+[links.A]
+gears = { a = { teeth = 20, radius = "31/3" } }
+inertia = 0.01
+[links.B]
+carrier = "frame"
+gears = { b = { teeth = 40, radius = "62/3" } }
+inertia = 0.04
+""")
+    K = np.array(torsional_model(train).stiffness_matrix.evalf(30).tolist(), dtype=float)
+    assert np.allclose(K, _two_gear_stiffness(20), rtol=1e-14, atol=0)
