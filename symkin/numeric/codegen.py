@@ -348,7 +348,9 @@ class ScalarPrinter(_ProductCalls, PythonCodePrinter):
             return _print_compensated_sum(self, expr, "float64")
         # runtime's scalar compensated sum written out (one call less per point: issue 34, item 4)
         v = f"_v{expr.name}"
-        return (f"({v} if abs({v} := {self._print(expr.args[1])}) >= {self._print(bound)} else "
+        # float(): a Python float whatever the inputs (an np.float64 input would make a division by
+        # the sum a NumPy warning, not the ZeroDivisionError that sends the call to the general path)
+        return (f"float({v} if abs({v} := {self._print(expr.args[1])}) >= {self._print(bound)} else "
                 f"{expr.name}({', '.join(self._print(a) for a in expr.args[2:])})[0])")
 
 

@@ -4,6 +4,8 @@ any other input falls back to the general path."""
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 import pytest
 
@@ -60,3 +62,17 @@ def test_several_outputs_come_back_as_a_tuple_on_every_scalar_path(backend):
         assert type(got) is tuple and [float(v) for v in got] == [7.0, 3.0, 0.5]
     arrays = f(np.array([2.0]), np.array([3.0]), np.array([4.0]))
     assert type(arrays) is tuple and [a.shape for a in arrays] == [(1,)] * 3
+
+
+def test_a_pole_of_a_compensated_sum_given_a_numpy_float_is_a_pole_warning_only():
+    # the written-out compensated sum gives a Python float whatever the inputs: with an np.float64
+    # input the division by a zero sum raised NumPy's RuntimeWarning (an error under -W error)
+    # before the PoleWarning the general path gives; the exact value is 1/0, a pole
+    import sympy as sp
+
+    a, b, c, d, e, f = sp.symbols("a b c d e f")
+    F = symkin.compile([1 / (a * b - c * d + e * f)], [a, b, c, d, e, f], backend="numpy", on_pole="return")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert F(np.float64(1.0), 1.0, 1.0, 1.0, 0.0, 0.0) == np.inf
+        assert F(np.float64(2.0), 3.0, 1.0, 5.0, 0.5, 2.0) == 1 / (2 * 3 - 1 * 5 + 0.5 * 2)
