@@ -314,6 +314,8 @@ class NumbaBackend(NumpyBackend):
             return False
         self._from_disk.discard(key)
         kernel = self.kernels.pop(key)
+        if key == self._serial_key:
+            self.array_entry = None  # (it calls the discarded kernel: made again once the new one has run)
         _discard_cached(kernel[0].py_func.__module__)
         warnings.warn(f"a damaged entry of the kernel cache ({type(err).__name__}) was discarded and compiled again",
                       SymkinWarning, stacklevel=4)

@@ -86,3 +86,22 @@ def test_after_the_switch_the_default_runs_small_calls_without_deciding_again(mo
 
     monkeypatch.setattr(ev, "_numpy_until_it_pays", deciding)
     assert f(*values).tolist() == exact(*values)  # the entry
+
+
+def test_a_discarded_kernel_takes_its_entry_with_it():
+    # a damaged cache entry of the serial kernel is discarded (compiled again); the entry that
+    # called it goes too and is made again from the new kernel once that has run
+    f = symkin.compile(law(), backend="numba")
+    z = np.arange(20, 60)
+    values = (z, z - 1, z + 2, z + 3)
+    f(*values)
+    backend = f._evaluator
+    old = backend.array_entry
+    assert old is not None
+    backend._from_disk.add(backend._serial_key)  # as if the kernel had come from the disk cache
+    with pytest.warns(symkin.SymkinWarning, match="damaged entry"):
+        assert backend._discard(backend._serial_key, EOFError("truncated"))
+    assert backend.array_entry is None
+    assert f(*values).tolist() == exact(*values)  # the general path compiles the kernel again
+    assert backend.array_entry is not None and backend.array_entry is not old
+    assert f(*values).tolist() == exact(*values)
