@@ -148,6 +148,10 @@ def synthesize_transmission(train: Mechanism, ratios: Mapping[str, Any], *, tole
     tol = as_rational(tolerance, what="the tolerance")
     if tol < 0:
         raise InputError(f"the tolerance must be zero or positive, got {tolerance}")
+    zero = [s for s, t in targets.items() if t == 0]
+    if zero and not absolute:
+        raise InputError(f"state {zero[0]} has the target ratio 0, which a relative tolerance cannot hold; give an "
+                         "absolute tolerance (absolute=True, --absolute)")
     first = next(iter(targets))
     problem = derive(train, state=first, options=Options(planets=planets, zmin=zmin, zmax=zmax, **options))
     laws = {s: dataclasses.replace(problem, request=(None, None, (), s)).ratio_of(problem.train).rhs for s in targets}
@@ -458,7 +462,7 @@ def _design(values: dict[sp.Symbol, int], laws: dict[str, sp.Expr], targets: dic
         return None
     names = list(goal)
     steps = [abs(ratios[a] / ratios[b] - goal[a] / goal[b]) / abs(goal[a] / goal[b])
-             for a, b in itertools.pairwise(names) if ratios[b] != 0]
+             for a, b in itertools.pairwise(names) if ratios[b] != 0 and goal[a] != 0 and goal[b] != 0]
     return TransmissionDesign({str(z): v for z, v in values.items()}, {s: sp.Rational(r.numerator, r.denominator)
                               for s, r in ratios.items()}, sp.Rational(max(errors)), sp.Rational(max(steps, default=0)))
 

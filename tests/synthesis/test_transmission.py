@@ -118,3 +118,14 @@ def test_the_exact_ratio_in_integers_is_sympys_substitution():
     check()
     assert _ratio(sp.Integer(1), {}) == 1  # a direct gear: no tooth number at all
     assert _ratio(sp.sqrt(a) / b, {a: 9, b: 2}) == Fraction(3, 2)  # not rational in the teeth: SymPy's route
+
+
+def test_a_target_ratio_of_zero():
+    # a neutral state (ratio 0) within an absolute tolerance: every design meets it exactly as
+    # the search says, and the step between it and its neighbour is left out (no ratio of ratios)
+    res = synthesize_transmission(load_train("simple"), {"low": 4, "reverse": 0}, tolerance=5, absolute=True, zmax=60)
+    assert res.found > 0
+    for d in res.designs:
+        assert abs(d.ratios["low"] - 4) <= 5 and abs(d.ratios["reverse"]) <= 5 and d.step_error == 0
+    with pytest.raises(InputError, match="state reverse has the target ratio 0, which a relative tolerance cannot hold"):
+        synthesize_transmission(load_train("simple"), {"low": 4, "reverse": 0}, tolerance=sp.Rational(1, 100))
