@@ -114,11 +114,13 @@ def replacing(target: str | os.PathLike[str]) -> Iterator[tuple[Path]]:
                          "name, or remove it first")
     # the name is this process's (its id and a random part) and known before the file exists: an
     # interrupt at any step leaves nothing that the cleanup below does not remove
-    tmp = folder / f".{out.stem}.partial-{os.getpid()}-{secrets.token_hex(4)}{out.suffix}"
+    tmp = _partial(folder, out.stem, out.suffix)
+    ours = True
     try:
         try:
             os.close(os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666))  # the umask applies: an ordinary file
         except OSError as err:
+            ours = not isinstance(err, FileExistsError)  # (that name is another's: never removed)
             raise InputError(f"cannot write to {folder}: {err.strerror}; choose a writable folder") from None
         try:
             yield (tmp,)
@@ -129,7 +131,14 @@ def replacing(target: str | os.PathLike[str]) -> Iterator[tuple[Path]]:
         PLACED.append((out, os.stat(tmp).st_ino))
         os.replace(tmp, out)
     finally:
-        tmp.unlink(missing_ok=True)
+        if ours:
+            tmp.unlink(missing_ok=True)
+
+
+def _partial(folder: Path, name: str, suffix: str = "") -> Path:
+    """A temporary name beside ``folder / name``: this process's id and 64 random bits, so that
+    :func:`recover` tells a dead run's from a running one's and two runs never meet."""
+    return folder / f".{name}.partial-{os.getpid()}-{secrets.token_hex(8)}{suffix}"
 
 
 #: What a file of each suffix symkin writes holds at a given offset: an existing target that
@@ -388,13 +397,15 @@ def write_atomically(out: Path, build: Callable[[Path], None], *, version: str |
         raise InputError(f"cannot write {out}: its parent folder {parent} does not exist")
     # the name is known before the folder exists, so an interrupt at any step leaves nothing the
     # cleanup below does not remove; os.mkdir applies the umask (a report is an ordinary folder)
-    tmp = parent / f".{target.name}.partial-{os.getpid()}-{secrets.token_hex(4)}"
+    tmp = _partial(parent, target.name)
+    ours = True
     old: Path | None = None
     try:
         try:
             recover(out)
             os.mkdir(tmp)
         except OSError as err:
+            ours = not isinstance(err, FileExistsError)  # (that name is another's: never removed)
             raise InputError(f"cannot write to {parent}: {err.strerror}; choose a writable --out") from None
         build(tmp)
         if version is not None:
@@ -408,7 +419,7 @@ def write_atomically(out: Path, build: Callable[[Path], None], *, version: str |
             raise _unwritable(err, out, "--out") from None
         raise
     finally:
-        if old is None:
+        if old is None and ours:
             shutil.rmtree(tmp, ignore_errors=True)
     if old is not None:
         shutil.rmtree(old, ignore_errors=True)

@@ -1,6 +1,7 @@
 """Every command that writes a file writes it whole or not at all: a failing or interrupted
 run keeps the previous file and leaves no temporary file (the report folder: test_report_folder.py)."""
 
+import os
 from pathlib import Path
 
 import pytest
@@ -88,3 +89,23 @@ def test_an_existing_file_of_another_kind_is_not_replaced(tmp_path, name, conten
         with replacing(target) as (tmp,):
             tmp.write_bytes(b"new")
         assert target.read_bytes() == b"new"
+
+
+def test_a_temporary_name_that_is_taken_is_never_removed(tmp_path, monkeypatch):
+    # the temporary name is this process's id and a random part; if a path of that name is there
+    # (another run's, across pid namespaces, at odds of 2^-64), the write fails and leaves it
+    from symkin._io import atomic
+
+    monkeypatch.setattr(atomic.secrets, "token_hex", lambda n: "deadbeef")
+    theirs_file = tmp_path / f".note.partial-{os.getpid()}-deadbeef.txt"
+    theirs_file.write_text("another run's")
+    with pytest.raises(InputError, match="cannot write to"):
+        with atomic.replacing(tmp_path / "note.txt") as (tmp,):
+            tmp.write_text("mine")
+    assert theirs_file.read_text() == "another run's" and not (tmp_path / "note.txt").exists()
+    theirs_folder = tmp_path / f".report.partial-{os.getpid()}-deadbeef"
+    theirs_folder.mkdir()
+    (theirs_folder / "a.txt").write_text("another run's")
+    with pytest.raises(InputError, match="cannot write to"):
+        atomic.write_atomically(tmp_path / "report", lambda folder: (folder / "b.txt").write_text("mine"))
+    assert (theirs_folder / "a.txt").read_text() == "another run's" and not (tmp_path / "report").exists()
