@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import functools
+import operator
 from collections.abc import Callable, Mapping
 from fractions import Fraction
 from typing import Any
@@ -78,8 +79,9 @@ def exact_form(expr: sp.Expr) -> Callable[[Mapping[sp.Symbol, int]], Fraction | 
     process (on a Dask worker too) and called without the checks of a compiled function's call
     (the synthesis's inner loop, where the values are tooth numbers it made): a value is then a
     few products of Python integers and one :class:`~fractions.Fraction`, microseconds where
-    SymPy's substitution and cancellation take a millisecond or more.  The function returns None
-    where the denominator vanishes.
+    SymPy's substitution and cancellation take a millisecond or more.  The function takes whole
+    numbers only (a TypeError for others) and returns None where the denominator of the cancelled
+    form vanishes (a common factor that vanishes too is cancelled first: the value is its limit).
 
     >>> z1, z2 = sp.symbols("z1 z2")
     >>> f = exact_form(z1 / (z1 + z2) + sp.Rational(1, 2))
@@ -100,12 +102,13 @@ def exact_form(expr: sp.Expr) -> Callable[[Mapping[sp.Symbol, int]], Fraction | 
         return None
     if not all(q.domain.is_ZZ or q.domain.is_QQ for q in (pn, pd)):  # (cleared, a QQ polynomial has integer coefficients)
         return None
-    polynomials = sp.lambdify(args, (pn.as_expr(), pd.as_expr()), modules=[], docstring_limit=0)
+    # dummify: two symbols of one name (other assumptions) are two arguments
+    polynomials = sp.lambdify(args, (pn.as_expr(), pd.as_expr()), modules=[], dummify=True, docstring_limit=0)
     ratio = sp.Rational(cd, cn)
     factor = Fraction(int(ratio.p), int(ratio.q))
 
     def value(values: Mapping[sp.Symbol, int]) -> Fraction | None:
-        top, bottom = polynomials(*[int(values[z]) for z in args])  # Python integers: no overflow
+        top, bottom = polynomials(*[operator.index(values[z]) for z in args])  # Python integers (no overflow), whole only
         return None if bottom == 0 else Fraction(top, bottom) * factor
 
     return value
