@@ -68,10 +68,10 @@ PRESSURE_ANGLE = 20
 
 
 def reference_radius(gear: Any) -> sp.Expr:
-    """A gear's reference pitch radius m z / 2 where its tooth number and module are known (its
-    ``radius`` may be a working one), else its pitch radius: its base radius is this times the
-    cosine of the pressure angle."""
-    if gear.teeth is not None and gear.teeth.is_number and gear.module is not None and gear.module.is_number:
+    """A gear's reference pitch radius m z / 2 where it has a tooth number and a module, numbers
+    or symbols (its ``radius`` may be a working one), else its pitch radius: its base radius is
+    this times the cosine of the pressure angle."""
+    if gear.teeth is not None and gear.module is not None:
         return gear.module * gear.teeth / 2
     return gear.radius
 
@@ -126,7 +126,12 @@ def working_pressure_angle(mech: Mechanism, mesh: Any, given: Any = None) -> sp.
     working = mech.mesh_geometry(mesh).centre_distance
     if reference == working:
         return alpha
-    return sp.acos(reference * sp.cos(alpha) / working)
+    cosine = reference * sp.cos(alpha) / working
+    if cosine.is_number and cosine > 1:
+        raise InputError(f"mesh {mesh.a}-{mesh.b} works at {working}, nearer than its base circles allow "
+                         f"({sp.N(reference * sp.cos(alpha), 6)}, the reference distance {reference} times cos of the "
+                         "pressure angle); give a larger centre distance, or check the gears' radii")
+    return sp.acos(cosine)
 
 
 def inertia_of(mech: Mechanism, link: str) -> sp.Expr:

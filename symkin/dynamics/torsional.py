@@ -2,8 +2,8 @@
 
 Every body is a rotational coordinate: each link about the main axis, and each of a planet's
 ``count`` copies on its own (the product of the counts for a planet of a planet).  A mesh is a
-linear spring along its line of action between the base circles (base radius = pitch radius
-x cos of the pressure angle: the gears' ``pressure_angle`` in the train file, 20 degrees where
+linear spring along its line of action between the base circles (base radius = reference
+radius m z / 2 x cos of the pressure angle: the gears' ``pressure_angle`` in the train file, 20 degrees where
 it gives none, or the one given): its deflection is the mesh's contact condition
 (:func:`~symkin.kinematics.contact_condition`, the relative motion of the working pitch circles
 in the frame of the link that carries both axes) written in turns instead of speeds, times the
@@ -74,7 +74,7 @@ def torsional_model(train: Mechanism, state: Any = None, *, pressure_angle: Any 
     state : str or State, optional
         A gear state: its brakes hold links, its clutches join them.
     pressure_angle : number, optional
-        Radians, for every mesh: base radius = pitch radius x cos(pressure angle).  Default: each
+        Radians, for every mesh: base radius = reference radius m z / 2 x cos(pressure angle).  Default: each
         mesh's from its gears' ``pressure_angle`` in the train file (degrees), 20 degrees where it
         gives none.
     length : number

@@ -278,3 +278,9 @@ inertia = 0.04
 """)
     K = np.array(torsional_model(train).stiffness_matrix.evalf(30).tolist(), dtype=float)
     assert np.allclose(K, _two_gear_stiffness(20), rtol=1e-14, atol=0)
+
+
+def test_a_centre_distance_nearer_than_the_base_circles_is_refused():
+    # 20 and 40 teeth, module 1: the base circles' distance is 30 cos 20 deg = 28.19 mm
+    with pytest.raises(InputError, match="mesh a-b works at 28, nearer than its base circles allow"):
+        torsional_model(read_train(_two_gears("", "", ", centre_distance = 28")))
