@@ -34,6 +34,7 @@ change.  Bevel gears are left out (spur geometry only).
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
@@ -340,7 +341,14 @@ class _InterferenceScan:
         lo = max(min((-SHIFT_LIMIT - c) * k, (SHIFT_LIMIT - c) * k) for c, k, _ in limits)
         hi = min(max((-SHIFT_LIMIT - c) * k, (SHIFT_LIMIT - c) * k) for c, k, _ in limits)
         grid = [lo + i * SCAN_STEP for i in range(int((hi - lo) / SCAN_STEP) + 1)] if hi > lo else []
-        clear = [t for t in grid if not self.found(t)]
+        at = {t: self.found(t) for t in grid}
+        clear = [t for t in grid if not at[t]]
+        # a clear stretch narrower than a step: at an undercut limit, or where the interferences change
+        # between two neighbouring points (each is one stretch of t: they change at its ends)
+        clear += [t for t in (low, high) if lo <= t <= hi and not self.found(t)]
+        for a, b in itertools.pairwise(grid):
+            if at[a] and at[b] and at[a] != at[b]:
+                clear += self._clear_between(a, at[a], b, at[b])
         best = []
         for side in (-1, 1):
             ok = [t for t in clear if low <= t <= high and (t - t0) * side > 0]
@@ -350,7 +358,7 @@ class _InterferenceScan:
             largest = lambda t: max(abs(c + k * t) for c, k, _ in limits)  # noqa: E731
             return min(best, key=largest), None
         meshes = ", ".join(f"mesh {m} ({', '.join(dict.fromkeys(_NAMES[k] for k in kinds))})" for m, kinds in at_t0.items())
-        elsewhere = [t for t in grid if not set(self.found(t)) & set(at_t0)]
+        elsewhere = [t for t in grid if not set(at[t]) & set(at_t0)]
         if elsewhere:  # what the nearest shift that clears these meshes runs into
             t = min(elsewhere, key=lambda t: abs(t - t0))
             undercut = [g for g, (c, k) in self.lines.items() if (xm := self.minimum[g]) is not None and c + k * t < xm]
@@ -362,6 +370,17 @@ class _InterferenceScan:
             why = f"with every shift within -{SHIFT_LIMIT} and {SHIFT_LIMIT}"
         return t0, (f"{meshes}: no profile shift along the coaxial condition clears it {why}; change the tooth numbers, "
                     "take a larger pressure angle or a shorter addendum of the ring (tip_diameter in the train file)")
+
+    def _clear_between(self, a: float, at_a: dict, b: float, at_b: dict) -> list[float]:
+        """A point between ``a`` and ``b`` with no interference, if the stretch between holds one
+        wider than a millionth (halving where the interferences differ at the two ends)."""
+        if at_a == at_b or b - a < 1e-6:
+            return []
+        mid = (a + b) / 2
+        at_mid = self.found(mid)
+        if not at_mid:
+            return [mid]
+        return self._clear_between(a, at_a, mid, at_mid) or self._clear_between(mid, at_mid, b, at_b)
 
     def _edge(self, t0: float, t: float, side: int, margin: float) -> float:
         """The end of the clear stretch around grid point ``t`` nearest ``t0`` (bisected), ``margin`` inside it."""

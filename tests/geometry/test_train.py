@@ -232,3 +232,17 @@ def test_a_sun_with_room_to_lose_shift_lets_the_ring_clear_its_planet():
     assert least == pytest.approx(0.0779, abs=5e-5)
     assert 0 < float(shifts["r"]) - least < 5e-5 and shifts["p"] == shifts["r"] == -shifts["s"]
     assert train_geometry(train, shifts=shifts).problems == []
+
+
+def test_a_clear_stretch_narrower_than_the_scan_step_is_found():
+    # 22/14/50: x_s = -t, x_p = x_r = t. By hand the planet leaves undercut from t = 0.1811, the ring
+    # clears its 14-tooth planet from t = 0.2856 and the sun stays out of undercut up to t = 0.2868:
+    # a clear stretch 0.0012 wide, narrower than the scan's step (found in review: the scan missed it
+    # and the note said no shift clears the ring)
+    train = read_train(PLANETARY.replace("teeth = 12", "teeth = 22").replace("teeth = 24", "teeth = 14")
+                       .replace("teeth = 60", "teeth = 50").format(xs=0, xp=0, xr=0, distance=""))
+    least, most = least_ring_shift(14, 50), -undercut_limit(22)
+    assert 0 < most - least < 0.005 and undercut_limit(14) < least
+    shifts = coaxial_shifts(train)
+    assert least < float(shifts["r"]) < most and shifts["p"] == shifts["r"] == -shifts["s"]
+    assert not shifts.notes and train_geometry(train, shifts=shifts).problems == []
