@@ -74,8 +74,11 @@ def run_efficiency(args: Any) -> Any:
         assert shift.drive is not None and shift.coast is not None  # a train with one-way clutches says both
         data.update(one_way=shift.drive.to_json()["one_way"], coast=shift.coast.to_json())
         text += f"\none-way clutches: {shift.drive.text()}; coast (the output driving): {shift.coast.text()}"
-        if shift.coast.free:
-            text += " - the output cannot drive the input back in this state (the efficiency driven back is the held train's)"
+        if shift.coast.free:  # no efficiency driven back: the output cannot drive the input
+            free = f"free ({shift.coast.text().removeprefix('free (')}"
+            text = "\n".join(f"driven back  {out} -> {inp}: {free}: the output cannot drive the input in this state"
+                              if line.startswith("driven back ") else line for line in text.splitlines())
+            data["efficiency_backward"] = free
     if args.latex:
         symbolic = statics(mech, input=inp, output=out, fixed=fixed, joined=joined)
         data["latex"] = latex(symbolic.efficiency)
@@ -131,5 +134,11 @@ def _operating_point(args: Any, mech: Any, about: dict[str, Any], title: str) ->
         fixed, joined = mech.engaged(mech.state(args.state))
     speeds = link_values(args.omega)
     torques = link_values(args.torque, what="--torque", unit="N*m")
-    result = statics(mech, speeds=speeds, torques=torques, fixed=fixed, joined=joined, efficiency=_efficiency(args, mech))
+    efficiency = _efficiency(args, mech)
+    result = statics(mech, speeds=speeds, torques=torques, fixed=fixed, joined=joined, efficiency=efficiency)
+    if args.state is not None and getattr(mech, "one_ways", None):
+        inp = mech.link(mech.state(args.state).input).name
+        if result.powers[inp] < 0:  # the output drives the input: the one-way clutches that hold on coast
+            fixed, joined = mech.engaged(args.state, coast=True)
+            result = statics(mech, speeds=speeds, torques=torques, fixed=fixed, joined=joined, efficiency=efficiency)
     return emit(f"{title}\n{result.text()}", {**about, **result.to_json()})

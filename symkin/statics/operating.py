@@ -8,7 +8,8 @@ speeds and one torque (the engine's) fix it.
 
 Every link about the main axis (a sun, a ring, a carrier) is a port that may carry an
 external torque (0 where it has no shaft: give it); the held links carry the reactions;
-the housing takes what the ports leave, ``-(sum of their torques)``.  The ideal torques
+the housing takes what the free ports leave, ``-(sum of their torques)``: the held links'
+reactions (0 with no link held).  The ideal torques
 come from the equilibrium of every moving link (as in :func:`symkin.statics.statics`); with
 losses, each mesh's direction of relative power is decided at this operating point (the
 basic-train method) and its driven gear receives ``eta`` times the driving gear's force,
@@ -71,7 +72,8 @@ class OperatingPoint:
     loss : sympy expression
         The power lost in the meshes: the sum of the powers with losses (0 ideal).
     housing, housing_with_losses : sympy expression
-        The housing's torque on the train: ``-(sum of the ports' torques)``.
+        The housing's torque on the train through its brakes: ``-(sum of the torques of the ports
+        not held)``, the sum of the held links' reactions (as :attr:`Statics.housing`).
     meshes : tuple of MeshPower
         Ideal tooth forces (N, radii in mm) and the power through each contact (W), with the
         gear that drives.
@@ -202,8 +204,8 @@ def operating_point(
         raise ModelError("the ideal torques do not balance the power; the train is not determined here")
     return OperatingPoint(
         mech, held, pairs, {n: w[n] for n in mech.link_names}, torques_ideal, torques_lossy, powers, powers_lossy,
-        sp.cancel(sum(powers_lossy.values())), sp.cancel(-sum(torques_ideal.values())),
-        sp.cancel(-sum(torques_lossy.values())), tuple(meshes), etas,
+        sp.cancel(sum(powers_lossy.values())), sp.cancel(-sum(t for n, t in torques_ideal.items() if n not in held)),
+        sp.cancel(-sum(t for n, t in torques_lossy.items() if n not in held)), tuple(meshes), etas,
         _pin_loads(mech, sides, [f * _PER_MM for f in forces], pressure_angle))
 
 

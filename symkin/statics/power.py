@@ -121,7 +121,8 @@ class MeshPower:
         where the driver depends on the teeth).  It depends on neither the order of the
         meshes nor the order of a mesh's gears.
     driver : str or None
-        The gear that drives in the relative motion (None where it depends on the teeth).
+        The gear that drives in the relative motion (None where no power passes, or where
+        which one drives depends on the teeth).
     """
 
     mesh: Mesh
@@ -293,7 +294,7 @@ class Statics:
         lines.append("mesh           tangential    per planet    power      driver")
         for m in self.meshes:
             lines.append(f"{m.mesh.a}-{m.mesh.b:<10}  {_short(m.tangential):<12}  {_short(m.per_planet):<12}  {_short(m.power):<9}  "
-                         f"{m.driver or '(depends)'}")
+                         f"{m.driver or ('-' if m.power == 0 else '(depends)')}")
         lines += pins_text(self.pins)
         return "\n".join(lines)
 
@@ -443,7 +444,7 @@ def _mesh_powers(mech: Mechanism, sides: Sequence[_Side], forces: Sequence[sp.Ex
         count = _count(mech, s)
         meshes.append(MeshPower(
             s.mesh, F, sp.cancel(F / count), sp.Abs(F) * tan_alpha / count if not F.is_number else abs(F) * tan_alpha / count,
-            pa, sp.Abs(pa) if sign is None else sign * pa, None if sign is None else (s.mesh.a if sign > 0 else s.mesh.b)))
+            pa, sp.Abs(pa) if sign is None else sign * pa, None if not sign else (s.mesh.a if sign > 0 else s.mesh.b)))
     return meshes
 
 

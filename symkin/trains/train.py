@@ -303,21 +303,30 @@ class Train(Mechanism):
         st = self.state(state) if isinstance(state, str) else state
         return self._memo(("shift", st, self.one_ways), lambda: self._shift(st))
 
-    def engaged(self, state: str | State) -> tuple[tuple[str, ...], tuple[tuple[str, str], ...]]:
-        """The brakes and clutches that hold ``state`` in drive: its own, and the one-way clutches
-        that hold (as a brake against the frame, else as a clutch); what the statics take.
+    def engaged(self, state: str | State, *, coast: bool = False) -> tuple[tuple[str, ...], tuple[tuple[str, str], ...]]:
+        """The brakes and clutches that hold ``state`` in drive (with ``coast``, when its output
+        drives its input): its own, and the one-way clutches that hold (as a brake against the
+        frame, else as a clutch); what the statics take.
 
         >>> from symkin.trains import load_train
         >>> load_train("simpson-oneway").engaged("D1")
         (('C2',), ())
+        >>> load_train("simpson-oneway").engaged("D1", coast=True)
+        Traceback (most recent call last):
+        ...
+        symkin.errors.ModelError: state 'D1' is free when its output drives its input (F overruns): nothing carries the torque back
         """
         shift = self.shift(state)
         st = shift.state
         if shift.free:
             raise ModelError(f"state {st.name!r} is free: no one-way clutch can hold it in drive")
+        way = shift.coast if coast else shift.drive
+        if coast and way is not None and way.free:
+            raise ModelError(f"state {st.name!r} is free when its output drives its input ({way.text().removeprefix('free (')}"
+                             ": nothing carries the torque back")
         brakes, clutches = list(st.brakes), list(st.clutches)
         for ow in self.one_ways:
-            if shift.drive is not None and ow.name in shift.drive.holding:
+            if way is not None and ow.name in way.holding:
                 if FRAME in (ow.link, ow.other):
                     brakes.append(ow.other if ow.link == FRAME else ow.link)
                 else:

@@ -86,3 +86,21 @@ def test_the_cli_operating_point(capsys):
     assert main(["efficiency", "--train", "simpson-oneway", "--state", "D1", "--omega", "R1=100", "--torque",
                  "R1=10", "--torque", "S=0"]) == 0
     assert "C2" in capsys.readouterr().out
+
+
+def test_the_housing_torque_is_the_brakes_reaction_as_in_the_per_unit_statics():
+    # simple 24/72, ring held, 1 N m on the sun: the carrier gives -4 N m (Willis: 1 + 72/24), the
+    # ring's brake takes 3 N m; the housing's torque on the train is that reaction, -(T_S + T_C)
+    # (it was the sum of every port's torque, the reaction included: always 0)
+    op = statics(load_train("simple"), speeds={"S": 4}, torques={"S": 1}, fixed=("R",))
+    assert op.torques == {"S": 1, "C": -4, "R": 3}
+    assert op.housing == 3 == statics(load_train("simple"), input="S", output="C", fixed=("R",)).housing
+    assert op.housing_with_losses == op.torques_with_losses["R"]
+
+
+def test_a_mesh_that_carries_no_power_has_no_driver():
+    # simpson's third gear is direct drive: the rear set's meshes carry no force and no power
+    st = statics(load_train("simpson"), input="R1", output="C1", joined=[("R1", "S")])
+    idle = [m for m in st.meshes if m.mesh.a in ("s2", "p2")]
+    assert idle and all(m.power == 0 and m.driver is None for m in idle)
+    assert "p2-r2          0             0             0          -" in st.text()
