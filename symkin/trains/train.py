@@ -305,7 +305,8 @@ class Train(Mechanism):
 
     def engaged(self, state: str | State) -> tuple[tuple[str, ...], tuple[tuple[str, str], ...]]:
         """The brakes and clutches that hold ``state`` in drive: its own, and the one-way clutches
-        that hold (as a brake against the frame, else as a clutch); what the statics take.
+        engaged (as a brake against the frame, else as a clutch: those that hold, and an idle
+        one that keeps a link carrying no load still); what the statics take.
 
         >>> from symkin.trains import load_train
         >>> load_train("simpson-oneway").engaged("D1")
@@ -317,7 +318,7 @@ class Train(Mechanism):
             raise ModelError(f"state {st.name!r} is free: no one-way clutch can hold it in drive")
         brakes, clutches = list(st.brakes), list(st.clutches)
         for ow in self.one_ways:
-            if shift.drive is not None and ow.name in shift.drive.holding:
+            if shift.drive is not None and ow.name in shift.drive.engaged:
                 if FRAME in (ow.link, ow.other):
                     brakes.append(ow.other if ow.link == FRAME else ow.link)
                 else:
