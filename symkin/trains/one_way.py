@@ -219,12 +219,13 @@ def _search(one_ways: tuple[OneWay, ...], train: Any, state: Any, sense: int, in
             except DeterminacyError:
                 continue
             parts = {ow: _carries(train, state, sense, inp, out, known, joined, combo, ow) for ow in combo}
-            if not all(part in ("holds", "idle") for part in parts.values()):
+            carried = {ow: part for ow, part in parts.items() if part is not None and part != "overruns"}
+            if len(carried) < len(combo):  # each holds, or carries nothing
                 continue
             status, consistent = [], True
             for ow in one_ways:
                 if ow in combo:
-                    status.append((ow.name, parts[ow]))
+                    status.append((ow.name, carried[ow]))
                     continue
                 rel = _sign(_relative(speeds, ow) / speeds[inp], f"{where}: whether one-way clutch {ow.name} overruns")
                 if rel == ow.blocked:

@@ -27,44 +27,15 @@ from symkin.statics import statics
 from symkin.trains import read_train
 from symkin.trains.one_way import _solve
 
-_SIMPLE = """name = "simple planetary, a loose link"
-module = 1
-meshes = [["s", "p"], ["p", "r"]]
-
-[links.S]
-gears = { s = 24 }
-
-[links.C]
-
-[links.P]
-carrier = "C"
-count = 3
-gears = { p = 24 }
-
-[links.R]
-gears = { r = { teeth = 72, internal = true } }
-
-[links.X]
+_LIBRARY = importlib.resources.files("symkin.trains") / "library"
+#: The ready-made simple planetary (sun 24, ring 72) with a link X joined only in state xc, a one-way brake on X.
+_SIMPLE = (_LIBRARY / "simple.toml").read_text().replace("[states.low]", """[links.X]
 
 [one_way.O]
 links = ["X", "frame"]
 blocks = "negative"
 
-[states.low]
-input = "S"
-output = "C"
-brakes = ["R"]
-
-[states.reverse]
-input = "S"
-output = "R"
-brakes = ["C"]
-
-[states.overdrive]
-input = "C"
-output = "R"
-brakes = ["S"]
-
+[states.low]""") + """
 [states.xc]
 input = "S"
 output = "X"
@@ -72,7 +43,7 @@ brakes = ["R"]
 clutches = [["X", "C"]]
 """
 
-_SIMPSON = (importlib.resources.files("symkin.trains") / "library" / "simpson-oneway.toml").read_text()
+_SIMPSON = (_LIBRARY / "simpson-oneway.toml").read_text()
 
 
 def _willis(known: dict[str, sp.Expr]) -> dict[str, sp.Expr]:
