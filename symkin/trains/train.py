@@ -305,8 +305,9 @@ class Train(Mechanism):
 
     def engaged(self, state: str | State, *, coast: bool = False) -> tuple[tuple[str, ...], tuple[tuple[str, str], ...]]:
         """The brakes and clutches that hold ``state`` in drive (with ``coast``, when its output
-        drives its input): its own, and the one-way clutches that hold (as a brake against the
-        frame, else as a clutch); what the statics take.
+        drives its input): its own, and the one-way clutches engaged (as a brake against the
+        frame, else as a clutch: those that hold, and an idle one that keeps a link carrying no
+        load still); what the statics take.
 
         >>> from symkin.trains import load_train
         >>> load_train("simpson-oneway").engaged("D1")
@@ -326,7 +327,7 @@ class Train(Mechanism):
                              ": nothing carries the torque back")
         brakes, clutches = list(st.brakes), list(st.clutches)
         for ow in self.one_ways:
-            if way is not None and ow.name in way.holding:
+            if way is not None and ow.name in way.engaged:
                 if FRAME in (ow.link, ow.other):
                     brakes.append(ow.other if ow.link == FRAME else ow.link)
                 else:
