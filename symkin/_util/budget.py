@@ -41,6 +41,7 @@ bounds what is simplified.
 from __future__ import annotations
 
 import signal
+import sys
 import threading
 import time
 import warnings
@@ -180,8 +181,17 @@ def _time_limit(seconds: float) -> Iterator[None]:
 
     # an outer budget (this block nested in another's) is kept: the inner one ends at the latest when
     # the outer one does, and the outer one is re-armed with the CPU time it has left
+    def dropped(unraisable: Any) -> None:
+        # an interrupt Python drops (it landed in a __del__ or a gc callback) comes again in 0.1 s: not
+        # news to print ("Exception ignored in ..."), nor for a test harness's hook to format, where the
+        # next one could land and break the hook itself
+        if not isinstance(unraisable.exc_value, _OutOfTime):
+            hook(unraisable)
+
     outer_left, outer_interval = signal.getitimer(signal.ITIMER_PROF)
     start = time.process_time()
+    hook = sys.unraisablehook
+    sys.unraisablehook = dropped
     previous = signal.signal(signal.SIGPROF, expire)
     # then again every _REFIRE s: an interrupt that lands where Python drops exceptions (a __del__, a
     # weakref or gc callback: "Exception ignored in ...") or that a bare except swallows is raised again
@@ -192,6 +202,7 @@ def _time_limit(seconds: float) -> Iterator[None]:
         active[0] = False  # a repeat that lands from here on is ignored
         signal.setitimer(signal.ITIMER_PROF, 0)
         signal.signal(signal.SIGPROF, previous)
+        sys.unraisablehook = hook
         if outer_left > 0:  # re-arm the outer budget with what is left of it (at least a moment)
             left = outer_left - (time.process_time() - start)
             signal.setitimer(signal.ITIMER_PROF, max(left, 1e-6), outer_interval)
