@@ -139,7 +139,8 @@ def as_rational(value: Any, *, what: str = "value", error: type[Exception] = Inp
     if isinstance(value, numbers.Real):  # float, NumPy floats: the decimal they print as
         if not math.isfinite(float(value)):
             raise error(f"{what} must be a finite number, got {_show(value)}")
-        return _decimal(repr(value) if isinstance(value, float) else str(value), what, error)
+        # (repr of a NumPy 2 float64, a float subclass, is 'np.float64(0.1)': the float's own repr)
+        return _decimal(repr(float(value)) if isinstance(value, float) else str(value), what, error)
     raise error(f"{what} must be a number, got {_show(value)}")
 
 
@@ -227,6 +228,11 @@ def as_expr(
         return _quantity(value, unit, what, error)
     if isinstance(value, bool) or value is None:
         raise error(f"{what} must be a number or an expression, got {_show(value)}")
+    if finite and isinstance(value, numbers.Complex) and not isinstance(value, numbers.Real):
+        raise error(f"{what} must be a real number, got {_show(value)}")  # (sympify drops an imaginary part of 0)
+    if isinstance(value, (numbers.Real, decimal.Decimal)) and not isinstance(value, (numbers.Rational, sp.Basic)) \
+            and math.isfinite(float(value)):
+        return as_rational(value, what=what, error=error)  # a float is the decimal it prints: 0.1 is 1/10
     try:
         expr = sp.sympify(value, strict=True)
     except (sp.SympifyError, TypeError, ValueError):
@@ -442,6 +448,7 @@ def unit_factor(unit_from: Any, unit_to: str, *, what: str = "value") -> sp.Expr
     dst = _unit(reg, unit_to, what)
     try:
         f = float(reg.Quantity(1.0, src).to(dst).magnitude)
+        offset = float(reg.Quantity(0.0, src).to(dst).magnitude)
     except pint.DimensionalityError:
         raise InputError(
             f"{what}: {src:~} is not a unit of {unit_to} (it is a {reg.get_dimensionality(src)}, "
@@ -449,6 +456,9 @@ def unit_factor(unit_from: Any, unit_to: str, *, what: str = "value") -> sp.Expr
         ) from None
     if not math.isfinite(f) or f == 0:
         raise InputError(f"{what}: the unit {src:~} is out of range in {unit_to}")
+    if offset != 0:  # degC to K is no factor: 0 degC is 273.15 K
+        raise InputError(f"{what}: {src:~} has an offset from {unit_to} (0 {src:~} is {offset:g} {unit_to}), so no "
+                         f"factor converts it; give a difference (delta_{src}) or {unit_to}")
     to_angle, from_angle = _angle_power(reg, dst), _angle_power(reg, src)
     if to_angle != from_angle:
         # pint takes the radian for a pure number, so 5 Hz would pass as 5 rad/s, not 5 turns a second

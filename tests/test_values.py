@@ -54,3 +54,32 @@ def test_typed_values_beyond_float64_are_refused_with_the_range(text):
     with pytest.raises(InputError, match="beyond the float64 range"):
         parse_real(text, what="--carrier-angle")
     assert parse_real("E**690") == sp.E**690  # large, still within the 1e300 bound on every number (E**700 is 1e304)
+
+
+def test_numpy_floats_offset_units_and_complex_numbers_at_the_gate():
+    # found in review: NumPy 2 prints a float64 as np.float64(0.1), which the decimal reader refused
+    import numpy as np
+    import pint
+
+    from symkin.units import factor, quantity
+    from symkin.values import as_expr, as_float, as_rational
+
+    assert as_rational(np.float64(0.1)) == sp.Rational(1, 10) == as_rational(np.float32(0.1))
+    ureg = pint.UnitRegistry()
+    assert quantity(ureg.Quantity(np.float64(300), "rpm"), "rad/s") == 10 * sp.pi
+    # a float is the decimal it prints wherever a value enters: the AA train with w_4 = 0 by Willis,
+    # w_1 / w_H = 1 - z2 z4 / (z1 z3), exactly (it came out as a SymPy Float)
+    speeds = schemes.two_row("AA", teeth=(54, 45, 44, 55)).speeds({"1": 0.1, "4": 0})
+    assert speeds["H"] == sp.Rational(1, 10) / (1 - sp.Rational(45 * 55, 54 * 44))
+    assert as_expr(np.float64(2.5), what="x") == sp.Rational(5, 2)
+    # an offset unit has no factor (0 degC is 273.15 K): refused, a difference is fine
+    for call in (lambda: quantity(ureg.Quantity(5, "degC"), "K"), lambda: factor("degC", "K")):
+        with pytest.raises(InputError, match="has an offset from K"):
+            call()
+    assert quantity(ureg.Quantity(5, "delta_degC"), "K") == 5
+    # a complex number is refused even with an imaginary part of 0 (sympify drops it)
+    for value in (1 + 0j, np.complex128(1)):
+        with pytest.raises(InputError, match="must be a real number"):
+            as_expr(value, what="x")
+        with pytest.raises(InputError, match="must be a real number"):
+            as_float(value, what="x")
