@@ -248,7 +248,7 @@ def _quantity(value: Any, unit: str | None, what: str, error: type[Exception]) -
     if unit is None:
         raise error(f"{what} takes a bare number, got the quantity {value:~}")
     magnitude = value.magnitude
-    if not isinstance(magnitude, numbers.Real) or isinstance(magnitude, bool):
+    if not isinstance(magnitude, (numbers.Real, decimal.Decimal)) or isinstance(magnitude, bool):
         raise error(f"{what} must be a single real quantity, got {value!r}")
     try:
         return as_rational(magnitude, what=what, error=error) * unit_factor(value.units, unit, what=what)
@@ -463,11 +463,14 @@ def unit_factor(unit_from: Any, unit_to: str, *, what: str = "value") -> sp.Expr
     if to_angle != from_angle:
         # pint takes the radian for a pure number, so 5 Hz would pass as 5 rad/s, not 5 turns a second
         if to_angle > from_angle:
-            why = f"{src:~} gives no angle, and {unit_to} measures one" + (
+            why = f"{f'{src:~}' or 'a pure number'} gives no angle, and {unit_to} measures one" + (
                 " (is 1 Hz one turn a second, 2 pi rad/s, or 1 rad/s?)" if unit_to == "rad/s" else "")
         else:
             why = f"{src:~} measures an angle, and {unit_to} does not"
         raise InputError(f"{what}: {why}; write it in a unit such as {_SUGGESTED.get(unit_to, unit_to)}")
+    decimal_factor = Fraction(repr(f))  # a metric factor is the decimal it prints (1e-09 for nm to m)
+    if decimal_factor.denominator <= 10**12:
+        return sp.Rational(decimal_factor.numerator, decimal_factor.denominator)
     for power in (0, 1, -1):
         r = Fraction(f / math.pi**power).limit_denominator(10**6)
         if r and abs(float(r) * math.pi**power - f) <= 1e-14 * abs(f):

@@ -155,3 +155,17 @@ def test_symbolic_inputs_whose_class_has_no_module_pass_through():
 
     theta = sp.Function("Theta")
     assert AngleLaw(theta(S.t)).angle(S.t) == theta(S.t) - theta(0)
+
+
+def test_metric_factors_are_exact_decimals_and_a_decimal_magnitude_is_taken():
+    # found in review: 1e-9 (nm to m) came out as 4835703278458517/4835703278458516915501542656...
+    import decimal
+
+    import pint
+
+    from symkin.units import factor, quantity
+
+    assert (factor("nm", "m"), factor("pm", "m"), factor("ns", "s")) == (sp.Rational(1, 10**9), sp.Rational(1, 10**12),
+                                                                         sp.Rational(1, 10**9))
+    assert factor("inch", "mm") == sp.Rational(127, 5) and factor("rpm", "rad/s") == sp.pi / 30
+    assert quantity(pint.UnitRegistry().Quantity(decimal.Decimal("0.5"), "m"), "mm") == 500
