@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import decimal
 import enum
+import numbers
 import re
 from collections.abc import Iterable
 from dataclasses import dataclass, field
@@ -78,11 +79,11 @@ def as_teeth(value: Any, what: str) -> sp.Expr:
     exact = value
     if isinstance(value, decimal.Decimal):  # an exact decimal, as a Fraction is: Decimal("20") is 20
         exact = as_rational(value, what=what, error=ModelError)
-    expr = as_expr(exact, what=what, finite=False, error=ModelError)
+    # a float (20.0 too) is refused: a count is given as an integer (the gate would make 20.0 exact)
+    floating = isinstance(value, numbers.Real) and not isinstance(value, (numbers.Rational, sp.Basic, decimal.Decimal))
+    expr = sp.Float(value) if floating else as_expr(exact, what=what, finite=False, error=ModelError)
     if expr.is_number:
         if not expr.is_Integer:
-            if expr.is_finite and expr.is_integer:  # e.g. Float 20.0: still refuse, it is not exact
-                pass
             raise ModelError(
                 f"{what} must be a whole number, got {value!r}; tooth numbers are positive integers"
             )
