@@ -75,7 +75,7 @@ def run_efficiency(args: Any) -> Any:
         data.update(one_way=shift.drive.to_json()["one_way"], coast=shift.coast.to_json())
         text += f"\none-way clutches: {shift.drive.text()}; coast (the output driving): {shift.coast.text()}"
         if shift.coast.free:  # no efficiency driven back: the output cannot drive the input
-            free = f"free ({shift.coast.text().removeprefix('free (')}"
+            free = shift.coast.text()  # "free (F overruns)"
             text = "\n".join(f"driven back  {out} -> {inp}: {free}: the output cannot drive the input in this state"
                               if line.startswith("driven back ") else line for line in text.splitlines())
             data["efficiency_backward"] = free

@@ -24,7 +24,7 @@ from symkin._util.display import html_table, short_repr
 from symkin._util.jsonout import exact_json, float_text
 from symkin.errors import CoaxialityWarning, ModelError, SymkinError
 from symkin.model import Gear, LinkKind, Mechanism
-from symkin.numeric.backends.exact import exact_form
+from symkin.numeric.backends.exact import exact_value
 from symkin.synthesis.conditions import Condition
 from symkin.synthesis.efficiency import DEFAULT_RANK
 from symkin.synthesis.funnel import Record
@@ -630,11 +630,10 @@ def describe_designs(designs: Sequence[Design]) -> list[str]:
 
 def _at(expr: Any, values: Mapping[sp.Symbol, int]) -> sp.Rational:
     """The exact value of ``expr`` (a tooth number or a centre distance, rational in the unknown
-    tooth numbers) at ``values``: integer arithmetic compiled once per expression
-    (:func:`~symkin.numeric.backends.exact.exact_form`), SymPy's substitution where it is not rational."""
+    tooth numbers) at ``values`` (:func:`~symkin.numeric.backends.exact.exact_value`: integer
+    arithmetic compiled once per expression)."""
     expr = sp.sympify(expr)
-    exact = exact_form(expr)
-    value = exact(values) if exact is not None else None
+    value = exact_value(expr, values)
     if value is None:
         return sp.Rational(expr.subs(values))
     return sp.Rational(value.numerator, value.denominator)

@@ -38,7 +38,7 @@ from symkin._util.jsonout import exact_json, float_text
 from symkin.errors import InputError, TimeLimitError
 from symkin.model import Gear, Mechanism
 from symkin.numeric import compile as compile_law
-from symkin.numeric.backends.exact import exact_form
+from symkin.numeric.backends.exact import exact_value
 from symkin.synthesis.problem import Problem, derive
 from symkin.synthesis.request import Options
 from symkin.values import as_rational
@@ -438,21 +438,12 @@ def _exact_chunk(rows: list[dict[sp.Symbol, int]], search: _Search) -> list[Tran
             if d is not None]
 
 
-def _ratio(law: sp.Expr, values: Mapping[sp.Symbol, int]) -> Fraction | None:
-    """The exact value of ``law`` at the tooth numbers ``values``; None where it has none (a zero denominator)."""
-    exact = exact_form(law)
-    if exact is not None:
-        return exact(values)
-    value = sp.cancel(law.xreplace({z: sp.Integer(v) for z, v in values.items()}))  # not rational in the teeth
-    return Fraction(int(value.p), int(value.q)) if value.is_Rational else None
-
-
 def _design(values: dict[sp.Symbol, int], laws: dict[str, sp.Expr], targets: dict[str, sp.Rational], tol: sp.Rational,
             absolute: bool) -> TransmissionDesign | None:
     """The design with exact ratios, or None when one misses the tolerance exactly (or has no finite value)."""
     ratios: dict[str, Fraction] = {}
     for s, law in laws.items():
-        ratio = _ratio(law, values)
+        ratio = exact_value(law, values)
         if ratio is None:
             return None
         ratios[s] = ratio

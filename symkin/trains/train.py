@@ -323,7 +323,7 @@ class Train(Mechanism):
             raise ModelError(f"state {st.name!r} is free: no one-way clutch can hold it in drive")
         way = shift.coast if coast else shift.drive
         if coast and way is not None and way.free:
-            raise ModelError(f"state {st.name!r} is free when its output drives its input ({way.text().removeprefix('free (')}"
+            raise ModelError(f"state {st.name!r} is free when its output drives its input {way.text().removeprefix('free ')}"
                              ": nothing carries the torque back")
         brakes, clutches = list(st.brakes), list(st.clutches)
         for ow in self.one_ways:

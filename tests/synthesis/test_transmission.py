@@ -91,35 +91,6 @@ def test_auto_stays_here_when_a_cluster_would_not_pay_and_finds_the_same_designs
     assert auto.where.startswith("this process (a local cluster of") and "would not pay" in auto.where
 
 
-def test_the_exact_ratio_in_integers_is_sympys_substitution():
-    # _ratio evaluates a law's numerator and denominator as integer polynomials; a second route is
-    # SymPy's substitution and cancellation, a third the same law written here in Fractions
-    from fractions import Fraction
-
-    from hypothesis import given, settings
-    from hypothesis import strategies as st
-
-    from symkin.synthesis.transmission import _ratio
-
-    a, b, c = sp.symbols("z_a z_b z_c", positive=True, integer=True)
-    law = sp.Rational(3, 2) * a / (b - c) + sp.Rational(1, 7) * b * c / a - 1
-
-    @settings(max_examples=200, deadline=None)
-    @given(st.integers(1, 200), st.integers(1, 200), st.integers(1, 200))
-    def check(x, y, z):
-        values = {a: x, b: y, c: z}
-        got = _ratio(law, values)
-        if y == z:
-            assert got is None  # a zero denominator: no finite ratio
-            return
-        assert got == Fraction(3, 2) * x / (y - z) + Fraction(1, 7) * y * z / x - 1
-        assert sp.Rational(got.numerator, got.denominator) == sp.cancel(law.xreplace(values))
-
-    check()
-    assert _ratio(sp.Integer(1), {}) == 1  # a direct gear: no tooth number at all
-    assert _ratio(sp.sqrt(a) / b, {a: 9, b: 2}) == Fraction(3, 2)  # not rational in the teeth: SymPy's route
-
-
 def test_a_target_ratio_of_zero():
     # a neutral state (ratio 0) within an absolute tolerance: every design meets it exactly as
     # the search says, and the step between it and its neighbour is left out (no ratio of ratios)

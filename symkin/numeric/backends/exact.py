@@ -16,7 +16,7 @@ from symkin.numeric.backends.pointwise import PointwiseBackend
 from symkin.numeric.codegen import ExactPrinter
 from symkin.values import refuse_text
 
-__all__ = ["ExactBackend", "exact_form"]
+__all__ = ["ExactBackend", "exact_form", "exact_value"]
 
 
 class ExactBackend(PointwiseBackend):
@@ -112,3 +112,19 @@ def exact_form(expr: sp.Expr) -> Callable[[Mapping[sp.Symbol, int]], Fraction | 
         return None if bottom == 0 else Fraction(top, bottom) * factor
 
     return value
+
+
+def exact_value(expr: sp.Expr, values: Mapping[sp.Symbol, int]) -> Fraction | None:
+    """The exact value of ``expr`` at the whole numbers ``values``: by :func:`exact_form` where
+    ``expr`` is rational in them, else SymPy's substitution; None where it has no rational value
+    (a zero denominator, an irrational number).
+
+    >>> z = sp.Symbol("z")
+    >>> exact_value(z / 2 + 1, {z: 3}), exact_value(sp.sqrt(z) / 2, {z: 9}), exact_value(1 / (z - 3), {z: 3})
+    (Fraction(5, 2), Fraction(3, 2), None)
+    """
+    exact = exact_form(expr)
+    if exact is not None:
+        return exact(values)
+    value = sp.cancel(expr.xreplace({z: sp.Integer(v) for z, v in values.items()}))  # not rational in them
+    return Fraction(int(value.p), int(value.q)) if value.is_Rational else None

@@ -11,7 +11,7 @@ import sympy as sp
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
-from symkin.numeric.backends.exact import exact_form
+from symkin.numeric.backends.exact import exact_form, exact_value
 
 Z = sp.symbols("z1:4", positive=True, integer=True)
 
@@ -47,3 +47,26 @@ def test_what_exact_form_takes_and_gives():
     assert exact_form(z1 / (z1 - z2) - z2 / (z1 - z2))({z1: 3, z2: 3}) == 1
     assert exact_form(sp.Integer(0))({}) == 0
     assert exact_form(sp.sqrt(z1)) is None and exact_form(sp.pi * z1) is None and exact_form(z1 ** z2) is None
+
+
+def test_the_exact_ratio_in_integers_is_sympys_substitution():
+    # exact_value evaluates a law's numerator and denominator as integer polynomials; a second route is
+    # SymPy's substitution and cancellation, a third the same law written here in Fractions
+    a, b, c = sp.symbols("z_a z_b z_c", positive=True, integer=True)
+    law = sp.Rational(3, 2) * a / (b - c) + sp.Rational(1, 7) * b * c / a - 1
+
+    @settings(max_examples=200, deadline=None)
+    @given(st.integers(1, 200), st.integers(1, 200), st.integers(1, 200))
+    def check(x, y, z):
+        values = {a: x, b: y, c: z}
+        got = exact_value(law, values)
+        if y == z:
+            assert got is None  # a zero denominator: no finite ratio
+            return
+        assert got == Fraction(3, 2) * x / (y - z) + Fraction(1, 7) * y * z / x - 1
+        assert sp.Rational(got.numerator, got.denominator) == sp.cancel(law.xreplace(values))
+
+    check()
+    assert exact_value(sp.Integer(1), {}) == 1  # a direct gear: no tooth number at all
+    assert exact_value(sp.sqrt(a) / b, {a: 9, b: 2}) == Fraction(3, 2)  # not rational in the teeth: SymPy's route
+
